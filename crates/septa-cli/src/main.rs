@@ -1,0 +1,4 @@
+//! The `septa` command line.
+fn main() {
+    println!("septa");
+}

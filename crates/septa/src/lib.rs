@@ -1,0 +1,19 @@
+//! # Septa
+//!
+//! Septa partitions 3D space by many surfaces and returns the walls
+//! (**patches**), the curves where walls meet (**chains**), their end points
+//! (**corners**) and the regions they enclose (**cells**), with a
+//! combinatorial structure that is exact for the given input numbers.
+//!
+//! Layers, bottom to top (nothing flows up):
+//! - [`septa_exact`]: filtered exact signs.
+//! - [`complex`]: the convex cell complex of one tetrahedron cut by the
+//!   zero sets of k linear functions (implicit arrangement, IA) or by
+//!   their upper envelope (material interface, MI).
+//!
+//! What is exact: every combinatorial answer (which vertices, edges, faces
+//! and cells exist and how they connect). What is floating point: vertex
+//! coordinates, computed only for output.
+#![warn(missing_docs)]
+
+pub mod complex;
