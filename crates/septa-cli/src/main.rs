@@ -1,4 +1,59 @@
-//! The `septa` command line.
-fn main() {
-    println!("septa");
+//! The `septa` command line: one file per subcommand.
+use clap::{Parser, Subcommand};
+
+mod bench;
+mod cut;
+mod demo;
+mod network;
+mod regions;
+mod stress;
+mod view;
+
+/// Septa: exact surface networks, non-manifold implicit shapes and planar cut-cell meshes.
+#[derive(Parser)]
+#[command(name = "septa", version, about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
 }
+
+#[derive(Subcommand)]
+enum Command {
+    /// Robustness test of the per-tet construction (paper Table 1).
+    Stress(stress::Args),
+    /// Benchmarks.
+    Bench(bench::Args),
+    /// Implicit arrangement of functions on a tet grid.
+    Ia(network::Args),
+    /// Material interface of functions on a tet grid.
+    Mi(network::Args),
+    /// Non-manifold implicit shapes from a scene with a region rule.
+    Regions(regions::Args),
+    /// Cut a closed triangle mesh by planes into cut-cells.
+    Cut(cut::Args),
+    /// Run the built-in scenes.
+    Demo(demo::Args),
+    /// Write a self-contained viewer for an output folder.
+    View(view::Args),
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Stress(a) => stress::run(a),
+        Command::Bench(a) => bench::run(a),
+        Command::Ia(a) => network::run(a, network::Mode::Ia),
+        Command::Mi(a) => network::run(a, network::Mode::Mi),
+        Command::Regions(a) => regions::run(a),
+        Command::Cut(a) => cut::run(a),
+        Command::Demo(a) => demo::run(a),
+        Command::View(a) => view::run(a),
+    };
+    if let Err(e) = result {
+        eprintln!("error: {e}");
+        std::process::exit(2);
+    }
+}
+
+/// Every subcommand returns this; the message is printed as `error: ...`.
+pub type CliResult = Result<(), Box<dyn std::error::Error>>;

@@ -10,6 +10,11 @@
 //! - [`complex`]: the convex cell complex of one tetrahedron cut by the
 //!   zero sets of k linear functions (implicit arrangement, IA) or by
 //!   their upper envelope (material interface, MI).
+//! - [`grid`]: tetrahedral grids (built-in boxes, any tet mesh).
+//! - [`network`]: per-tet complexes assembled into one surface network.
+//! - [`cut`]: planar cut-cell meshes of closed triangle meshes (TopoCut).
+//! - [`scene`]: primitives, sampling and region rules.
+//! - [`io`]: readers and writers.
 //!
 //! What is exact: every combinatorial answer (which vertices, edges, faces
 //! and cells exist and how they connect). What is floating point: vertex
@@ -17,3 +22,8 @@
 #![warn(missing_docs)]
 
 pub mod complex;
+pub mod cut;
+pub mod grid;
+pub mod io;
+pub mod network;
+pub mod scene;
