@@ -16,12 +16,12 @@
 //! typed error before any predicate runs.
 #![warn(missing_docs)]
 
-mod sign;
-mod exact;
-mod validate;
 mod det;
+mod exact;
+mod sign;
+mod validate;
 
+pub use det::{det_sign, det_sign_diff};
 pub use exact::Exact;
 pub use sign::Sign;
 pub use validate::{check_finite, NonFinite};
-pub use det::{det_sign, det_sign_diff};
