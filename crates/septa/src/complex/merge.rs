@@ -20,9 +20,7 @@ impl Complex {
         if !(0..self.cells.len() as u32).any(neg) {
             return;
         }
-        let keep_vertex = |v: u32, this: &Complex| {
-            !(this.vsign[v as usize] < 0 && this.vertices[v as usize].dim() > 0)
-        };
+        let keep_vertex = |v: u32, this: &Complex| !(this.vsign[v as usize] < 0 && this.vertices[v as usize].dim() > 0);
 
         let mut faces: Vec<Face> = Vec::with_capacity(self.faces.len());
         let mut face_map: Vec<u32> = vec![NONE; self.faces.len()];
@@ -36,11 +34,7 @@ impl Complex {
                 Plane::TetFace(t) if neg(c0) => {
                     let n = face.vertices.len();
                     for k in 0..n {
-                        groups[t as usize].push((
-                            face.vertices[k],
-                            face.vertices[(k + 1) % n],
-                            face.edges[k],
-                        ));
+                        groups[t as usize].push((face.vertices[k], face.vertices[(k + 1) % n], face.edges[k]));
                     }
                 }
                 _ if neg(c0) && neg(c1) => {}
@@ -78,11 +72,8 @@ impl Complex {
             if group.is_empty() {
                 continue;
             }
-            let boundary: SmallVec<[(u32, u32, u32); 12]> = group
-                .iter()
-                .copied()
-                .filter(|&(a, b, _)| !group.iter().any(|&(p, q, _)| p == b && q == a))
-                .collect();
+            let boundary: SmallVec<[(u32, u32, u32); 12]> =
+                group.iter().copied().filter(|&(a, b, _)| !group.iter().any(|&(p, q, _)| p == b && q == a)).collect();
             // Chain the boundary into a loop starting at a kept vertex.
             let Some(start) = boundary.iter().position(|&(a, _, _)| keep_vertex(a, self)) else {
                 continue;
@@ -96,15 +87,7 @@ impl Complex {
                     let e = if span == 1 {
                         first_edge
                     } else {
-                        merged_edge(
-                            cur,
-                            to,
-                            first_edge,
-                            &mut merged_edges,
-                            &mut extra_edges,
-                            self,
-                            n_old_edges,
-                        )
+                        merged_edge(cur, to, first_edge, &mut merged_edges, &mut extra_edges, self, n_old_edges)
                     };
                     verts.push(cur);
                     edges.push(e);
@@ -112,18 +95,12 @@ impl Complex {
                     if cur == boundary[start].0 {
                         break;
                     }
-                    let &(_, nt, ne) = boundary
-                        .iter()
-                        .find(|d| d.0 == cur)
-                        .expect("closed boundary");
+                    let &(_, nt, ne) = boundary.iter().find(|d| d.0 == cur).expect("closed boundary");
                     to = nt;
                     first_edge = ne;
                     span = 1;
                 } else {
-                    let &(_, nt, _) = boundary
-                        .iter()
-                        .find(|d| d.0 == to)
-                        .expect("closed boundary");
+                    let &(_, nt, _) = boundary.iter().find(|d| d.0 == to).expect("closed boundary");
                     to = nt;
                     span += 1;
                 }
@@ -132,12 +109,7 @@ impl Complex {
                 }
             }
             new_cell_faces.push(faces.len() as u32);
-            faces.push(Face {
-                plane: Plane::TetFace(t as u8),
-                vertices: verts,
-                edges,
-                cells: [new_cell, NONE],
-            });
+            faces.push(Face { plane: Plane::TetFace(t as u8), vertices: verts, edges, cells: [new_cell, NONE] });
         }
 
         // Cells: the positive ones keep their faces; the new one is appended.
@@ -148,12 +120,7 @@ impl Complex {
                 continue;
             }
             let mut cell = cell.clone();
-            cell.faces = cell
-                .faces
-                .iter()
-                .map(|&f| face_map[f as usize])
-                .filter(|&f| f != NONE)
-                .collect();
+            cell.faces = cell.faces.iter().map(|&f| face_map[f as usize]).filter(|&f| f != NONE).collect();
             cell_map[c] = cells.len() as u32;
             cells.push(cell);
         }
@@ -232,10 +199,7 @@ fn merged_edge(
         return e;
     }
     let e = base + extra.len() as u32;
-    extra.push(Edge {
-        vertices: [a, b],
-        planes: this.edges[first as usize].planes,
-    });
+    extra.push(Edge { vertices: [a, b], planes: this.edges[first as usize].planes });
     merged.push((key.0, key.1, e));
     e
 }

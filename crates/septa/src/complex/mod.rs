@@ -41,6 +41,7 @@ mod coords;
 mod merge;
 mod predicate;
 mod split;
+pub mod stress;
 mod types;
 
 pub use build::{BuildError, Options};
