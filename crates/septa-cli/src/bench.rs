@@ -26,6 +26,9 @@ pub struct Args {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
+    /// Always run the incremental construction (the paper's Table 3 setting).
+    #[arg(long)]
+    no_lookup: bool,
 }
 
 /// Runs `septa bench`.
@@ -63,7 +66,7 @@ fn bench_tet(a: &Args) -> CliResult {
     let mut rng = ChaCha8Rng::seed_from_u64(a.seed);
     let inputs: Vec<Vec<[f64; 4]>> = (0..a.count).map(|_| random_tet(&mut rng, mode, a.functions)).collect();
     let mut c = Complex::new();
-    let opts = Options::default();
+    let opts = Options::with_lookup(!a.no_lookup);
     let float = Options::with_float(true);
     // Warm up buffers and caches.
     for v in inputs.iter().take(1000) {
@@ -90,7 +93,7 @@ fn bench_tet(a: &Args) -> CliResult {
     if a.json {
         println!(
             "{}",
-            serde_json::json!({"mode": a.mode, "functions": a.functions, "count": a.count, "mean_us": mean,
+            serde_json::json!({"mode": a.mode, "functions": a.functions, "count": a.count, "lookup": !a.no_lookup, "mean_us": mean,
                 "std_us": std, "filter_hit_rate": hit_rate, "float_mean_us": float_mean,
                 "float_failures": float_failures, "exact_over_float": mean / float_mean})
         );

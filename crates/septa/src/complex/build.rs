@@ -7,19 +7,34 @@ use super::split::Scratch;
 use super::types::{Cell, Complex, Edge, Face, Mode, Plane, Vertex, NONE};
 
 /// Options of [`Complex::build`].
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Options {
     /// Use naive floating-point signs instead of the exact predicate.
     /// Only for measuring what exactness buys (`septa stress --float`).
     /// Default value: `false`.
     pub float: bool,
+    /// Use the look-up tables for IA with 1-2 functions and MI with 2-3
+    /// (Sec. 6); they give the same complex as the incremental
+    /// construction. Ignored with `float`. Default value: `true`.
+    pub lookup: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { float: false, lookup: true }
+    }
 }
 
 impl Options {
     /// Options with the naive floating-point predicate switched on or off.
     pub fn with_float(float: bool) -> Options {
-        Options { float }
+        Options { float, ..Options::default() }
+    }
+
+    /// Options with the look-up tables switched on or off.
+    pub fn with_lookup(lookup: bool) -> Options {
+        Options { lookup, ..Options::default() }
     }
 }
 
@@ -104,6 +119,14 @@ impl Complex {
         self.num_functions = values.len();
         self.init_tet(0);
         let preds = Predicates { values, mode, float: options.float };
+        if options.lookup && !options.float {
+            if let Some(table) = super::lookup::table(mode, values.len()) {
+                if let Some(t) = super::lookup::find(table, &preds, values.len()) {
+                    self.decode(&table.data[t as usize..]);
+                    return Ok(());
+                }
+            }
+        }
         let first = if mode == Mode::Mi { 1 } else { 0 };
         for f in first..values.len() as u16 {
             self.insert(&preds, f, scratch)?;
