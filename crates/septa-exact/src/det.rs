@@ -92,11 +92,6 @@ fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
 /// ```
 #[inline]
 pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
-<<<<<<< HEAD
-    let e: Vec<Vec<Exact>> =
-        (0..N).map(|i| (0..N).map(|j| &Exact::from_f64(a[i][j]) - &Exact::from_f64(b[i][j])).collect()).collect();
-    det_exact(&e).sign()
-=======
     let o = match N {
         1 => {
             stats::count_filter();
@@ -122,7 +117,6 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
         }
         _ => slow_mi(o, a, b),
     }
->>>>>>> exact
 }
 
 #[cold]
@@ -139,18 +133,6 @@ fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> 
             bignum::det_sign_diff(a, b)
         }
     }
-<<<<<<< HEAD
-    let mut acc = Exact::zero();
-    for c in 0..n {
-        let minor: Vec<Vec<Exact>> = m[1..]
-            .iter()
-            .map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, x)| x.clone()).collect())
-            .collect();
-        let t = &m[0][c] * &det_exact(&minor);
-        acc = if c % 2 == 0 { &acc + &t } else { &acc - &t };
-    }
-    acc
-=======
 }
 
 /// The naive floating-point sign of `det(m)`: the filter's evaluation
@@ -167,5 +149,4 @@ pub fn det_sign_f64_naive<const N: usize>(m: &[[f64; N]; N]) -> Sign {
 pub fn det_sign_diff_f64_naive<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
     let x: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| a[i][j] - b[i][j]));
     Sign::of_f64(filter::det_f64(&x))
->>>>>>> exact
 }
