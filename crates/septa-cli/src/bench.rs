@@ -113,10 +113,11 @@ fn bench_tet(a: &Args) -> CliResult {
     Ok(())
 }
 
-fn septa_exact_stats() -> Option<[u64; 2]> {
-    None
+fn septa_exact_stats() -> septa_exact::stats::Stats {
+    septa_exact::stats::snapshot()
 }
 
-fn filter_hit_rate(_before: Option<[u64; 2]>, _after: Option<[u64; 2]>) -> f64 {
-    f64::NAN
+/// Share of exact predicate calls that the floating-point filter decided.
+fn filter_hit_rate(before: septa_exact::stats::Stats, after: septa_exact::stats::Stats) -> f64 {
+    after.since(&before).filter_rate()
 }
