@@ -112,3 +112,34 @@ fn duplicate_function_is_harmless() {
     let c = build(Mode::Mi, &[f, [0.3, 0.1, -0.2, 0.0], f]);
     c.check_invariants().unwrap();
 }
+
+#[test]
+fn non_finite_values_are_rejected_with_their_position() {
+    use septa::complex::BuildError;
+    let mut c = Complex::new();
+    for mode in [Mode::Ia, Mode::Mi] {
+        let err = c.build(mode, &[[0.5, -1.0, 1.0, 2.0], [1.0, 1.0, f64::NAN, 0.0]], &Options::default()).unwrap_err();
+        assert!(matches!(err, BuildError::NonFinite { function: 1, vertex: 2, .. }), "{err:?}");
+        let err = c.build(mode, &[[f64::NEG_INFINITY, 0.0, 0.0, 0.0]], &Options::default()).unwrap_err();
+        assert!(matches!(err, BuildError::NonFinite { function: 0, vertex: 0, .. }), "{err}");
+    }
+    assert_eq!(c.build(Mode::Mi, &[], &Options::default()), Err(BuildError::NoFunctions));
+    // IA with no function is the bare tet.
+    c.build(Mode::Ia, &[], &Options::default()).unwrap();
+    assert_eq!(c.cells().len(), 1);
+}
+
+#[test]
+fn extreme_magnitudes_and_subnormals() {
+    let tiny = f64::from_bits(3);
+    let cases: Vec<Vec<[f64; 4]>> = vec![
+        vec![[1e-300, -1e300, 1e-300, -1e-300], [-1e300, 1e-300, tiny, -tiny]],
+        vec![[tiny, -tiny, 2.0 * tiny, -3.0 * tiny], [-tiny, tiny, -2.0 * tiny, 3.0 * tiny], [1e300, -1e-300, 0.0, 1.0]],
+    ];
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for vals in &cases {
+        for mode in [Mode::Ia, Mode::Mi] {
+            counts_independent_of_order(mode, vals, &mut rng);
+        }
+    }
+}
