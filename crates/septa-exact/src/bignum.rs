@@ -24,13 +24,7 @@ fn det_exact(m: &[Vec<Exact>]) -> Exact {
         }
         let minor: Vec<Vec<Exact>> = m[1..]
             .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != c)
-                    .map(|(_, x)| x.clone())
-                    .collect()
-            })
+            .map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, x)| x.clone()).collect())
             .collect();
         let t = &m[0][c] * &det_exact(&minor);
         acc = if c % 2 == 0 { &acc + &t } else { &acc - &t };
@@ -40,22 +34,12 @@ fn det_exact(m: &[Vec<Exact>]) -> Exact {
 
 /// Exact sign of `det(m)`.
 pub(crate) fn det_sign<const N: usize>(m: &[[f64; N]; N]) -> Sign {
-    det_sign_exact(
-        m.iter()
-            .map(|r| r.iter().map(|&x| Exact::from_f64(x)).collect())
-            .collect(),
-    )
+    det_sign_exact(m.iter().map(|r| r.iter().map(|&x| Exact::from_f64(x)).collect()).collect())
 }
 
 /// Exact sign of `det(a - b)`.
 pub(crate) fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
     det_sign_exact(
-        (0..N)
-            .map(|i| {
-                (0..N)
-                    .map(|j| &Exact::from_f64(a[i][j]) - &Exact::from_f64(b[i][j]))
-                    .collect()
-            })
-            .collect(),
+        (0..N).map(|i| (0..N).map(|j| &Exact::from_f64(a[i][j]) - &Exact::from_f64(b[i][j])).collect()).collect(),
     )
 }

@@ -170,10 +170,7 @@ impl<const C: usize> Expansion<C> {
     /// The empty expansion (zero).
     #[inline]
     pub(crate) fn zero() -> Self {
-        Expansion {
-            len: 0,
-            c: [0.0; C],
-        }
+        Expansion { len: 0, c: [0.0; C] }
     }
 
     /// One input value (needs `C >= 1`).
@@ -220,21 +217,14 @@ impl<const C: usize> Expansion<C> {
 
     /// `a + s * b` for `s` in `{1, -1}`.
     #[inline]
-    pub(crate) fn sum_of<const A: usize, const B: usize>(
-        a: &Expansion<A>,
-        b: &Expansion<B>,
-        s: f64,
-    ) -> Self {
+    pub(crate) fn sum_of<const A: usize, const B: usize>(a: &Expansion<A>, b: &Expansion<B>, s: f64) -> Self {
         let mut r = Self::zero();
         r.len = sum(a.as_slice(), b.as_slice(), s, &mut r.c);
         r
     }
 
     /// `a * b`: one scaled copy of `a` per component of `b`, summed.
-    pub(crate) fn product_of<const A: usize, const B: usize>(
-        a: &Expansion<A>,
-        b: &Expansion<B>,
-    ) -> Self {
+    pub(crate) fn product_of<const A: usize, const B: usize>(a: &Expansion<A>, b: &Expansion<B>) -> Self {
         let mut bufs = [[0.0f64; C]; 2];
         let mut lens = [0usize; 2];
         let mut cur = 0;
@@ -242,18 +232,11 @@ impl<const C: usize> Expansion<C> {
         for &bj in b.as_slice() {
             let k = scale(a.as_slice(), bj, &mut scaled);
             let (lo, hi) = bufs.split_at_mut(1);
-            let (src, dst) = if cur == 0 {
-                (&lo[0], &mut hi[0])
-            } else {
-                (&hi[0], &mut lo[0])
-            };
+            let (src, dst) = if cur == 0 { (&lo[0], &mut hi[0]) } else { (&hi[0], &mut lo[0]) };
             lens[1 - cur] = sum(&src[..lens[cur]], &scaled[..k], 1.0, dst);
             cur = 1 - cur;
         }
-        Expansion {
-            len: lens[cur],
-            c: bufs[cur],
-        }
+        Expansion { len: lens[cur], c: bufs[cur] }
     }
 }
 

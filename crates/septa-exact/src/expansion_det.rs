@@ -20,20 +20,12 @@ struct Acc<const D: usize> {
 
 impl<const D: usize> Acc<D> {
     fn new() -> Self {
-        Acc {
-            bufs: [[0.0; D]; 2],
-            len: 0,
-            cur: 0,
-        }
+        Acc { bufs: [[0.0; D]; 2], len: 0, cur: 0 }
     }
 
     fn add<const T: usize>(&mut self, t: &Expansion<T>, s: f64) {
         let (lo, hi) = self.bufs.split_at_mut(1);
-        let (src, dst) = if self.cur == 0 {
-            (&lo[0], &mut hi[0])
-        } else {
-            (&hi[0], &mut lo[0])
-        };
+        let (src, dst) = if self.cur == 0 { (&lo[0], &mut hi[0]) } else { (&hi[0], &mut lo[0]) };
         self.len = crate::expansion::sum(&src[..self.len], t.as_slice(), s, dst);
         self.cur = 1 - self.cur;
     }
@@ -82,10 +74,8 @@ fn det4<const E: usize, const P: usize, const M: usize, const T: usize, const D:
     // Column pairs (i, j), i < j, and the complementary pair's index.
     const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
     const SIGNS: [f64; 6] = [1.0, -1.0, 1.0, 1.0, -1.0, 1.0];
-    let s: [Expansion<M>; 6] =
-        PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[0][i], &e[1][j], &e[0][j], &e[1][i]));
-    let c: [Expansion<M>; 6] =
-        PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[2][i], &e[3][j], &e[2][j], &e[3][i]));
+    let s: [Expansion<M>; 6] = PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[0][i], &e[1][j], &e[0][j], &e[1][i]));
+    let c: [Expansion<M>; 6] = PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[2][i], &e[3][j], &e[2][j], &e[3][i]));
     let mut acc = Acc::<D>::new();
     for k in 0..6 {
         if s[k].as_slice().is_empty() || c[5 - k].as_slice().is_empty() {

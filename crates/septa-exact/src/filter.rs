@@ -70,18 +70,9 @@ const C_MI4: f64 = 11.0 * U + 512.0 * U * U;
 /// Exponent window `[2^-W, 2^W]` per size (see the module doc).
 pub(crate) const fn window(n: usize) -> (f64, f64) {
     match n {
-        0..=2 => (
-            f64::from_bits((1023 - 400) << 52),
-            f64::from_bits((1023 + 400) << 52),
-        ),
-        3 => (
-            f64::from_bits((1023 - 250) << 52),
-            f64::from_bits((1023 + 250) << 52),
-        ),
-        _ => (
-            f64::from_bits((1023 - 180) << 52),
-            f64::from_bits((1023 + 180) << 52),
-        ),
+        0..=2 => (f64::from_bits((1023 - 400) << 52), f64::from_bits((1023 + 400) << 52)),
+        3 => (f64::from_bits((1023 - 250) << 52), f64::from_bits((1023 + 250) << 52)),
+        _ => (f64::from_bits((1023 - 180) << 52), f64::from_bits((1023 + 180) << 52)),
     }
 }
 
@@ -155,13 +146,11 @@ fn det_perm4(m: &[[f64; 4]; 4]) -> (f64, f64) {
     }
     let s = pairs(m[0], m[1], true);
     let c = pairs(m[2], m[3], true);
-    let d =
-        ((s[0] * c[5] - s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] - s[4] * c[1]);
+    let d = ((s[0] * c[5] - s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] - s[4] * c[1]);
     let a = m.map(|r| r.map(f64::abs));
     let s = pairs(a[0], a[1], false);
     let c = pairs(a[2], a[3], false);
-    let p =
-        ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
+    let p = ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
     (d, p)
 }
 
@@ -223,12 +212,7 @@ pub(crate) fn ia4(m: &[[f64; 4]; 4]) -> Outcome {
 /// the filter (their differences are multiples of the same unit) and the
 /// expansion tier.
 #[inline(always)]
-fn mi_outcome<const N: usize>(
-    decided: Option<Sign>,
-    x_ok: bool,
-    a: &[[f64; N]; N],
-    b: &[[f64; N]; N],
-) -> Outcome {
+fn mi_outcome<const N: usize>(decided: Option<Sign>, x_ok: bool, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Outcome {
     if x_ok {
         if let Some(s) = decided {
             return Outcome::Decided(s);
@@ -293,9 +277,8 @@ pub(crate) fn det_f64<const N: usize>(m: &[[f64; N]; N]) -> f64 {
             // Laplace along the first row (not used by Septa; N <= 4 there).
             let mut acc = 0.0;
             for c in 0..N {
-                let minor: Vec<Vec<f64>> = (1..N)
-                    .map(|i| (0..N).filter(|&j| j != c).map(|j| m[i][j]).collect())
-                    .collect();
+                let minor: Vec<Vec<f64>> =
+                    (1..N).map(|i| (0..N).filter(|&j| j != c).map(|j| m[i][j]).collect()).collect();
                 let t = m[0][c] * det_f64_dyn(&minor);
                 acc += if c % 2 == 0 { t } else { -t };
             }
@@ -311,16 +294,8 @@ fn det_f64_dyn(m: &[Vec<f64>]) -> f64 {
     }
     let mut acc = 0.0;
     for c in 0..n {
-        let minor: Vec<Vec<f64>> = m[1..]
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != c)
-                    .map(|(_, &x)| x)
-                    .collect()
-            })
-            .collect();
+        let minor: Vec<Vec<f64>> =
+            m[1..].iter().map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, &x)| x).collect()).collect();
         let t = m[0][c] * det_f64_dyn(&minor);
         acc += if c % 2 == 0 { t } else { -t };
     }

@@ -51,11 +51,7 @@ impl Stats {
 
 /// The calling thread's counts so far.
 pub fn snapshot() -> Stats {
-    Stats {
-        filter: FILTER.with(Cell::get),
-        expansion: EXPANSION.with(Cell::get),
-        bignum: BIGNUM.with(Cell::get),
-    }
+    Stats { filter: FILTER.with(Cell::get), expansion: EXPANSION.with(Cell::get), bignum: BIGNUM.with(Cell::get) }
 }
 
 /// Sets the calling thread's counts to zero.

@@ -19,16 +19,8 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
     let n = g.len();
     let mut a: Vec<Vec<BigRational>> = (0..n)
         .map(|i| {
-            let mut row: Vec<BigRational> = if i + 1 == n {
-                vec![BigRational::one(); n]
-            } else {
-                g[i].clone()
-            };
-            row.push(if i + 1 == n {
-                BigRational::one()
-            } else {
-                BigRational::zero()
-            });
+            let mut row: Vec<BigRational> = if i + 1 == n { vec![BigRational::one(); n] } else { g[i].clone() };
+            row.push(if i + 1 == n { BigRational::one() } else { BigRational::zero() });
             row
         })
         .collect();
@@ -50,13 +42,7 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
         }
     }
     let v: Vec<BigRational> = (0..n).map(|i| a[i][n].clone()).collect();
-    Some(
-        g[n - 1]
-            .iter()
-            .zip(&v)
-            .map(|(x, y)| x * y)
-            .fold(BigRational::zero(), |s, t| s + t),
-    )
+    Some(g[n - 1].iter().zip(&v).map(|(x, y)| x * y).fold(BigRational::zero(), |s, t| s + t))
 }
 
 fn expected(g: Vec<Vec<BigRational>>) -> Sign {
@@ -102,11 +88,7 @@ fn run_ia<const N: usize>(seed: u64) -> usize {
     let mut zeros = 0;
     for i in 0..CASES {
         let g: [[f64; N]; N] = rows(&mut r, if i % 5 == 0 { 1e-200 } else { 1.0 });
-        let want = expected(
-            g.iter()
-                .map(|row| row.iter().map(|&x| q(x)).collect())
-                .collect(),
-        );
+        let want = expected(g.iter().map(|row| row.iter().map(|&x| q(x)).collect()).collect());
         assert_eq!(barycentric_sign_ia(&g), want, "IA d={} g={g:?}", N - 1);
         zeros += want.is_zero() as usize;
     }
@@ -120,17 +102,8 @@ fn run_mi<const N: usize>(seed: u64) -> usize {
         let x: [[f64; N]; N] = rows(&mut r, 1.0);
         let h: [[f64; N]; N] = mat(&mut r, |r| unit(r) * 4.0);
         let f: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| h[i][j] + x[i][j]));
-        let want = expected(
-            (0..N)
-                .map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect())
-                .collect(),
-        );
-        assert_eq!(
-            barycentric_sign_mi(&f, &h),
-            want,
-            "MI d={} f={f:?} h={h:?}",
-            N - 1
-        );
+        let want = expected((0..N).map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect()).collect());
+        assert_eq!(barycentric_sign_mi(&f, &h), want, "MI d={} f={f:?} h={h:?}", N - 1);
         zeros += want.is_zero() as usize;
     }
     zeros
@@ -138,24 +111,14 @@ fn run_mi<const N: usize>(seed: u64) -> usize {
 
 #[test]
 fn ia_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [
-        run_ia::<1>(1),
-        run_ia::<2>(2),
-        run_ia::<3>(3),
-        run_ia::<4>(4),
-    ];
+    let z = [run_ia::<1>(1), run_ia::<2>(2), run_ia::<3>(3), run_ia::<4>(4)];
     eprintln!("IA zero results per d: {z:?}");
     assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
 }
 
 #[test]
 fn mi_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [
-        run_mi::<1>(5),
-        run_mi::<2>(6),
-        run_mi::<3>(7),
-        run_mi::<4>(8),
-    ];
+    let z = [run_mi::<1>(5), run_mi::<2>(6), run_mi::<3>(7), run_mi::<4>(8)];
     eprintln!("MI zero results per d: {z:?}");
     assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
 }

@@ -32,11 +32,7 @@ macro_rules! for_each_n {
 fn random_ia<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
     let mut t = Tally::default();
     for i in 0..CASES {
-        let m: [[f64; N]; N] = if i % 4 == 0 {
-            mat(r, |r| r.gen_range(-3i32..=3) as f64)
-        } else {
-            mat(r, unit)
-        };
+        let m: [[f64; N]; N] = if i % 4 == 0 { mat(r, |r| r.gen_range(-3i32..=3) as f64) } else { mat(r, unit) };
         check_ia(&m, &mut t);
     }
     t
@@ -46,10 +42,7 @@ fn random_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
     let mut t = Tally::default();
     for i in 0..CASES {
         let (a, b): ([[f64; N]; N], [[f64; N]; N]) = if i % 4 == 0 {
-            (
-                mat(r, |r| r.gen_range(-3i32..=3) as f64),
-                mat(r, |r| r.gen_range(-3i32..=3) as f64),
-            )
+            (mat(r, |r| r.gen_range(-3i32..=3) as f64), mat(r, |r| r.gen_range(-3i32..=3) as f64))
         } else {
             (mat(r, unit), mat(r, unit))
         };
@@ -113,16 +106,12 @@ fn near_degenerate_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
 fn near_degenerate_ia_all_n() {
     // The naive sign must be wrong sometimes for N >= 2, or the generator
     // is not near-degenerate enough to test anything.
-    for_each_n!(near_degenerate_ia, 300, |n, t: &Tally| assert!(
-        n < 2 || t.naive_wrong > 0
-    ));
+    for_each_n!(near_degenerate_ia, 300, |n, t: &Tally| assert!(n < 2 || t.naive_wrong > 0));
 }
 
 #[test]
 fn near_degenerate_mi_all_n() {
-    for_each_n!(near_degenerate_mi, 400, |n, t: &Tally| assert!(
-        n < 2 || t.naive_wrong > 0
-    ));
+    for_each_n!(near_degenerate_mi, 400, |n, t: &Tally| assert!(n < 2 || t.naive_wrong > 0));
 }
 
 /// An exactly singular matrix of one of several patterns, rows and columns
@@ -153,8 +142,7 @@ fn singular<const N: usize>(r: &mut ChaCha8Rng, s: i32) -> [[f64; N]; N] {
                 // a sum of two rows, which is exact for small integers.
                 m = mat(r, |r| r.gen_range(-8i32..=8) as f64);
                 for c in 0..N {
-                    m[i][c] =
-                        m[j][c] + m[(j + 1) % N][c] * if (j + 1) % N == i { 0.0 } else { 1.0 };
+                    m[i][c] = m[j][c] + m[(j + 1) % N][c] * if (j + 1) % N == i { 0.0 } else { 1.0 };
                 }
             } else {
                 m[0][0] = 0.0;
@@ -204,10 +192,7 @@ fn degenerate_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
             2 => {
                 let x: [[f64; N]; N] = singular(r, 0);
                 let a: [[f64; N]; N] = mat(r, |r| r.gen_range(-16i32..=16) as f64);
-                (
-                    a,
-                    std::array::from_fn(|i| std::array::from_fn(|j| a[i][j] - x[i][j])),
-                )
+                (a, std::array::from_fn(|i| std::array::from_fn(|j| a[i][j] - x[i][j])))
             }
             // Arbitrary-magnitude singular a, b = 0 (the IA case through MI).
             _ => (singular(r, s), [[0.0; N]; N]),
@@ -219,16 +204,12 @@ fn degenerate_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
 
 #[test]
 fn exactly_degenerate_ia() {
-    for_each_n!(degenerate_ia, 500, |_n, t: &Tally| assert!(
-        t.zero * 2 > t.cases
-    ));
+    for_each_n!(degenerate_ia, 500, |_n, t: &Tally| assert!(t.zero * 2 > t.cases));
 }
 
 #[test]
 fn exactly_degenerate_mi() {
-    for_each_n!(degenerate_mi, 600, |_n, t: &Tally| assert!(
-        t.zero * 2 > t.cases
-    ));
+    for_each_n!(degenerate_mi, 600, |_n, t: &Tally| assert!(t.zero * 2 > t.cases));
 }
 
 /// Entries over the whole double range: wide exponents, subnormals, zeros,
@@ -293,15 +274,7 @@ fn magnitudes_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
             extreme(r, i / 2)
         } else {
             // b close to a: differences far below the entries' size.
-            a.map(|row| {
-                row.map(|x| {
-                    if r.gen_bool(0.3) {
-                        x
-                    } else {
-                        x * (1.0 + unit(r) * 1e-12)
-                    }
-                })
-            })
+            a.map(|row| row.map(|x| if r.gen_bool(0.3) { x } else { x * (1.0 + unit(r) * 1e-12) }))
         };
         check_mi(&a, &b, &mut t);
     }

@@ -134,7 +134,11 @@ fn extreme_magnitudes_and_subnormals() {
     let tiny = f64::from_bits(3);
     let cases: Vec<Vec<[f64; 4]>> = vec![
         vec![[1e-300, -1e300, 1e-300, -1e-300], [-1e300, 1e-300, tiny, -tiny]],
-        vec![[tiny, -tiny, 2.0 * tiny, -3.0 * tiny], [-tiny, tiny, -2.0 * tiny, 3.0 * tiny], [1e300, -1e-300, 0.0, 1.0]],
+        vec![
+            [tiny, -tiny, 2.0 * tiny, -3.0 * tiny],
+            [-tiny, tiny, -2.0 * tiny, 3.0 * tiny],
+            [1e300, -1e-300, 0.0, 1.0],
+        ],
     ];
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     for vals in &cases {

@@ -31,13 +31,7 @@ pub fn det_q(m: &[Vec<BigRational>]) -> BigRational {
         }
         let minor: Vec<Vec<BigRational>> = m[1..]
             .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != c)
-                    .map(|(_, x)| x.clone())
-                    .collect()
-            })
+            .map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, x)| x.clone()).collect())
             .collect();
         let t = &m[0][c] * det_q(&minor);
         if c % 2 == 0 {
@@ -69,9 +63,7 @@ pub fn det_sign_q(m: Vec<Vec<BigRational>>) -> Sign {
         .into_iter()
         .map(|row| {
             let l = row.iter().fold(BigInt::one(), |l, x| l.lcm(x.denom()));
-            row.into_iter()
-                .map(|x| (x * BigRational::from_integer(l.clone())).to_integer())
-                .collect()
+            row.into_iter().map(|x| (x * BigRational::from_integer(l.clone())).to_integer()).collect()
         })
         .collect();
     let d = det_z(&ints);
@@ -100,13 +92,7 @@ pub fn det_z(m: &[Vec<BigInt>]) -> BigInt {
         }
         let minor: Vec<Vec<BigInt>> = m[1..]
             .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != c)
-                    .map(|(_, x)| x.clone())
-                    .collect()
-            })
+            .map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, x)| x.clone()).collect())
             .collect();
         let t = &m[0][c] * det_z(&minor);
         if c % 2 == 0 {
@@ -120,20 +106,12 @@ pub fn det_z(m: &[Vec<BigInt>]) -> BigInt {
 
 /// Reference sign of `det(m)`.
 pub fn ref_ia<const N: usize>(m: &[[f64; N]; N]) -> Sign {
-    det_sign_q(
-        m.iter()
-            .map(|row| row.iter().map(|&x| q(x)).collect())
-            .collect(),
-    )
+    det_sign_q(m.iter().map(|row| row.iter().map(|&x| q(x)).collect()).collect())
 }
 
 /// Reference sign of `det(a - b)`, differences exact.
 pub fn ref_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
-    det_sign_q(
-        (0..N)
-            .map(|i| (0..N).map(|j| q(a[i][j]) - q(b[i][j])).collect())
-            .collect(),
-    )
+    det_sign_q((0..N).map(|i| (0..N).map(|j| q(a[i][j]) - q(b[i][j])).collect()).collect())
 }
 
 /// Tally of reference signs, to show a category really exercises zeros.
@@ -158,10 +136,7 @@ pub fn check_ia<const N: usize>(m: &[[f64; N]; N], t: &mut Tally) {
 pub fn check_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N], t: &mut Tally) {
     let want = ref_mi(a, b);
     let got = septa_exact::det_sign_diff(a, b);
-    assert_eq!(
-        got, want,
-        "det_sign_diff::<{N}> wrong on a = {a:?}, b = {b:?}"
-    );
+    assert_eq!(got, want, "det_sign_diff::<{N}> wrong on a = {a:?}, b = {b:?}");
     t.cases += 1;
     t.zero += want.is_zero() as usize;
     t.naive_wrong += (septa_exact::det_sign_diff_f64_naive(a, b) != want) as usize;
@@ -173,10 +148,7 @@ pub fn unit(rng: &mut ChaCha8Rng) -> f64 {
 }
 
 /// A random matrix with entries from `f`.
-pub fn mat<const N: usize>(
-    rng: &mut ChaCha8Rng,
-    mut f: impl FnMut(&mut ChaCha8Rng) -> f64,
-) -> [[f64; N]; N] {
+pub fn mat<const N: usize>(rng: &mut ChaCha8Rng, mut f: impl FnMut(&mut ChaCha8Rng) -> f64) -> [[f64; N]; N] {
     let mut m = [[0.0; N]; N];
     for row in m.iter_mut() {
         for x in row.iter_mut() {
@@ -208,12 +180,7 @@ pub fn wide(rng: &mut ChaCha8Rng, lo: i32, hi: i32, zeros: bool) -> f64 {
 
 /// Makes row `k` of `m` a rounded combination of the other rows plus a
 /// perturbation of relative size `2^-p` (no perturbation for `p = None`).
-pub fn near_dependent<const N: usize>(
-    rng: &mut ChaCha8Rng,
-    m: &mut [[f64; N]; N],
-    k: usize,
-    p: Option<i32>,
-) {
+pub fn near_dependent<const N: usize>(rng: &mut ChaCha8Rng, m: &mut [[f64; N]; N], k: usize, p: Option<i32>) {
     let coef: Vec<f64> = (0..N).map(|_| unit(rng)).collect();
     for j in 0..N {
         let mut s = 0.0;
