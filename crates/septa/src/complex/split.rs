@@ -32,6 +32,7 @@ pub(crate) struct Scratch {
     pub loop_v: SmallVec<[u32; 16]>,
     pub loop_e: SmallVec<[u32; 16]>,
     pub directed: SmallVec<[(u32, u32, u32); 16]>,
+    pub merge: super::merge::MergeBuffers,
 }
 
 /// The vertex where three planes meet, named by the tet element it lies on
