@@ -1,1 +1,3 @@
-//! (in progress)
+//! Readers and writers.
+
+pub mod npz;
