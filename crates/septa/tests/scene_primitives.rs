@@ -106,8 +106,7 @@ fn bounds_enclose_dense_samples() {
                 for y in 0..=n {
                     for z in 0..=n {
                         let t = [x, y, z];
-                        let p = [0, 1, 2]
-                            .map(|a| lo[a] + (hi[a] - lo[a]) * t[a] as f64 / n as f64);
+                        let p = [0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * t[a] as f64 / n as f64);
                         let p = [0, 1, 2].map(|a| if t[a] == n { hi[a] } else { p[a] });
                         let v = f.eval(p);
                         assert!(

@@ -155,7 +155,9 @@ fn reference_cases_resample_bit_for_bit() {
         assert_eq!(npz["vertices"].shape, vec![verts.len(), 3]);
         let flat: Vec<f64> = verts.iter().flatten().copied().collect();
         assert!(
-            flat.iter().zip(&stored_v).all(|(a, b)| a.to_bits() == b.to_bits()),
+            flat.iter()
+                .zip(&stored_v)
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
             "{case:?}: grid vertices differ"
         );
         let values = sample_grid(&functions, &verts);

@@ -26,7 +26,7 @@ fn det(m: &Mat3) -> f64 {
 pub(crate) fn inverse(m: &Mat3) -> Option<Mat3> {
     let d = det(m);
     let scale_ = m.iter().map(|r| mag(*r)).fold(0.0, f64::max);
-    if !(d.abs() > 1e-12 * scale_.powi(3)) || !d.is_finite() {
+    if d.abs() <= 1e-12 * scale_.powi(3) || !d.is_finite() {
         return None;
     }
     // Rows of the inverse transpose are cross products of the rows.

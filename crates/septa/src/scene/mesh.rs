@@ -167,7 +167,9 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
                     let nv = vertices.len() as i64;
                     let k = if i < 0 { nv + i } else { i - 1 };
                     if k < 0 || k >= nv {
-                        return Err(err(format!("face index {i} out of range (have {nv} vertices)")));
+                        return Err(err(format!(
+                            "face index {i} out of range (have {nv} vertices)"
+                        )));
                     }
                     idx.push(k as u32);
                 }

@@ -75,6 +75,7 @@ impl BicubicPatch {
         )
     }
 
+    #[allow(clippy::needless_range_loop)]
     fn combine(&self, a: [f64; 4], b: [f64; 4]) -> f64 {
         let mut v = 0.0;
         for i in 0..4 {
@@ -131,6 +132,7 @@ impl BicubicPatch {
         ]
     }
 
+    #[allow(clippy::needless_range_loop)]
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
         let s = Interval::new(lo[0], hi[0])
             .sub(Interval::point(self.origin[0]))

@@ -234,7 +234,11 @@ impl Primitive {
             return raw;
         }
         let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + raw.mag().min(1e300);
-        let rel = if matches!(self, Mesh(_)) { 1e-10 } else { PAD_REL };
+        let rel = if matches!(self, Mesh(_)) {
+            1e-10
+        } else {
+            PAD_REL
+        };
         raw.pad(rel * m)
     }
 
@@ -260,7 +264,11 @@ impl Primitive {
                 .fold(0.0, f64::max),
             Mesh(m) => m.magnitude(),
             Patch(p) => {
-                let h = p.heights.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                let h = p
+                    .heights
+                    .iter()
+                    .flatten()
+                    .fold(0.0f64, |a, b| a.max(b.abs()));
                 h + p.origin[0].abs().max(p.origin[1].abs()) + p.size[0].max(p.size[1])
             }
             Wyvill(w) => mag(w.center) + w.height.abs(),

@@ -60,7 +60,11 @@ impl Expr {
     /// ```
     pub fn parse(text: &str, resolve: &impl Fn(&str) -> Option<usize>) -> Result<Expr, String> {
         let toks = tokenize(text)?;
-        let mut p = Parser { toks, pos: 0, resolve };
+        let mut p = Parser {
+            toks,
+            pos: 0,
+            resolve,
+        };
         let e = p.diff()?;
         if p.pos != p.toks.len() {
             return Err(format!("unexpected `{}` in `{text}`", p.toks[p.pos]));
@@ -139,7 +143,11 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
             self.pos += 1;
             v.push(self.and()?);
         }
-        Ok(if v.len() == 1 { v.pop().unwrap() } else { Expr::Or(v) })
+        Ok(if v.len() == 1 {
+            v.pop().unwrap()
+        } else {
+            Expr::Or(v)
+        })
     }
     fn and(&mut self) -> Result<Expr, String> {
         let mut v = vec![self.not()?];
@@ -147,7 +155,11 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
             self.pos += 1;
             v.push(self.not()?);
         }
-        Ok(if v.len() == 1 { v.pop().unwrap() } else { Expr::And(v) })
+        Ok(if v.len() == 1 {
+            v.pop().unwrap()
+        } else {
+            Expr::And(v)
+        })
     }
     fn not(&mut self) -> Result<Expr, String> {
         match self.peek() {
@@ -300,10 +312,10 @@ impl Interest {
     /// interest.
     pub fn surface(&self, a: RegionId, b: RegionId) -> bool {
         a != b
-            && self
-                .surfaces
-                .as_ref()
-                .map_or(true, |s| s.contains(&(a.min(b), a.max(b))))
+            && match &self.surfaces {
+                None => true,
+                Some(s) => s.contains(&(a.min(b), a.max(b))),
+            }
     }
 
     /// The first triple of interest whose three regions all occur among

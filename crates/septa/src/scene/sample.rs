@@ -70,7 +70,9 @@ pub fn block_may_be_active_mi(functions: &[Primitive], min: V3, max: V3) -> bool
         return false;
     }
     let b: Vec<(f64, f64)> = functions.iter().map(|f| f.bounds(min, max)).collect();
-    let owner = (0..b.len()).max_by(|&i, &j| b[i].0.total_cmp(&b[j].0)).unwrap_or(0);
+    let owner = (0..b.len())
+        .max_by(|&i, &j| b[i].0.total_cmp(&b[j].0))
+        .unwrap_or(0);
     let dominated = b
         .iter()
         .enumerate()

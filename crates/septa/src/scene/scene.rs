@@ -114,7 +114,11 @@ impl Scene {
                 path: JsonPath::default(),
                 message: format!(
                     "no built-in scene `{name}` (known: {})",
-                    super::builtin::list().iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                    super::builtin::list()
+                        .iter()
+                        .map(|(n, _)| *n)
+                        .collect::<Vec<_>>()
+                        .join(", ")
                 ),
             });
         }
@@ -163,7 +167,11 @@ impl Scene {
 /// Read a reference implementation function file (a JSON list of
 /// primitives, or `{"input": [...]}`), with the reference's meaning of a
 /// negative sphere radius (unsigned distance).
-pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Vec<Primitive>, SceneError> {
+pub fn load_function_list(
+    text: &str,
+    file: &str,
+    base_dir: Option<&Path>,
+) -> Result<Vec<Primitive>, SceneError> {
     let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
         file: file.to_string(),
         line: e.line(),
@@ -171,10 +179,19 @@ pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Re
         path: JsonPath::default(),
         message: e.to_string(),
     })?;
-    let ctx = Ctx { base_dir, compat: true };
+    let ctx = Ctx {
+        base_dir,
+        compat: true,
+    };
     function_list(&v, &JsonPath::default(), &ctx).map_err(|l| {
         let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
-        SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
+        SceneError {
+            file: file.to_string(),
+            line,
+            column,
+            path: l.path,
+            message: l.message,
+        }
     })
 }
 
@@ -184,13 +201,17 @@ fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>
         _ => (v, path.clone()),
     };
     let a = array(v, &path)?;
-    a.iter().enumerate().map(|(i, f)| primitive(f, &path.index(i), ctx)).collect()
+    a.iter()
+        .enumerate()
+        .map(|(i, f)| primitive(f, &path.index(i), ctx))
+        .collect()
 }
 
 fn resolve(names: &[String], name: &str) -> Option<usize> {
-    names.iter().position(|n| n == name).or_else(|| {
-        name.parse::<usize>().ok().filter(|&i| i < names.len())
-    })
+    names
+        .iter()
+        .position(|n| n == name)
+        .or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
 }
 
 fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
@@ -207,8 +228,13 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     let mut resolution = [0usize; 3];
     for (i, x) in res.iter().enumerate() {
         match x.as_i64() {
-            Some(n) if n >= 1 && n <= 1 << 20 => resolution[i] = n as usize,
-            Some(n) => return err(&rp, format!("empty grid: resolution {n} (needs at least 1 cube per axis)")),
+            Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
+            Some(n) => {
+                return err(
+                    &rp,
+                    format!("empty grid: resolution {n} (needs at least 1 cube per axis)"),
+                )
+            }
             None => return err(&rp, "resolution must be a whole number"),
         }
     }
@@ -218,14 +244,22 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
         return err(&bp, "expected [[x0,y0,z0],[x1,y1,z1]]");
     }
     let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
-    if (0..3).any(|i| !(bounds[1][i] > bounds[0][i])) {
+    if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
         return err(&bp, "empty grid: each max must exceed its min");
     }
-    let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
+    let split = if o.has("split") {
+        num(o.get("split")?, &path.key("split"))?
+    } else {
+        5.0
+    };
     if split != 5.0 && split != 6.0 {
         return err(&path.key("split"), "split must be 5 or 6");
     }
-    Ok(GridSpec { resolution, bounds, split: split as u8 })
+    Ok(GridSpec {
+        resolution,
+        bounds,
+        split: split as u8,
+    })
 }
 
 fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
@@ -262,14 +296,19 @@ fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
 }
 
 fn region_id(v: &Value, path: &JsonPath) -> Result<RegionId, Located> {
-    v.as_i64().map_or_else(|| err(path, "a region is an integer"), Ok)
+    v.as_i64()
+        .map_or_else(|| err(path, "a region is an integer"), Ok)
 }
 
 fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Located> {
     let (list, lp, mut otherwise) = match v {
         Value::Object(_) => {
             let o = Obj::new(v, path)?;
-            let other = if o.has("otherwise") { Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?) } else { None };
+            let other = if o.has("otherwise") {
+                Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?)
+            } else {
+                None
+            };
             (o.get("rules")?, path.key("rules"), other)
         }
         _ => (v, path.clone(), None),
@@ -283,12 +322,22 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
             otherwise.get_or_insert(region);
             break;
         }
-        out.push(Rule { when: expr(o.get("when")?, &o.path.key("when"), names)?, region });
+        out.push(Rule {
+            when: expr(o.get("when")?, &o.path.key("when"), names)?,
+            region,
+        });
     }
-    Ok(RegionRule::Rules { rules: out, otherwise: otherwise.unwrap_or(0) })
+    Ok(RegionRule::Rules {
+        rules: out,
+        otherwise: otherwise.unwrap_or(0),
+    })
 }
 
-fn tuples<const N: usize>(v: &Value, path: &JsonPath, known: &BTreeSet<RegionId>) -> Result<Vec<[RegionId; N]>, Located> {
+fn tuples<const N: usize>(
+    v: &Value,
+    path: &JsonPath,
+    known: &BTreeSet<RegionId>,
+) -> Result<Vec<[RegionId; N]>, Located> {
     let mut out = Vec::new();
     for (i, t) in array(v, path)?.iter().enumerate() {
         let p = path.index(i);
@@ -300,7 +349,10 @@ fn tuples<const N: usize>(v: &Value, path: &JsonPath, known: &BTreeSet<RegionId>
         for j in 0..N {
             r[j] = region_id(&a[j], &p.index(j))?;
             if !known.is_empty() && !known.contains(&r[j]) {
-                return err(&p.index(j), format!("region {} is never produced by the region rule", r[j]));
+                return err(
+                    &p.index(j),
+                    format!("region {} is never produced by the region rule", r[j]),
+                );
             }
         }
         out.push(r);
@@ -321,11 +373,15 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         _ => return err(&root.key("mode"), "mode must be \"ia\" or \"mi\""),
     };
     let fp = root.key("functions");
-    let ctx = Ctx { base_dir, compat: false };
+    let ctx = Ctx {
+        base_dir,
+        compat: false,
+    };
     let (functions, names) = match o.get("functions")? {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+            let text = std::fs::read_to_string(&full)
+                .or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
             let f = load_function_list(&text, &full.display().to_string(), full.parent())
                 .or_else(|e| err(&fp, e.to_string()))?;
             let names = (0..f.len()).map(|i| i.to_string()).collect();
@@ -341,7 +397,9 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
                 let name = match f.get("name") {
                     None => i.to_string(),
                     Some(Value::String(s)) => {
-                        let ok = !s.is_empty() && s.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '.');
+                        let ok = !s.is_empty()
+                            && s.chars()
+                                .all(|c| c.is_alphanumeric() || c == '_' || c == '.');
                         if !ok || (s.parse::<usize>().is_ok() && *s != i.to_string()) {
                             return err(&p.key("name"), format!("bad function name `{s}` (letters, digits, `_`, `.`; a number only if it is the function's own index)"));
                         }
@@ -361,7 +419,9 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         return err(&fp, "no functions");
     }
     let regions = match (o.map.get("regions"), o.map.get("solid")) {
-        (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
+        (Some(_), Some(_)) => {
+            return err(&root.key("solid"), "give `regions` or `solid`, not both")
+        }
         (Some(r), None) => rules(r, &root.key("regions"), &names)?,
         (None, Some(s)) => RegionRule::solid(expr(s, &root.key("solid"), &names)?),
         (None, None) => {
