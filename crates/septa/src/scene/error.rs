@@ -213,7 +213,7 @@ mod tests {
         let p = JsonPath::default().key("a").index(2).key("c");
         assert_eq!(locate(text, &p), Some((4, 2)));
         let p = JsonPath::default().key("a").index(1).key("b");
-        assert_eq!(locate(text, &p), Some((2, 16)));
+        assert_eq!(locate(text, &p), Some((2, 18)));
         assert_eq!(locate(text, &JsonPath::default().key("zz")), None);
         assert_eq!(p.to_string(), "a[1].b");
     }
