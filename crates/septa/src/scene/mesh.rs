@@ -1,0 +1,196 @@
+//! Signed distance to a closed triangle mesh, positive inside.
+//!
+//! Inside/outside comes from the generalized winding number (sum of the
+//! triangles' signed solid angles, Van Oosterom and Strackee's formula):
+//! inside when it exceeds 1/2. These are *sampled values*, input data for
+//! the exact pipeline, never a topological decision, so floating point is
+//! the right tool here. Cost is linear in the number of triangles per point.
+
+use super::interval::Interval;
+use super::shapes::lipschitz;
+use super::vec3::*;
+
+/// A triangle mesh held in memory (0-based vertex indices).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub vertices: Vec<V3>,
+    /// Triangles, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Closest point to `p` on triangle `a b c` (Voronoi regions of the
+/// triangle's vertices, edges and face, in barycentric form).
+fn closest_on_triangle(p: V3, a: V3, b: V3, c: V3) -> V3 {
+    let ab = sub(b, a);
+    let ac = sub(c, a);
+    let ap = sub(p, a);
+    let d1 = dot(ab, ap);
+    let d2 = dot(ac, ap);
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return a;
+    }
+    let bp = sub(p, b);
+    let d3 = dot(ab, bp);
+    let d4 = dot(ac, bp);
+    if d3 >= 0.0 && d4 <= d3 {
+        return b;
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return add(a, scale(ab, v));
+    }
+    let cp = sub(p, c);
+    let d5 = dot(ab, cp);
+    let d6 = dot(ac, cp);
+    if d6 >= 0.0 && d5 <= d6 {
+        return c;
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return add(a, scale(ac, w));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return add(b, scale(sub(c, b), w));
+    }
+    let denom = 1.0 / (va + vb + vc);
+    let v = vb * denom;
+    let w = vc * denom;
+    add(a, add(scale(ab, v), scale(ac, w)))
+}
+
+impl TriMesh {
+    fn tri(&self, t: &[u32; 3]) -> [V3; 3] {
+        t.map(|i| self.vertices[i as usize])
+    }
+
+    /// Generalized winding number of the mesh around `p` (1 inside a
+    /// closed, outward-oriented mesh, 0 outside).
+    pub fn winding_number(&self, p: V3) -> f64 {
+        let mut total = 0.0;
+        for t in &self.triangles {
+            let [a, b, c] = self.tri(t).map(|v| sub(v, p));
+            let (la, lb, lc) = (norm(a), norm(b), norm(c));
+            let num = dot(a, cross(b, c));
+            let den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
+            total += 2.0 * num.atan2(den);
+        }
+        total / (4.0 * std::f64::consts::PI)
+    }
+
+    /// Unsigned distance and closest point.
+    fn closest(&self, p: V3) -> (f64, V3) {
+        let mut best = (f64::INFINITY, p);
+        for t in &self.triangles {
+            let [a, b, c] = self.tri(t);
+            let q = closest_on_triangle(p, a, b, c);
+            let d = norm(sub(p, q));
+            if d < best.0 {
+                best = (d, q);
+            }
+        }
+        best
+    }
+
+    fn sign(&self, p: V3) -> f64 {
+        if self.winding_number(p) > 0.5 {
+            1.0
+        } else {
+            -1.0
+        }
+    }
+
+    pub(crate) fn eval(&self, p: V3) -> f64 {
+        self.sign(p) * self.closest(p).0
+    }
+
+    pub(crate) fn gradient(&self, p: V3) -> V3 {
+        let (_, q) = self.closest(p);
+        // f = s d: outside -d (grad -(p-q)/d), inside +d (grad (p-q)/d).
+        scale(unit_or_zero(sub(p, q)), self.sign(p))
+    }
+
+    pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
+        lipschitz(|p| self.eval(p), 1.0, lo, hi)
+    }
+
+    /// Largest absolute vertex coordinate.
+    pub(crate) fn magnitude(&self) -> f64 {
+        self.vertices.iter().map(|v| mag(*v)).fold(0.0, f64::max)
+    }
+}
+
+/// Problem found while reading an OBJ file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjError {
+    /// 1-based line number.
+    pub line: usize,
+    /// What is wrong.
+    pub message: String,
+}
+
+/// Read the `v` and `f` records of a Wavefront OBJ text (polygons are
+/// fan-triangulated; `f 1/2/3` forms and negative indices are accepted;
+/// other records are ignored).
+pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let err = |message: String| ObjError {
+            line: n + 1,
+            message,
+        };
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => {
+                let c: Vec<f64> = it
+                    .take(3)
+                    .map(|s| s.parse::<f64>())
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| err(format!("bad vertex coordinate: {e}")))?;
+                if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
+                    return Err(err("a vertex needs 3 finite coordinates".into()));
+                }
+                vertices.push([c[0], c[1], c[2]]);
+            }
+            Some("f") => {
+                let mut idx = Vec::new();
+                for s in it {
+                    let first = s.split('/').next().unwrap_or("");
+                    let i: i64 = first
+                        .parse()
+                        .map_err(|_| err(format!("bad face index `{s}`")))?;
+                    let nv = vertices.len() as i64;
+                    let k = if i < 0 { nv + i } else { i - 1 };
+                    if k < 0 || k >= nv {
+                        return Err(err(format!(
+                            "face index {i} out of range (have {nv} vertices)"
+                        )));
+                    }
+                    idx.push(k as u32);
+                }
+                if idx.len() < 3 {
+                    return Err(err("a face needs at least 3 vertices".into()));
+                }
+                for w in 1..idx.len() - 1 {
+                    triangles.push([idx[0], idx[w], idx[w + 1]]);
+                }
+            }
+            _ => {}
+        }
+    }
+    if triangles.is_empty() {
+        return Err(ObjError {
+            line: 0,
+            message: "no triangles".into(),
+        });
+    }
+    Ok(TriMesh {
+        vertices,
+        triangles,
+    })
+}
