@@ -9,8 +9,16 @@ use std::time::Instant;
 /// Arguments of `septa bench`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// What to time: `tet` (one tetrahedron, paper Table 3).
+    /// What to time: `tet` (one tetrahedron, paper Table 3) or `grid`
+    /// (a whole grid against marching tetrahedra and a label-separating
+    /// extractor, paper Sec. 8.3).
     what: String,
+    /// Grid: cubes per axis.
+    #[arg(long, default_value_t = 64)]
+    resolution: usize,
+    /// Grid: threads for Septa (the baselines are single-threaded).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
     /// `ia` or `mi`.
     #[arg(long, default_value = "ia")]
     mode: String,
@@ -35,7 +43,8 @@ pub struct Args {
 pub fn run(a: Args) -> CliResult {
     match a.what.as_str() {
         "tet" => bench_tet(&a),
-        w => Err(format!("unknown benchmark {w:?}; expected `tet`").into()),
+        "grid" => crate::bench_grid::bench_grid(&a.mode, a.functions, a.resolution, a.threads, a.json),
+        w => Err(format!("unknown benchmark {w:?}; expected `tet` or `grid`").into()),
     }
 }
 

@@ -158,8 +158,7 @@ fn closed_form_values() {
     assert_eq!(l.eval([0.3, 0.4, 7.0]), -0.5);
     // A rigid motion of a sphere is the moved sphere.
     let r = septa::scene::rotation([1.0, 2.0, 3.0], 0.7);
-    let moved =
-        Primitive::transform(r, [0.2, -0.1, 0.3], Primitive::sphere([0.1, 0.0, 0.0], 0.4)).unwrap();
+    let moved = Primitive::transform(r, [0.2, -0.1, 0.3], Primitive::sphere([0.1, 0.0, 0.0], 0.4)).unwrap();
     let c = [0, 1, 2].map(|i| r[i][0] * 0.1 + [0.2, -0.1, 0.3][i]);
     let direct = Primitive::sphere(c, 0.4);
     for p in [[0.0; 3], [0.5, 0.2, -0.3], [-0.7, 0.1, 0.9]] {
@@ -192,11 +191,8 @@ fn mesh_distance_equals_box_distance() {
 fn mesh_from_obj_file_in_a_scene() {
     let dir = std::env::temp_dir().join(format!("septa_scene_mesh_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("tet.obj"),
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
-    )
-    .unwrap();
+    std::fs::write(dir.join("tet.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+        .unwrap();
     let text = r#"{"grid": {"resolution": 4, "bounds": [[-1,-1,-1],[1,1,1]]},
         "functions": [{"name": "tet", "type": "mesh", "path": "tet.obj"}]}"#;
     let s = Scene::from_json(text, "s.json", Some(&dir)).unwrap();

@@ -29,9 +29,7 @@ impl Probe {
             for j in 0..n {
                 for k in 0..n {
                     let t = [i, j, k];
-                    pts.push(
-                        [0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * (t[a] as f64 + 0.5) / n as f64),
-                    );
+                    pts.push([0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * (t[a] as f64 + 0.5) / n as f64));
                 }
             }
         }
@@ -40,9 +38,7 @@ impl Probe {
         let labels = v
             .chunks(kf)
             .map(|row| match s.mode {
-                Mode::Ia => s
-                    .regions
-                    .region_ia(&row.iter().map(|x| *x > 0.0).collect::<Vec<_>>()),
+                Mode::Ia => s.regions.region_ia(&row.iter().map(|x| *x > 0.0).collect::<Vec<_>>()),
                 Mode::Mi => {
                     let m = (0..kf).max_by(|&a, &b| row[a].total_cmp(&row[b])).unwrap();
                     s.regions.region_mi(m)
@@ -73,10 +69,7 @@ impl Probe {
                         let q = [(i + 1, j, k), (i, j + 1, k), (i, j, k + 1)][ax];
                         let m = self.at(q);
                         let pair = (l.unwrap(), m);
-                        if m.is_none()
-                            || !((pair.0 == a && pair.1 == Some(b))
-                                || (pair.0 == b && pair.1 == Some(a)))
-                        {
+                        if m.is_none() || !((pair.0 == a && pair.1 == Some(b)) || (pair.0 == b && pair.1 == Some(a))) {
                             continue;
                         }
                         // Face at the shared side: corner coordinates.
@@ -121,15 +114,9 @@ impl Probe {
                 parent[x] = y;
             }
         }
-        let comps = (0..faces.len())
-            .filter(|&x| find(&mut parent, x) == x)
-            .count();
+        let comps = (0..faces.len()).filter(|&x| find(&mut parent, x) == x).count();
         // Boundary loops: components of edges used by one face.
-        let bedges: Vec<(P, P)> = edges
-            .iter()
-            .filter(|(_, f)| f.len() == 1)
-            .map(|(e, _)| *e)
-            .collect();
+        let bedges: Vec<(P, P)> = edges.iter().filter(|(_, f)| f.len() == 1).map(|(e, _)| *e).collect();
         (comps, euler, components(&bedges).0)
     }
 
@@ -199,32 +186,14 @@ fn builtin_topology_probe() {
     let disk = |a, b| ([a, b], 1, 1, 1);
     let annulus = |a, b| ([a, b], 1, 0, 2);
     let cases: Vec<(&str, Vec<Surf>, Vec<Curve>)> = vec![
-        (
-            "saucer-square",
-            vec![disk(1, 2), disk(1, 3), annulus(2, 3)],
-            vec![([1, 2, 3], 1, 0), ([0, 2, 3], 1, 0)],
-        ),
-        (
-            "sphere-with-hole",
-            vec![disk(0, 2)],
-            vec![([0, 1, 2], 1, 0)],
-        ),
+        ("saucer-square", vec![disk(1, 2), disk(1, 3), annulus(2, 3)], vec![([1, 2, 3], 1, 0), ([0, 2, 3], 1, 0)]),
+        ("sphere-with-hole", vec![disk(0, 2)], vec![([0, 1, 2], 1, 0)]),
         (
             "sphere-plane-hole",
             vec![disk(0, 2), disk(0, 3), annulus(2, 3)],
-            vec![
-                ([0, 2, 3], 1, 2),
-                ([0, 1, 2], 1, 2),
-                ([0, 1, 3], 1, 2),
-                ([1, 2, 3], 1, 2),
-                ([2, 3, 4], 1, 0),
-            ],
+            vec![([0, 2, 3], 1, 2), ([0, 1, 2], 1, 2), ([0, 1, 3], 1, 2), ([1, 2, 3], 1, 2), ([2, 3, 4], 1, 0)],
         ),
-        (
-            "patch-blend",
-            vec![disk(1, 2), disk(1, 3), annulus(2, 3)],
-            vec![([1, 2, 3], 1, 0), ([0, 2, 3], 1, 0)],
-        ),
+        ("patch-blend", vec![disk(1, 2), disk(1, 3), annulus(2, 3)], vec![([1, 2, 3], 1, 0), ([0, 2, 3], 1, 0)]),
         ("cad-part", vec![([0, 1], 1, -4, 0)], vec![]),
         ("box-minus-cylinder", vec![([0, 1], 1, 0, 0)], vec![]),
     ];
@@ -234,20 +203,14 @@ fn builtin_topology_probe() {
         let probe = Probe::new(&s, 160);
         for (pair, c, e, l) in surfs {
             let got = probe.surface(pair[0], pair[1]);
-            println!(
-                "{name} surface {pair:?}: components, euler, loops = {got:?} (expected {:?})",
-                (c, e, l)
-            );
+            println!("{name} surface {pair:?}: components, euler, loops = {got:?} (expected {:?})", (c, e, l));
             if got != (c, e, l) {
                 bad.push(format!("{name} {pair:?}"));
             }
         }
         for (t, c, ends) in curves {
             let got = probe.curve(t);
-            println!(
-                "{name} curve {t:?}: components, ends = {got:?} (expected {:?})",
-                (c, ends)
-            );
+            println!("{name} curve {t:?}: components, ends = {got:?} (expected {:?})", (c, ends));
             if got.0 != c {
                 bad.push(format!("{name} {t:?}"));
             }

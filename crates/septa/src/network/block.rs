@@ -138,10 +138,7 @@ impl Worker {
                     let r = row(f);
                     if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
                         if r.iter().all(|&x| x == 0.0) {
-                            return Err(NetworkError::VanishesOnTet {
-                                tet: t,
-                                function: f,
-                            });
+                            return Err(NetworkError::VanishesOnTet { tet: t, function: f });
                         }
                         self.active.push(f as u16);
                     }
@@ -153,11 +150,7 @@ impl Worker {
             Mode::Ia => self.active.is_empty(),
             Mode::Mi => self.active.len() < 2,
         };
-        let volume = if ctx.volumes {
-            ctx.grid.tet_volume(t)
-        } else {
-            0.0
-        };
+        let volume = if ctx.volumes { ctx.grid.tet_volume(t) } else { 0.0 };
         if empty {
             let label: Label = match ctx.mode {
                 Mode::Ia => ia_base_label(&tet, ctx),
@@ -178,10 +171,7 @@ impl Worker {
         }
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
-            .map_err(|e| NetworkError::Tet {
-                tet: t,
-                message: e.to_string(),
-            })?;
+            .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
         // Degenerate tet faces: the network contains the whole face.
@@ -234,11 +224,7 @@ impl Worker {
                 Plane::TetFace(i) => {
                     let i = i as usize;
                     if let Some(z) = deg[i] {
-                        let verts = face
-                            .vertices
-                            .iter()
-                            .map(|&v| vertex_id(self, c, ctx, st, &tet, v))
-                            .collect();
+                        let verts = face.vertices.iter().map(|&v| vertex_id(self, c, ctx, st, &tet, v)).collect();
                         let h = st.out.halves.len() as u32;
                         st.out.halves.push(HalfPoly {
                             face: face_key(&tet, i),
@@ -270,9 +256,7 @@ impl Worker {
                     }
                     st.out.poly_start.push(st.out.poly_verts.len() as u32);
                     st.out.poly_label.push(label);
-                    st.out
-                        .poly_cells
-                        .push([base + face.cells[0], base + face.cells[1]]);
+                    st.out.poly_cells.push([base + face.cells[0], base + face.cells[1]]);
                     self.fref[fi] = Some(SRef::Side(p, 0));
                 }
             }
@@ -304,9 +288,7 @@ impl Worker {
                 let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
                 j += 2;
                 let [u, w] = c.edges()[e as usize].vertices;
-                if !on_network(ctx.mode, c, &self.vals, u)
-                    || !on_network(ctx.mode, c, &self.vals, w)
-                {
+                if !on_network(ctx.mode, c, &self.vals, u) || !on_network(ctx.mode, c, &self.vals, w) {
                     continue;
                 }
                 let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
@@ -336,18 +318,11 @@ impl Worker {
             Some(SRef::Side(p, _)) => SRef::Side(p, if face.cells[0] == cell { 0 } else { 1 }),
             Some(r) => r,
             None => {
-                let Plane::TetFace(i) = face.plane else {
-                    unreachable!()
-                };
+                let Plane::TetFace(i) = face.plane else { unreachable!() };
                 let fk = face_key(tet, i as usize);
                 let a = vertex_id(self, c, ctx, st, tet, u);
                 let b = vertex_id(self, c, ctx, st, tet, w);
-                let key = (
-                    fk,
-                    self.cell_labels[cell as usize].clone(),
-                    a.min(b),
-                    a.max(b),
-                );
+                let key = (fk, self.cell_labels[cell as usize].clone(), a.min(b), a.max(b));
                 if let Some(t) = st.tmap.remove(&key) {
                     SRef::T(t)
                 } else {
@@ -378,32 +353,19 @@ fn on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> bool {
                 return true;
             }
             let corner = vert.simplex().trailing_zeros() as usize;
-            let m = vals
-                .iter()
-                .map(|r| r[corner])
-                .fold(f64::NEG_INFINITY, f64::max);
+            let m = vals.iter().map(|r| r[corner]).fold(f64::NEG_INFINITY, f64::max);
             vals.iter().filter(|r| r[corner] == m).count() >= 2
         }
     }
 }
 
 /// Block id of complex vertex `v`, creating its key and position on first use.
-fn vertex_id(
-    w: &mut Worker,
-    c: &Complex,
-    ctx: &Ctx,
-    st: &mut State,
-    tet: &[u32; 4],
-    v: u32,
-) -> u32 {
+fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32; 4], v: u32) -> u32 {
     if w.vid[v as usize] != NONE {
         return w.vid[v as usize];
     }
     let vert = c.vertices()[v as usize];
-    let mut key = VKey {
-        grid: [u32::MAX; 4],
-        funcs: [u16::MAX; 4],
-    };
+    let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
     let mut n = 0;
     for i in 0..4 {
         if vert.simplex() >> i & 1 == 1 {
@@ -423,9 +385,7 @@ fn vertex_id(
     if id == next {
         st.out.keys.push(key);
         let corners = tet.map(|g| ctx.grid.vertex(g));
-        st.out
-            .points
-            .push(c.vertex_position(v as usize, &corners, &w.vals));
+        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
     }
     w.vid[v as usize] = id;
     id
@@ -473,22 +433,13 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
 /// Whether tet face `corners` lies in the network: IA, the smallest active
 /// function vanishing at its 3 corners; MI, two active functions tied for
 /// the maximum at all 3 corners (returns the first of them).
-fn degenerate_face(
-    mode: Mode,
-    vals: &[[f64; 4]],
-    active: &[u16],
-    corners: [usize; 3],
-) -> Option<u16> {
+fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
     match mode {
-        Mode::Ia => vals
-            .iter()
-            .position(|r| corners.iter().all(|&i| r[i] == 0.0))
-            .map(|f| active[f]),
+        Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
         Mode::Mi => {
             let max = corners.map(|i| vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max));
-            let tied: SmallVec<[usize; 4]> = (0..vals.len())
-                .filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j]))
-                .collect();
+            let tied: SmallVec<[usize; 4]> =
+                (0..vals.len()).filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j])).collect();
             (tied.len() >= 2).then(|| active[tied[0]])
         }
     }
@@ -496,12 +447,7 @@ fn degenerate_face(
 
 /// Volume of a convex cell (floating point; output and invariant checks only):
 /// sum of cones from its first vertex over its faces.
-fn cell_volume(
-    c: &Complex,
-    cell: &crate::complex::Cell,
-    corners: &[[f64; 3]; 4],
-    vals: &[[f64; 4]],
-) -> f64 {
+fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4], vals: &[[f64; 4]]) -> f64 {
     let pos = |v: u32| c.vertex_position(v as usize, corners, vals);
     let apex = pos(c.faces()[cell.faces[0] as usize].vertices[0]);
     let mut vol = 0.0;
@@ -535,11 +481,8 @@ fn finish(mut st: State) -> BlockOut {
     for h in &mut out.halves {
         h.cell = comp[h.cell as usize];
     }
-    let mut contacts: Vec<(FaceKey, Label, u32)> = st
-        .contacts
-        .into_iter()
-        .map(|((f, l), n)| (f, l, comp[n as usize]))
-        .collect();
+    let mut contacts: Vec<(FaceKey, Label, u32)> =
+        st.contacts.into_iter().map(|((f, l), n)| (f, l, comp[n as usize])).collect();
     contacts.sort_unstable();
     out.contacts = contacts;
     let mut open: Vec<(OpenT, u32)> = st

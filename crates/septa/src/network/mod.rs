@@ -98,12 +98,7 @@ pub struct NetworkOptions {
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions {
-            mode,
-            float: false,
-            block: 16,
-            volumes: false,
-        }
+        NetworkOptions { mode, float: false, block: 16, volumes: false }
     }
 }
 
@@ -199,12 +194,7 @@ impl Network {
 
 /// Computes the IA or MI network of `k` functions given by their values at
 /// the grid vertices (`values[v * k + f]`), on the current rayon pool.
-pub fn compute(
-    grid: &Grid,
-    values: &[f64],
-    k: usize,
-    options: &NetworkOptions,
-) -> Result<Network, NetworkError> {
+pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) -> Result<Network, NetworkError> {
     let t0 = Instant::now();
     let n = grid.num_vertices();
     if k == 0 {
@@ -214,19 +204,10 @@ pub fn compute(
         return Err(NetworkError::TooManyFunctions(k));
     }
     if values.len() != n * k {
-        return Err(NetworkError::ValueCount {
-            expected: n * k,
-            vertices: n,
-            functions: k,
-            got: values.len(),
-        });
+        return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
     }
     if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(NetworkError::NonFinite {
-            vertex: i / k,
-            function: i % k,
-            value: values[i],
-        });
+        return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
     }
     let ctx = block::Ctx {
         grid,
@@ -237,10 +218,8 @@ pub fn compute(
         volumes: options.volumes,
     };
     let blocks = grid.blocks(options.block);
-    let outs: Vec<block::BlockOut> = blocks
-        .par_iter()
-        .map_init(block::Worker::default, |w, b| w.run(&ctx, b))
-        .collect::<Result<_, _>>()?;
+    let outs: Vec<block::BlockOut> =
+        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();

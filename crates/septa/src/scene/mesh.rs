@@ -140,10 +140,7 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for (n, line) in text.lines().enumerate() {
-        let err = |message: String| ObjError {
-            line: n + 1,
-            message,
-        };
+        let err = |message: String| ObjError { line: n + 1, message };
         let mut it = line.split_whitespace();
         match it.next() {
             Some("v") => {
@@ -161,15 +158,11 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
                 let mut idx = Vec::new();
                 for s in it {
                     let first = s.split('/').next().unwrap_or("");
-                    let i: i64 = first
-                        .parse()
-                        .map_err(|_| err(format!("bad face index `{s}`")))?;
+                    let i: i64 = first.parse().map_err(|_| err(format!("bad face index `{s}`")))?;
                     let nv = vertices.len() as i64;
                     let k = if i < 0 { nv + i } else { i - 1 };
                     if k < 0 || k >= nv {
-                        return Err(err(format!(
-                            "face index {i} out of range (have {nv} vertices)"
-                        )));
+                        return Err(err(format!("face index {i} out of range (have {nv} vertices)")));
                     }
                     idx.push(k as u32);
                 }
@@ -184,13 +177,7 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
         }
     }
     if triangles.is_empty() {
-        return Err(ObjError {
-            line: 0,
-            message: "no triangles".into(),
-        });
+        return Err(ObjError { line: 0, message: "no triangles".into() });
     }
-    Ok(TriMesh {
-        vertices,
-        triangles,
-    })
+    Ok(TriMesh { vertices, triangles })
 }

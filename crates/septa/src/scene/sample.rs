@@ -27,15 +27,13 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     }
     // Chunks of rows keep the per-task overhead small.
     const ROWS: usize = 256;
-    out.par_chunks_mut(ROWS * k)
-        .zip(points.par_chunks(ROWS))
-        .for_each(|(rows, pts)| {
-            for (row, p) in rows.chunks_mut(k).zip(pts) {
-                for (v, f) in row.iter_mut().zip(functions) {
-                    *v = f.eval(*p);
-                }
+    out.par_chunks_mut(ROWS * k).zip(points.par_chunks(ROWS)).for_each(|(rows, pts)| {
+        for (row, p) in rows.chunks_mut(k).zip(pts) {
+            for (v, f) in row.iter_mut().zip(functions) {
+                *v = f.eval(*p);
             }
-        });
+        }
+    });
     out
 }
 
@@ -70,12 +68,7 @@ pub fn block_may_be_active_mi(functions: &[Primitive], min: V3, max: V3) -> bool
         return false;
     }
     let b: Vec<(f64, f64)> = functions.iter().map(|f| f.bounds(min, max)).collect();
-    let owner = (0..b.len())
-        .max_by(|&i, &j| b[i].0.total_cmp(&b[j].0))
-        .unwrap_or(0);
-    let dominated = b
-        .iter()
-        .enumerate()
-        .all(|(j, &(_, hi))| j == owner || b[owner].0 > hi);
+    let owner = (0..b.len()).max_by(|&i, &j| b[i].0.total_cmp(&b[j].0)).unwrap_or(0);
+    let dominated = b.iter().enumerate().all(|(j, &(_, hi))| j == owner || b[owner].0 > hi);
     !dominated
 }
