@@ -1,1 +1,8 @@
-//! (in progress)
+//! Readers and writers.
+
+pub mod mesh;
+pub mod mesh_obj;
+pub mod mesh_off;
+pub mod mesh_ply;
+pub mod mesh_stl;
+pub mod planes;
