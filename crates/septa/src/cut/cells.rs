@@ -27,6 +27,8 @@ pub struct FaceLoop {
     pub verts: Vec<u32>,
     /// Line of edge `i -> i+1`, and whether it runs along `+dir`.
     pub dirs: Vec<(LineDir, bool)>,
+    /// The cut-face this loop bounds (several loops for a face with holes).
+    pub face: u32,
 }
 
 fn normal<R: Ring>(c: &Ctx, s: Support) -> V3<R> {
@@ -43,7 +45,8 @@ fn wvec<R: Ring>(c: &Ctx, s: Support, h: (LineDir, bool)) -> V3<R> {
 
 /// Result of cell assembly.
 pub struct Cells {
-    /// Cell of each half-face `2 f` (+ side) and `2 f + 1` (- side); `u32::MAX` if none.
+    /// Cell of each half-face `2 f` (+ side) and `2 f + 1` (- side) of
+    /// cut-face `f`; `u32::MAX` if none.
     pub cell_of: Vec<u32>,
     /// Number of cells.
     pub count: usize,
@@ -73,7 +76,9 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             inc.entry((a.min(b), a.max(b))).or_default().push((f as u32, a < b, fl.dirs[i]));
         }
     }
-    let mut parent: Vec<u32> = (0..2 * faces.len() as u32).collect();
+    let nf = faces.iter().map(|f| f.face + 1).max().unwrap_or(0) as usize;
+    let mut parent: Vec<u32> = (0..2 * nf as u32).collect();
+    let fid = |f: u32| faces[f as usize].face;
     let is_plane = |f: u32| matches!(faces[f as usize].support, Support::Plane(_));
     let mut ordered = 0usize;
     let mut keys: Vec<(u32, (u32, u32))> = Vec::new();
@@ -157,9 +162,9 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 is_plane(fa) || is_plane(fb) || side_a == 1
             };
             let (na, nb) = if k == 2 {
-                (2 * fa + 1, 2 * fb + 1)
+                (2 * fid(fa) + 1, 2 * fid(fb) + 1)
             } else {
-                (2 * fa + side_a, 2 * fb + side_b)
+                (2 * fid(fa) + side_a, 2 * fid(fb) + side_b)
             };
             if inside {
                 let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
@@ -169,14 +174,14 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             }
         }
     }
-    let mut cell_of = vec![u32::MAX; 2 * faces.len()];
+    let mut cell_of = vec![u32::MAX; 2 * nf];
     let mut ids: FxMap<u32, u32> = FxMap::default();
-    for (f, fl) in faces.iter().enumerate() {
+    for fl in faces.iter() {
         for side in 0..2u32 {
             if side == 0 && matches!(fl.support, Support::Tri(_)) {
                 continue;
             }
-            let n = 2 * f as u32 + side;
+            let n = 2 * fl.face + side;
             let r = find(&mut parent, n);
             let len = ids.len() as u32;
             let id = *ids.entry(r).or_insert(len);

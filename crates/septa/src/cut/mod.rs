@@ -18,6 +18,7 @@
 pub mod cells;
 pub mod clip;
 pub mod geom;
+pub mod holes;
 pub mod input;
 pub mod lines;
 pub mod nodes;
@@ -127,9 +128,10 @@ pub enum CutError {
 pub struct CutCounts {
     /// Cut-vertices.
     pub cut_vertices: usize,
-    /// Cut-edges.
+    /// Cut-edges, counting like the reference one joining edge per hole of
+    /// a cut-face (TopoCut Sec. 6.1 joins each hole to the outer boundary).
     pub cut_edges: usize,
-    /// Cut-faces (boundary loops of cut-faces; see [`CutCellMesh::faces`]).
+    /// Cut-faces (a face with holes counts once).
     pub cut_faces: usize,
     /// Cut-cells.
     pub cut_cells: usize,
@@ -146,6 +148,11 @@ pub struct CutStats {
     pub exact_fallbacks: u64,
     /// Cut-edges whose face-cycle order was computed (more than two faces).
     pub ordered_edges: usize,
+    /// Holes of cut-faces (each joined to its face's outer boundary; the
+    /// reference counts one extra cut-edge per hole for that join).
+    pub holes: usize,
+    /// Holes whose face needed an exact containment test.
+    pub hole_containment_tests: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
 }
@@ -155,9 +162,10 @@ pub struct CutStats {
 pub struct CutFace {
     /// The input face it lies in.
     pub support: Support,
-    /// Corner vertex ids, counter-clockwise about the support normal
-    /// (triangle outward normal, or plane normal `(a, b, c)`).
-    pub verts: Vec<u32>,
+    /// Boundary loops of corner vertex ids: the outer boundary first,
+    /// counter-clockwise about the support normal (triangle outward
+    /// normal, or plane normal `(a, b, c)`), then holes (clockwise).
+    pub loops: Vec<Vec<u32>>,
     /// Cell on the negative side (against the normal) and on the positive
     /// side; `u32::MAX` for none (outside the domain).
     pub cells: [u32; 2],
@@ -305,7 +313,7 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     for piece in &clipped.pieces {
         let t = piece.tri;
         let n = piece.nodes.len();
-        let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n) };
+        let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
         for i in 0..n {
             let (na, nb) = (piece.nodes[i], piece.nodes[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
@@ -333,11 +341,29 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     }
     lap("edges", &mut stats);
     let mut unclassified = 0u64;
+    let mut nholes = 0usize;
+    for f in faces.iter_mut().enumerate() {
+        f.1.face = f.0 as u32;
+    }
+    let mut nface = faces.len() as u32;
     for p in 0..np {
-        for l in plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut unclassified) {
-            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs });
+        let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut unclassified);
+        let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+        nholes += h;
+        stats.hole_containment_tests += t;
+        let mut id = vec![u32::MAX; loops.len()];
+        for (k, l) in loops.iter().enumerate() {
+            if l.outer as usize == k {
+                id[k] = nface;
+                nface += 1;
+            }
+        }
+        for l in loops {
+            let face = id[l.outer as usize];
+            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs, face });
         }
     }
+    stats.holes = nholes;
     lap("plane_faces", &mut stats);
     let cells = cells::assemble(&c, &faces);
     stats.ordered_edges = cells.ordered_edges;
@@ -356,8 +382,11 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     out.vertices = out.vertex_defs.iter().map(|&d| c.approx(d)).collect();
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
-    for (i, f) in faces.iter().enumerate() {
+    let nf = nface as usize;
+    out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
+    for f in faces.iter() {
         let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
+        let i = f.face as usize;
         let cneg = cells.cell_of[2 * i + 1];
         let cpos = cells.cell_of[2 * i];
         let vol = output::loop_volume(&out.vertices, &verts);
@@ -367,13 +396,16 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         if cpos != u32::MAX {
             out.cell_volumes[cpos as usize] -= vol;
         }
-        out.faces.push(CutFace { support: f.support, verts, cells: [cneg, cpos] });
+        let cf = &mut out.faces[i];
+        cf.support = f.support;
+        cf.cells = [cneg, cpos];
+        cf.loops.push(verts);
     }
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.counts = CutCounts {
         cut_vertices: out.vertex_defs.len(),
-        cut_edges: cells.edges,
-        cut_faces: faces.len(),
+        cut_edges: cells.edges + nholes,
+        cut_faces: nf,
         cut_cells: cells.count,
     };
     lap("output", &mut stats);

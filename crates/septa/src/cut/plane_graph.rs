@@ -47,6 +47,9 @@ pub struct PlaneLoop {
     pub verts: Vec<u32>,
     /// Line of edge `i -> i+1` and whether it runs along `+dir`.
     pub dirs: Vec<(LineDir, bool)>,
+    /// Index (in the plane's list) of the outer loop of the cut-face this
+    /// loop bounds: itself for an outer boundary, the enclosing loop for a hole.
+    pub outer: u32,
 }
 
 /// Boundary information for edges (compact end points, sorted).
@@ -67,14 +70,14 @@ pub(crate) fn dir_vec<R: Ring>(c: &Ctx, d: LineDir, fwd: bool) -> V3<R> {
 }
 
 /// Counter-clockwise order of directions in the plane with normal `n`.
-struct Ccw {
-    i: usize,
-    j: usize,
-    flip: bool,
+pub(crate) struct Ccw {
+    pub(crate) i: usize,
+    pub(crate) j: usize,
+    pub(crate) flip: bool,
 }
 
 impl Ccw {
-    fn new(n: &[f64; 3]) -> Ccw {
+    pub(crate) fn new(n: &[f64; 3]) -> Ccw {
         let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
         Ccw { i: (k + 1) % 3, j: (k + 2) % 3, flip: n[k] < 0.0 }
     }
@@ -91,7 +94,7 @@ impl Ccw {
         }
     }
 
-    fn cross(&self, c: &Ctx, a: (LineDir, bool), b: (LineDir, bool)) -> Sign {
+    pub(crate) fn cross(&self, c: &Ctx, a: (LineDir, bool), b: (LineDir, bool)) -> Sign {
         let (i, j) = (self.i, self.j);
         fn f<R: Ring>(c: &Ctx, a: (LineDir, bool), b: (LineDir, bool), i: usize, j: usize) -> R {
             let x = dir_vec::<R>(c, a.0, a.1);
@@ -317,7 +320,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
         if s != Status::Inside {
             continue;
         }
-        faces.push(PlaneLoop { plane: p, verts: cyc.iter().map(|&h| tail(h)).collect(), dirs: cyc.iter().map(|&h| hdir(h)).collect() });
+        faces.push(PlaneLoop { plane: p, verts: cyc.iter().map(|&h| tail(h)).collect(), dirs: cyc.iter().map(|&h| hdir(h)).collect(), outer: 0 });
     }
     faces
 }
