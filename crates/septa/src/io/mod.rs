@@ -6,3 +6,4 @@ pub mod mesh_off;
 pub mod mesh_ply;
 pub mod mesh_stl;
 pub mod planes;
+pub mod cut_out;
