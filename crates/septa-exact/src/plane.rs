@@ -262,12 +262,19 @@ impl Ring for Interval {
 /// (the filter) and once over [`Exact`] (the fallback, run only when the
 /// filter cannot decide).
 #[inline]
+#[track_caller]
 pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Exact) -> Sign {
     EVALUATIONS.fetch_add(1, Ordering::Relaxed);
     if let Some(s) = fast().sign() {
         return s;
     }
     FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    if std::env::var_os("SEPTA_TRACE").is_some() {
+        let l = std::panic::Location::caller();
+        let s = exact().sign();
+        eprintln!("fallback {}:{} {:?}", l.file(), l.line(), s);
+        return s;
+    }
     exact().sign()
 }
 

@@ -114,7 +114,21 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 }
             };
-            let cls: Vec<u8> = items.iter().map(|&(f, up)| class((faces[f as usize].support, hof(up)))).collect();
+            let cls: Vec<u8> = items
+                .iter()
+                .enumerate()
+                .map(|(i, &(f, up))| {
+                    let sup = faces[f as usize].support;
+                    if i == 0 {
+                        0
+                    } else if sup == w0.0 {
+                        // the other side of the edge in the same plane or triangle: opposite to w0
+                        2
+                    } else {
+                        class((sup, hof(up)))
+                    }
+                })
+                .collect();
             let mut idx: Vec<usize> = (0..k).collect();
             idx.sort_by(|&x, &y| {
                 if cls[x] != cls[y] {
