@@ -248,7 +248,8 @@ impl Ring for Interval {
         if b <= 0.0 && c >= 0.0 {
             return Interval { lo: mul_round(a, d, false), hi: mul_round(b, c, true) };
         }
-        let lo = mul_round(a, d, false).min(mul_round(b, c, false)).min(mul_round(a, c, false)).min(mul_round(b, d, false));
+        let lo =
+            mul_round(a, d, false).min(mul_round(b, c, false)).min(mul_round(a, c, false)).min(mul_round(b, d, false));
         let hi = mul_round(a, c, true).max(mul_round(b, d, true)).max(mul_round(a, d, true)).max(mul_round(b, c, true));
         Interval { lo, hi }
     }

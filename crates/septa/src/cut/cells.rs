@@ -94,7 +94,12 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
             let class = |x: (Support, (LineDir, bool))| -> u8 {
-                fn b<R: Ring>(c: &Ctx, d: (LineDir, bool), w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
+                fn b<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    w0: (Support, (LineDir, bool)),
+                    x: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
                     dot3(&dv, &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)))
                 }
@@ -139,7 +144,12 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 }
                 let wx = (faces[items[x].0 as usize].support, hof(items[x].1));
                 let wy = (faces[items[y].0 as usize].support, hof(items[y].1));
-                fn f<R: Ring>(c: &Ctx, d: (LineDir, bool), wx: (Support, (LineDir, bool)), wy: (Support, (LineDir, bool))) -> R {
+                fn f<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    wx: (Support, (LineDir, bool)),
+                    wy: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
                     dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
                 }
@@ -170,16 +180,9 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             };
             let side_a = if upa { 0 } else { 1 }; // + side of A faces the CCW wedge iff A runs along +D
             let side_b = if upb { 1 } else { 0 }; // + side of B faces the CW wedge iff B runs along -D
-            let inside = if k == 2 {
-                true
-            } else {
-                is_plane(fa) || is_plane(fb) || side_a == 1
-            };
-            let (na, nb) = if k == 2 {
-                (2 * fid(fa) + 1, 2 * fid(fb) + 1)
-            } else {
-                (2 * fid(fa) + side_a, 2 * fid(fb) + side_b)
-            };
+            let inside = if k == 2 { true } else { is_plane(fa) || is_plane(fb) || side_a == 1 };
+            let (na, nb) =
+                if k == 2 { (2 * fid(fa) + 1, 2 * fid(fb) + 1) } else { (2 * fid(fa) + side_a, 2 * fid(fb) + side_b) };
             if inside {
                 let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
                 if ra != rb {

@@ -98,7 +98,10 @@ impl Ctx<'_> {
     pub fn pval<R: Ring>(&self, p: u32, v: u32) -> R {
         let q = &self.planes[p as usize];
         let x = &self.verts[v as usize];
-        R::of(q[3]).add(&R::of(q[0]).mul(&R::of(x[0]))).add(&R::of(q[1]).mul(&R::of(x[1]))).add(&R::of(q[2]).mul(&R::of(x[2])))
+        R::of(q[3])
+            .add(&R::of(q[0]).mul(&R::of(x[0])))
+            .add(&R::of(q[1]).mul(&R::of(x[1])))
+            .add(&R::of(q[2]).mul(&R::of(x[2])))
     }
 
     /// Outward (unnormalised) triangle normal `(b - a) x (c - a)`.

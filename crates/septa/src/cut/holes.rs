@@ -96,13 +96,21 @@ pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (u
         let sig: Vec<Sign> = others
             .iter()
             .map(|&q| {
-                loops[h].verts.iter().map(|&v| c.side(rep[v as usize], q)).find(|&s| s != Sign::Zero).unwrap_or(Sign::Zero)
+                loops[h]
+                    .verts
+                    .iter()
+                    .map(|&v| c.side(rep[v as usize], q))
+                    .find(|&s| s != Sign::Zero)
+                    .unwrap_or(Sign::Zero)
             })
             .collect();
         let cands: Vec<usize> = (0..loops.len())
             .filter(|&k| outer[k])
             .filter(|&k| {
-                others.iter().zip(&sig).all(|(&q, &s)| s == Sign::Zero || loops[k].verts.iter().all(|&v| c.side(rep[v as usize], q) != -s))
+                others
+                    .iter()
+                    .zip(&sig)
+                    .all(|(&q, &s)| s == Sign::Zero || loops[k].verts.iter().all(|&v| c.side(rep[v as usize], q) != -s))
             })
             .collect();
         let pick = if cands.len() == 1 {

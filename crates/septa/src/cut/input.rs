@@ -83,10 +83,12 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
     let index: FxMap<(u32, u32), u32> = edges.iter().enumerate().map(|(i, e)| ((e[0], e[1]), i as u32)).collect();
     let tri_edges = tris
         .iter()
-        .map(|tri| [0, 1, 2].map(|k| {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            index[&(a.min(b), a.max(b))]
-        }))
+        .map(|tri| {
+            [0, 1, 2].map(|k| {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                index[&(a.min(b), a.max(b))]
+            })
+        })
         .collect();
     // manifold vertices: the triangles around each vertex form one fan
     let mut around: Vec<Vec<u32>> = vec![Vec::new(); verts.len()];
@@ -154,8 +156,16 @@ pub fn check_planes(planes: &[[f64; 4]], dropped: &mut Vec<(usize, usize)>) -> R
             (0..4).all(|a| {
                 (a + 1..4).all(|b| {
                     filtered_sign(
-                        || Interval::point(p[a]).mul(&Interval::point(q[b])).sub(&Interval::point(p[b]).mul(&Interval::point(q[a]))),
-                        || Exact::from_f64(p[a]).mul(&Exact::from_f64(q[b])).sub(&Exact::from_f64(p[b]).mul(&Exact::from_f64(q[a]))),
+                        || {
+                            Interval::point(p[a])
+                                .mul(&Interval::point(q[b]))
+                                .sub(&Interval::point(p[b]).mul(&Interval::point(q[a])))
+                        },
+                        || {
+                            Exact::from_f64(p[a])
+                                .mul(&Exact::from_f64(q[b]))
+                                .sub(&Exact::from_f64(p[b]).mul(&Exact::from_f64(q[a])))
+                        },
                     ) == Sign::Zero
                 })
             })

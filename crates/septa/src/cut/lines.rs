@@ -132,7 +132,12 @@ pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &
 
 /// Plane-pair lines: adds the three-plane points and sorts every line.
 /// Returns, per line, the ordered distinct points.
-pub fn plane_lines(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &[bool]) -> Vec<((u32, u32), Vec<u32>)> {
+pub fn plane_lines(
+    c: &Ctx,
+    nodes: &mut Nodes,
+    lines: &mut LinePoints,
+    crosses: &[bool],
+) -> Vec<((u32, u32), Vec<u32>)> {
     let np = c.planes.len() as u32;
     let mut out = Vec::new();
     for p in 0..np {

@@ -213,12 +213,16 @@ impl CutCellMesh {
             match f.support {
                 Support::Tri(_) => {
                     if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
-                        return Err(CutError::Inconsistent(format!("boundary face {i} does not bound exactly one cell")));
+                        return Err(CutError::Inconsistent(format!(
+                            "boundary face {i} does not bound exactly one cell"
+                        )));
                     }
                 }
                 Support::Plane(_) => {
                     if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1] {
-                        return Err(CutError::Inconsistent(format!("plane face {i} does not bound two distinct cells")));
+                        return Err(CutError::Inconsistent(format!(
+                            "plane face {i} does not bound two distinct cells"
+                        )));
                     }
                 }
             }
@@ -227,7 +231,10 @@ impl CutCellMesh {
         let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
         let min = self.cell_volumes.iter().copied().fold(f64::INFINITY, f64::min);
         if err > 1e-9 {
-            return Err(CutError::Inconsistent(format!("cell volumes sum to {total}, mesh volume {}", self.mesh_volume)));
+            return Err(CutError::Inconsistent(format!(
+                "cell volumes sum to {total}, mesh volume {}",
+                self.mesh_volume
+            )));
         }
         if min <= 0.0 {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
@@ -243,7 +250,12 @@ impl CutCellMesh {
 
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
 /// (`a x + b y + c z + d = 0`).
-pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]], opts: &CutOptions) -> Result<CutCellMesh, CutError> {
+pub fn cut_mesh(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+    opts: &CutOptions,
+) -> Result<CutCellMesh, CutError> {
     let _ = opts.threads;
     let ev0 = septa_exact::evaluation_count();
     let fb0 = septa_exact::fallback_count();
@@ -313,7 +325,8 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     for piece in &clipped.pieces {
         let t = piece.tri;
         let n = piece.nodes.len();
-        let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
+        let mut fl =
+            FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
         for i in 0..n {
             let (na, nb) = (piece.nodes[i], piece.nodes[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));

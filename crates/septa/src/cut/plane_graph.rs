@@ -299,8 +299,12 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     }
     if std::env::var("SEPTA_DEBUG").is_ok() {
         eprintln!("plane {p}: {} edges, {} loops, status {:?}", es.len(), loops.len(), status);
-        for e in &es { eprintln!("  edge {} {} {:?} fwd {}", e.a, e.b, e.dir, e.fwd); }
-        for cyc in &loops { eprintln!("  loop {:?}", cyc.iter().map(|&h| tail(h)).collect::<Vec<_>>()); }
+        for e in &es {
+            eprintln!("  edge {} {} {:?} fwd {}", e.a, e.b, e.dir, e.fwd);
+        }
+        for cyc in &loops {
+            eprintln!("  loop {:?}", cyc.iter().map(|&h| tail(h)).collect::<Vec<_>>());
+        }
     }
     let mut faces = Vec::new();
     for (l, cyc) in loops.iter().enumerate() {
@@ -320,8 +324,12 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
         if s != Status::Inside {
             continue;
         }
-        faces.push(PlaneLoop { plane: p, verts: cyc.iter().map(|&h| tail(h)).collect(), dirs: cyc.iter().map(|&h| hdir(h)).collect(), outer: 0 });
+        faces.push(PlaneLoop {
+            plane: p,
+            verts: cyc.iter().map(|&h| tail(h)).collect(),
+            dirs: cyc.iter().map(|&h| hdir(h)).collect(),
+            outer: 0,
+        });
     }
     faces
 }
-

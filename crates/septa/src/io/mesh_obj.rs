@@ -27,9 +27,19 @@ pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                         .parse()
                         .map_err(|_| ReadError::new(path, line, format!("face index '{tok}' is not an integer")))?;
                     let n = mesh.vertices.len() as i64;
-                    let k0 = if k > 0 { k - 1 } else if k < 0 { n + k } else { -1 };
+                    let k0 = if k > 0 {
+                        k - 1
+                    } else if k < 0 {
+                        n + k
+                    } else {
+                        -1
+                    };
                     if k0 < 0 || k0 >= n {
-                        return Err(ReadError::new(path, line, format!("face index {k} out of range (have {n} vertices)")));
+                        return Err(ReadError::new(
+                            path,
+                            line,
+                            format!("face index {k} out of range (have {n} vertices)"),
+                        ));
                     }
                     poly.push(k0 as u32);
                 }

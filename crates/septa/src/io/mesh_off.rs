@@ -45,7 +45,8 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
         poly.clear();
         for _ in 0..n {
             let (l, t) = next("face index")?;
-            let k: usize = t.parse().map_err(|_| ReadError::new(path, l, format!("face index '{t}' is not an integer")))?;
+            let k: usize =
+                t.parse().map_err(|_| ReadError::new(path, l, format!("face index '{t}' is not an integer")))?;
             if k >= nv {
                 return Err(ReadError::new(path, l, format!("face index {k} out of range (have {nv} vertices)")));
             }

@@ -99,10 +99,8 @@ impl Src<'_> {
 
 /// Parses PLY.
 pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let end = bytes
-        .windows(10)
-        .position(|w| w == b"end_header")
-        .ok_or_else(|| ReadError::new(path, 1, "no end_header"))?;
+    let end =
+        bytes.windows(10).position(|w| w == b"end_header").ok_or_else(|| ReadError::new(path, 1, "no end_header"))?;
     let head = std::str::from_utf8(&bytes[..end]).map_err(|_| ReadError::new(path, 1, "header is not text"))?;
     let mut body = end + 10;
     while body < bytes.len() && (bytes[body] == b'\r' || bytes[body] == b' ') {
@@ -121,7 +119,10 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
             Some("ply") | Some("comment") | Some("obj_info") | None => {}
             Some("format") => format = w.get(1).copied().unwrap_or(""),
             Some("element") => {
-                let count = w.get(2).and_then(|c| c.parse().ok()).ok_or_else(|| ReadError::new(path, line, "bad element line"))?;
+                let count = w
+                    .get(2)
+                    .and_then(|c| c.parse().ok())
+                    .ok_or_else(|| ReadError::new(path, line, "bad element line"))?;
                 elems.push(Elem { name: w.get(1).unwrap_or(&"").to_string(), count, props: Vec::new() });
             }
             Some("property") => {
@@ -141,7 +142,8 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     }
     let mut src = match format {
         "ascii" => {
-            let text = std::str::from_utf8(&bytes[body..]).map_err(|_| ReadError::new(path, 0, "ascii body is not text"))?;
+            let text =
+                std::str::from_utf8(&bytes[body..]).map_err(|_| ReadError::new(path, 0, "ascii body is not text"))?;
             let toks: Vec<(usize, &str)> = text
                 .lines()
                 .enumerate()
@@ -170,7 +172,11 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                         let mut idx = Vec::with_capacity(n);
                         for &k in &poly {
                             if k < 0.0 || k as usize >= nv || k.fract() != 0.0 {
-                                return Err(ReadError::new(path, 0, format!("face {r}: vertex index {k} out of range")));
+                                return Err(ReadError::new(
+                                    path,
+                                    0,
+                                    format!("face {r}: vertex index {k} out of range"),
+                                ));
                             }
                             idx.push(k as u32);
                         }
