@@ -122,3 +122,24 @@ fn cad_part_has_genus_3() {
     let r = run("cad-part");
     assert_eq!(topology(&r), vec![([0, 1], -4, 0)]);
 }
+
+#[test]
+fn two_boxes_in_a_label_volume() {
+    // Background 0, box 1 and box 2 side by side: three disks meeting on one loop.
+    let n = 12;
+    let mut labels = vec![0i64; n * n * n];
+    for i in 3..9 {
+        for j in 3..7 {
+            for k in 3..7 {
+                labels[(i * n + j) * n + k] = if i < 6 { 1 } else { 2 };
+            }
+        }
+    }
+    for sigma in [0.0, 0.7] {
+        let r = septa::regions::label_surfaces(&labels, [n, n, n], sigma).unwrap();
+        assert_eq!(topology(&r), vec![([0, 1], 1, 1), ([0, 2], 1, 1), ([1, 2], 1, 1)], "sigma {sigma}");
+        assert_eq!(curves(&r), vec![([0, 1, 2], true)], "sigma {sigma}");
+    }
+    let bad = septa::regions::label_surfaces(&labels, [n, n, n + 1], 0.0);
+    assert!(bad.is_err());
+}

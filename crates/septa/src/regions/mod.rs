@@ -26,6 +26,7 @@
 //! ```
 
 mod curves;
+mod labels;
 mod surfaces;
 
 use std::time::Instant;
@@ -36,6 +37,7 @@ use crate::network::{compute, Network, NetworkError, NetworkOptions};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
 pub use curves::Curve;
+pub use labels::label_surfaces;
 pub use surfaces::Surface;
 
 /// Options of [`region_surfaces`].
