@@ -143,3 +143,19 @@ fn two_boxes_in_a_label_volume() {
     let bad = septa::regions::label_surfaces(&labels, [n, n, n + 1], 0.0);
     assert!(bad.is_err());
 }
+
+#[test]
+fn box_minus_cylinder_volume_converges() {
+    let exact = septa::scene::builtin::box_minus_cylinder_volume();
+    let mut errors = Vec::new();
+    for n in [11, 21, 41] {
+        let mut scene = Scene::load("builtin:box-minus-cylinder").unwrap();
+        let [lo, hi] = scene.grid.bounds;
+        scene.grid = septa::scene::GridSpec { resolution: [n; 3], bounds: [lo, hi], split: 5 };
+        let r = region_surfaces(&scene, &RegionOptions::default()).unwrap();
+        assert_eq!(topology(&r), vec![([0, 1], 0, 0)], "resolution {n}");
+        errors.push((r.enclosed_volume(1) - exact).abs() / exact);
+    }
+    eprintln!("relative volume errors {errors:?}");
+    assert!(errors[1] < errors[0] && errors[2] < errors[1] && errors[2] < 5e-3, "{errors:?}");
+}

@@ -75,6 +75,36 @@ pub struct RegionSurfaces {
     pub seconds: Vec<(&'static str, f64)>,
 }
 
+impl RegionSurfaces {
+    /// Volume enclosed by the kept polygons around region `r` (divergence
+    /// theorem over the oriented polygons; floating point). Meaningful when
+    /// the region's whole boundary is of interest and inside the grid.
+    pub fn enclosed_volume(&self, r: RegionId) -> f64 {
+        let net = &self.network;
+        let mut vol = 0.0;
+        for (i, &f) in self.faces.iter().enumerate() {
+            let [cp, cn] = net.face_cells[f as usize];
+            let (a, b) = (self.cell_region[cp as usize], self.cell_region[cn as usize]);
+            // Normals point into the lesser region: outward for the greater.
+            let sign = if r == a.max(b) {
+                1.0
+            } else if r == a.min(b) {
+                -1.0
+            } else {
+                continue;
+            };
+            let p = &self.loops[self.loop_start[i] as usize..self.loop_start[i + 1] as usize];
+            let q = |v: u32| net.points[v as usize];
+            for k in 1..p.len() - 1 {
+                let (x, y, z) = (q(p[0]), q(p[k]), q(p[k + 1]));
+                let cross = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]];
+                vol += sign * (x[0] * cross[0] + x[1] * cross[1] + x[2] * cross[2]) / 6.0;
+            }
+        }
+        vol
+    }
+}
+
 /// Why region surfaces could not be computed.
 #[derive(Debug, thiserror::Error)]
 pub enum RegionError {
