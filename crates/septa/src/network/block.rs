@@ -83,14 +83,14 @@ pub(crate) struct Worker {
 
 /// Block-local maps, dropped with the block.
 #[derive(Default)]
-struct State {
-    out: BlockOut,
+pub(crate) struct State {
+    pub out: BlockOut,
     vmap: FxHashMap<VKey, u32>,
     contacts: FxHashMap<(FaceKey, Label), u32>,
     tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
-    uf: UnionFind,
-    node_label: Vec<Label>,
-    node_volume: Vec<f64>,
+    pub uf: UnionFind,
+    pub node_label: Vec<Label>,
+    pub node_volume: Vec<f64>,
 }
 
 /// Run-wide inputs.
@@ -115,6 +115,14 @@ impl Worker {
     /// Processes one block.
     pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
         let mut st = State::default();
+        if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
+            if super::boxfast::applies(ctx) {
+                self.run_box(ctx, &mut st, g, *lo, *hi)?;
+                st.out.tets =
+                    (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
+                return Ok(finish(st));
+            }
+        }
         let mut tets = std::mem::take(&mut self.tets);
         ctx.grid.block_tets(block, &mut tets);
         for &t in &tets {
@@ -127,7 +135,12 @@ impl Worker {
 
     /// The per-tet step (active functions, complex, extraction); look-up
     /// tables slot in at the `build` call.
-    fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
+    pub(crate) fn process_tet(
+        &mut self,
+        ctx: &Ctx,
+        st: &mut State,
+        t: usize,
+    ) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
         let k = ctx.k;
         let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
@@ -431,11 +444,23 @@ fn vertex_id(
     id
 }
 
+pub(crate) fn contact_pub(st: &mut State, face: FaceKey, label: &Label, node: u32) {
+    contact(st, face, label, node)
+}
+
+pub(crate) fn face_key_pub(tet: &[u32; 4], i: usize) -> FaceKey {
+    face_key(tet, i)
+}
+
 fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
-    match st.contacts.remove(&(face, label.clone())) {
-        Some(other) => st.uf.union(other, node),
-        None => {
-            st.contacts.insert((face, label.clone()), node);
+    use std::collections::hash_map::Entry;
+    match st.contacts.entry((face, label.clone())) {
+        Entry::Occupied(o) => {
+            let other = o.remove();
+            st.uf.union(other, node)
+        }
+        Entry::Vacant(v) => {
+            v.insert(node);
         }
     }
 }

@@ -9,6 +9,7 @@
 //! shells by wedges around edges, so block summaries merge in any order.
 
 mod block;
+mod boxfast;
 mod merge;
 mod topology;
 pub mod uf;
