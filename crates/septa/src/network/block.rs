@@ -78,6 +78,7 @@ pub(crate) struct Worker {
     fref: Vec<Option<SRef>>,
     tets: Vec<usize>,
     pairs: Vec<(u32, u32)>,
+    edge_net: Vec<u32>,
     cell_labels: Vec<Label>,
 }
 
@@ -298,13 +299,31 @@ impl Worker {
             let label = self.cell_labels[cell as usize].clone();
             contact(st, face_key(&tet, i as usize), &label, base + cell);
         }
-        // Shell connectivity: around every edge of every cell between network
-        // points, the two faces of the cell there bound the same wedge.
+        // Shell connectivity (Sec. 7): around an edge of the network, the two
+        // faces of a cell there bound the same wedge, so their sides facing the
+        // cell belong to one shell. Inside a tet this is a direct union; a wedge
+        // leaving through a tet face continues in the neighbour tet, matched by
+        // a (tet face, region label, edge) node. Such nodes are only needed
+        // where a chain may run: edges on a tet face that carry 2+ network
+        // faces of this tet (a surface crossing a tet face transversally has
+        // faces on both sides, so both tets see the same count), and network
+        // segments of tet edges (degenerate input).
+        self.edge_net.clear();
+        self.edge_net.resize(c.edges().len(), 0);
+        for (fi, face) in c.faces().iter().enumerate() {
+            if self.fref[fi].is_some() {
+                for &e in &face.edges {
+                    self.edge_net[e as usize] += 1;
+                }
+            }
+        }
         for (ci, cell) in c.cells().iter().enumerate() {
             let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
             for &fi in &cell.faces {
                 for &e in &c.faces()[fi as usize].edges {
-                    ef.push((e, fi));
+                    if self.edge_net[e as usize] > 0 || on_tet_edge(c, e) {
+                        ef.push((e, fi));
+                    }
                 }
             }
             ef.sort_unstable();
@@ -317,9 +336,17 @@ impl Worker {
                 let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
                 j += 2;
                 let [u, w] = c.edges()[e as usize].vertices;
-                if !on_network(ctx.mode, c, &self.vals, u)
-                    || !on_network(ctx.mode, c, &self.vals, w)
-                {
+                let (n1, n2) = (
+                    self.fref[f1 as usize].is_some(),
+                    self.fref[f2 as usize].is_some(),
+                );
+                let tet_edge = on_tet_edge(c, e);
+                let needed = if tet_edge {
+                    segment_on_network(ctx.mode, c, &self.vals, u, w)
+                } else {
+                    (n1 && n2) || self.edge_net[e as usize] >= 2
+                };
+                if !needed {
                     continue;
                 }
                 let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
@@ -374,29 +401,43 @@ impl Worker {
     }
 }
 
-/// Whether a complex vertex lies on the network (some function vanishes
-/// there, IA; two or more functions tie for the maximum, MI).
-fn on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> bool {
+/// Whether complex edge `e` lies on a tet edge.
+fn on_tet_edge(c: &Complex, e: u32) -> bool {
+    c.edges()[e as usize].planes.iter().all(|p| !p.is_network())
+}
+
+/// The functions vanishing (IA) or tied for the maximum (MI) at a vertex.
+fn zero_set(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> SmallVec<[u16; 8]> {
     let vert = &c.vertices()[v as usize];
+    if vert.dim() > 0 {
+        return vert.functions().iter().copied().collect();
+    }
+    let corner = vert.simplex().trailing_zeros() as usize;
     match mode {
-        Mode::Ia => {
-            if vert.dim() > 0 {
-                return true;
-            }
-            let corner = vert.simplex().trailing_zeros() as usize;
-            vals.iter().any(|r| r[corner] == 0.0)
-        }
+        Mode::Ia => (0..vals.len() as u16)
+            .filter(|&f| vals[f as usize][corner] == 0.0)
+            .collect(),
         Mode::Mi => {
-            if vert.dim() > 0 {
-                return true;
-            }
-            let corner = vert.simplex().trailing_zeros() as usize;
             let m = vals
                 .iter()
                 .map(|r| r[corner])
                 .fold(f64::NEG_INFINITY, f64::max);
-            vals.iter().filter(|r| r[corner] == m).count() >= 2
+            (0..vals.len() as u16)
+                .filter(|&f| vals[f as usize][corner] == m)
+                .collect()
         }
+    }
+}
+
+/// Whether the tet-edge segment `u w` lies on the network: one function
+/// vanishes at both ends (IA; it is linear along the edge), or two functions
+/// are tied for the maximum at both ends (MI).
+fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32) -> bool {
+    let (a, b) = (zero_set(mode, c, vals, u), zero_set(mode, c, vals, w));
+    let common = a.iter().filter(|f| b.contains(f)).count();
+    match mode {
+        Mode::Ia => common >= 1,
+        Mode::Mi => common >= 2,
     }
 }
 
