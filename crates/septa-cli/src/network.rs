@@ -78,6 +78,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let mut opts = NetworkOptions::new(mode);
     opts.float = args.float;
     opts.block = args.block;
+    opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         pool = pool.num_threads(t.max(1));
@@ -90,11 +91,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         network_out::write_all(&net, &args.output, &extra)?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
-    let cells_method = match args.cells {
-        CellMethod::Grouping => "grouping",
-        // Ray shooting is not implemented yet: grouping is its fallback.
-        CellMethod::Raytrace => "grouping (raytrace fallback)",
-    };
+    let cells_method = net.cells_method;
     if args.json {
         let mut obj = serde_json::Map::new();
         for (k, v) in net.counts() {

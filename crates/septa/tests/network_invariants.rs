@@ -17,7 +17,12 @@ fn data_dir() -> Option<PathBuf> {
 
 fn load(dir: &Path, name: &str) -> (Grid, Vec<f64>, usize) {
     let input = read_grid_input(&dir.join(format!("{name}.npz"))).unwrap();
-    let g = BoxGrid::new([input.grid_res.unwrap(); 3], input.bbox.unwrap(), Split::Five).unwrap();
+    let g = BoxGrid::new(
+        [input.grid_res.unwrap(); 3],
+        input.bbox.unwrap(),
+        Split::Five,
+    )
+    .unwrap();
     (Grid::Box(g), input.values, input.k)
 }
 
@@ -25,7 +30,11 @@ fn run(grid: &Grid, values: &[f64], k: usize, mode: Mode, threads: usize) -> Net
     let mut o = NetworkOptions::new(mode);
     o.block = 4;
     o.volumes = true;
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    o.raytrace = false;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| compute(grid, values, k, &o)).unwrap()
 }
 
@@ -42,8 +51,15 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
         }
     }
     for (f, c) in net.face_cells.iter().enumerate() {
-        assert!(c[0] != c[1], "{name}: face {f} has cell {} on both sides", c[0]);
-        assert!(c[0] != NONE || c[1] != NONE, "{name}: face {f} bounds no cell");
+        assert!(
+            c[0] != c[1],
+            "{name}: face {f} has cell {} on both sides",
+            c[0]
+        );
+        assert!(
+            c[0] != NONE || c[1] != NONE,
+            "{name}: face {f} bounds no cell"
+        );
     }
     // Shell closure and Euler characteristic.
     let mut faces_of_patch: Vec<Vec<usize>> = vec![Vec::new(); net.patches.len()];
@@ -56,7 +72,41 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
             in_cell[s as usize] += 1;
         }
     }
-    assert!(in_cell.iter().all(|&n| n == 1), "{name}: a shell is not in exactly one cell");
+    assert!(
+        in_cell.iter().all(|&n| n == 1),
+        "{name}: a shell is not in exactly one cell"
+    );
+    // Every side of every face in a shell faces that shell's cell.
+    let mut cell_of_shell = vec![NONE; net.shells.len()];
+    for (c, cell) in net.cells.iter().enumerate() {
+        for &s in &cell.shells {
+            cell_of_shell[s as usize] = c as u32;
+        }
+    }
+    let mut shell_of_hp = vec![NONE; 2 * net.patches.len()];
+    for (s, hps) in net.shells.iter().enumerate() {
+        for &hp in hps {
+            assert_eq!(
+                shell_of_hp[hp as usize], NONE,
+                "{name}: half-patch {hp} in two shells"
+            );
+            shell_of_hp[hp as usize] = s as u32;
+        }
+    }
+    for f in 0..net.num_faces() {
+        for side in 0..2 {
+            let c = net.face_cells[f][side];
+            if c == NONE {
+                continue;
+            }
+            let sh = shell_of_hp[2 * net.face_patch[f] as usize + side];
+            assert_eq!(
+                cell_of_shell[sh as usize], c,
+                "{name}: face {f} side {side} (patch {}, shell {sh})",
+                net.face_patch[f]
+            );
+        }
+    }
     for (s, hps) in net.shells.iter().enumerate() {
         let mut edges: HashMap<[u32; 2], u32> = HashMap::new();
         let mut verts = std::collections::HashSet::new();
@@ -82,12 +132,18 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
         }
         if !open {
             let chi = verts.len() as i64 - edges.len() as i64 + nf;
-            assert!(chi % 2 == 0 && chi <= 2, "{name}: shell {s} has Euler characteristic {chi}");
+            assert!(
+                chi % 2 == 0 && chi <= 2,
+                "{name}: shell {s} has Euler characteristic {chi}"
+            );
         }
     }
     let vol: f64 = net.cells.iter().map(|c| c.volume).sum();
     let want = grid.volume();
-    assert!((vol - want).abs() <= 1e-9 * want, "{name}: cell volumes {vol} vs grid {want}");
+    assert!(
+        (vol - want).abs() <= 1e-9 * want,
+        "{name}: cell volumes {vol} vs grid {want}"
+    );
 }
 
 fn json_without_seconds(net: &Network, tag: &str) -> String {
@@ -105,6 +161,7 @@ fn invariants_threads_and_permutations_on_reference_cases() {
     let Some(dir) = data_dir() else { return };
     for name in [
         "ia4_R20",
+        "ia18_R20",
         "mi4_R20",
         "mi18_R20",
         "nested8_R20",
@@ -112,14 +169,25 @@ fn invariants_threads_and_permutations_on_reference_cases() {
         "shifted4_ia_eps1e-7_R2_s0",
         "shifted4_mi_eps1e-7_R2_s0",
     ] {
-        let mode = if name.contains("mi") { Mode::Mi } else { Mode::Ia };
+        let mode = if name.contains("mi") {
+            Mode::Mi
+        } else {
+            Mode::Ia
+        };
         let (grid, values, k) = load(&dir, name);
         let one = run(&grid, &values, k, mode, 1);
         check_invariants(&one, &grid, name);
         let two = run(&grid, &values, k, mode, 2);
-        assert_eq!(json_without_seconds(&one, "a"), json_without_seconds(&two, "b"), "{name}: 1 vs 2 threads");
+        assert_eq!(
+            json_without_seconds(&one, "a"),
+            json_without_seconds(&two, "b"),
+            "{name}: 1 vs 2 threads"
+        );
         // Reverse the functions: same counts, same patch labels after mapping back.
-        let rev: Vec<f64> = values.chunks(k).flat_map(|r| r.iter().rev().copied()).collect();
+        let rev: Vec<f64> = values
+            .chunks(k)
+            .flat_map(|r| r.iter().rev().copied())
+            .collect();
         let back = run(&grid, &rev, k, mode, 2);
         assert_eq!(one.counts(), back.counts(), "{name}: reversed functions");
         let labels = |n: &Network, map: &dyn Fn(u16) -> u16| {
@@ -134,7 +202,11 @@ fn invariants_threads_and_permutations_on_reference_cases() {
             l.sort();
             l
         };
-        assert_eq!(labels(&one, &|f| f), labels(&back, &|f| k as u16 - 1 - f), "{name}");
+        assert_eq!(
+            labels(&one, &|f| f),
+            labels(&back, &|f| k as u16 - 1 - f),
+            "{name}"
+        );
     }
 }
 
@@ -188,7 +260,14 @@ fn two_coordinate_planes_through_grid_nodes() {
         let net = run(&grid, &values, 2, Mode::Ia, 2);
         expect(
             &net,
-            &[("cells", 4), ("patches", 4), ("chains", 1), ("corners", 2), ("shells", 4), ("components", 1)],
+            &[
+                ("cells", 4),
+                ("patches", 4),
+                ("chains", 1),
+                ("corners", 2),
+                ("shells", 4),
+                ("components", 1),
+            ],
             &format!("{split:?}"),
         );
         check_invariants(&net, &grid, "two planes");
@@ -201,11 +280,37 @@ fn function_given_twice_and_sphere_through_grid_vertices() {
     // Radius 0.5 passes through the grid vertices (+-0.5, 0, 0) etc.
     let f = [sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.5)];
     let values = sample(&f, &grid.vertices());
-    let once = run(&grid, &values[..].chunks(2).map(|r| r[0]).collect::<Vec<_>>(), 1, Mode::Ia, 1);
-    expect(&once, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0), ("components", 1)], "sphere");
+    let once = run(
+        &grid,
+        &values[..].chunks(2).map(|r| r[0]).collect::<Vec<_>>(),
+        1,
+        Mode::Ia,
+        1,
+    );
+    expect(
+        &once,
+        &[
+            ("cells", 2),
+            ("patches", 1),
+            ("shells", 2),
+            ("chains", 0),
+            ("components", 1),
+        ],
+        "sphere",
+    );
     check_invariants(&once, &grid, "sphere");
     let twice = run(&grid, &values, 2, Mode::Ia, 2);
-    expect(&twice, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0), ("components", 1)], "twice");
+    expect(
+        &twice,
+        &[
+            ("cells", 2),
+            ("patches", 1),
+            ("shells", 2),
+            ("chains", 0),
+            ("components", 1),
+        ],
+        "twice",
+    );
     assert_eq!(once.num_faces(), twice.num_faces());
     check_invariants(&twice, &grid, "twice");
 }
@@ -218,7 +323,17 @@ fn spheres_tangent_at_a_grid_vertex() {
     let f = [sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 2, Mode::Ia, 2);
-    expect(&net, &[("cells", 3), ("patches", 2), ("shells", 4), ("chains", 0), ("components", 1)], "tangent");
+    expect(
+        &net,
+        &[
+            ("cells", 3),
+            ("patches", 2),
+            ("shells", 4),
+            ("chains", 0),
+            ("components", 1),
+        ],
+        "tangent",
+    );
     check_invariants(&net, &grid, "tangent");
 }
 
@@ -227,17 +342,39 @@ fn material_ties() {
     let grid = box4(Split::Five);
     // f0 = x, f1 = x (tied everywhere), f2 = -x: two materials meet on x = 0,
     // which lies on tet faces.
-    let f = [plane([1.0, 0.0, 0.0]), plane([1.0, 0.0, 0.0]), plane([-1.0, 0.0, 0.0])];
+    let f = [
+        plane([1.0, 0.0, 0.0]),
+        plane([1.0, 0.0, 0.0]),
+        plane([-1.0, 0.0, 0.0]),
+    ];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 3, Mode::Mi, 2);
-    expect(&net, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0)], "mi ties");
+    expect(
+        &net,
+        &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0)],
+        "mi ties",
+    );
     check_invariants(&net, &grid, "mi ties");
     // Three planes through the z axis meeting at 120 degrees, tied along a grid line.
     let s = 3f64.sqrt() / 2.0;
-    let f = [plane([1.0, 0.0, 0.0]), plane([-0.5, s, 0.0]), plane([-0.5, -s, 0.0])];
+    let f = [
+        plane([1.0, 0.0, 0.0]),
+        plane([-0.5, s, 0.0]),
+        plane([-0.5, -s, 0.0]),
+    ];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 3, Mode::Mi, 2);
-    expect(&net, &[("cells", 3), ("patches", 3), ("chains", 1), ("corners", 2), ("shells", 3)], "mi tripod");
+    expect(
+        &net,
+        &[
+            ("cells", 3),
+            ("patches", 3),
+            ("chains", 1),
+            ("corners", 2),
+            ("shells", 3),
+        ],
+        "mi tripod",
+    );
     check_invariants(&net, &grid, "mi tripod");
 }
 
@@ -247,7 +384,107 @@ fn bad_values_are_named() {
     let mut values = vec![1.0; grid.num_vertices() * 2];
     values[7 * 2 + 1] = f64::NAN;
     let e = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Ia)).unwrap_err();
-    assert!(matches!(e, NetworkError::NonFinite { vertex: 7, function: 1, .. }), "{e}");
+    assert!(
+        matches!(
+            e,
+            NetworkError::NonFinite {
+                vertex: 7,
+                function: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
     let e = compute(&grid, &values[1..], 2, &NetworkOptions::new(Mode::Ia)).unwrap_err();
     assert!(matches!(e, NetworkError::ValueCount { .. }), "{e}");
+}
+
+/// Cells as a partition of shells, with their labels, for comparing methods.
+fn cell_partition(net: &Network) -> Vec<(Vec<u32>, Vec<u64>)> {
+    let mut p: Vec<(Vec<u32>, Vec<u64>)> = net
+        .cells
+        .iter()
+        .map(|c| {
+            let mut s = c.shells.clone();
+            s.sort();
+            (s, c.label.to_vec())
+        })
+        .collect();
+    p.sort();
+    p
+}
+
+#[test]
+fn raytrace_equals_grouping() {
+    let Some(dir) = data_dir() else { return };
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
+    for (name, exp) in expected.as_object().unwrap() {
+        let mode = if exp["mode"] == "mi" {
+            Mode::Mi
+        } else {
+            Mode::Ia
+        };
+        let (grid, values, k) = load(&dir, name);
+        let grouping = run(&grid, &values, k, mode, 2);
+        let mut o = NetworkOptions::new(mode);
+        o.block = 4; // the same blocks as `run`, hence the same shell numbering
+        let ray = compute(&grid, &values, k, &o).unwrap();
+        // Ray shooting needs every network vertex off the grid vertices.
+        let at_grid_vertex = ray.keys.iter().any(|k| k.grid[1] == u32::MAX);
+        let want = if at_grid_vertex {
+            "grouping"
+        } else {
+            "raytrace"
+        };
+        assert_eq!(ray.cells_method, want, "{name}");
+        assert_eq!(grouping.cells_method, "grouping", "{name}");
+        assert_eq!(
+            ray.cells.len(),
+            exp["cells"].as_u64().unwrap() as usize,
+            "{name}"
+        );
+        let (a, b) = (cell_partition(&ray), cell_partition(&grouping));
+        if let Some(i) = (0..a.len()).find(|&i| a[i] != b[i]) {
+            panic!("{name}: cell {i}: ray {:?} vs grouping {:?}", a[i], b[i]);
+        }
+    }
+    // Preconditions broken: a network vertex at a grid vertex, and a tet mesh.
+    let grid = box4(Split::Five);
+    let f = [sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)];
+    let values = sample(&f, &grid.vertices());
+    let net = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Ia)).unwrap();
+    assert_eq!(net.cells_method, "grouping");
+    assert_eq!(net.cells.len(), 3);
+}
+
+#[test]
+fn nested_spheres_off_grid_raytrace() {
+    // Nested spheres not through grid vertices, on a 6-split grid: rays cross
+    // empty blocks between shells.
+    let grid = Grid::Box(BoxGrid::new([13, 11, 12], [[-1.0; 3], [1.0; 3]], Split::Six).unwrap());
+    let f = [
+        sphere([0.01, 0.02, 0.03], 0.83),
+        sphere([0.013, 0.021, 0.029], 0.51),
+        sphere([0.15, 0.16, 0.14], 0.2),
+        sphere([-0.61, -0.6, -0.62], 0.21),
+    ];
+    let values = sample(&f, &grid.vertices());
+    let grouping = run(&grid, &values, 4, Mode::Ia, 2);
+    check_invariants(&grouping, &grid, "nested");
+    let mut o = NetworkOptions::new(Mode::Ia);
+    o.block = 4;
+    let ray = compute(&grid, &values, 4, &o).unwrap();
+    assert_eq!(ray.cells_method, "raytrace");
+    expect(
+        &ray,
+        &[
+            ("cells", 5),
+            ("shells", 8),
+            ("patches", 4),
+            ("components", 4),
+        ],
+        "nested",
+    );
+    assert_eq!(cell_partition(&ray), cell_partition(&grouping));
 }

@@ -145,24 +145,7 @@ impl Worker {
         let tet = ctx.grid.tet(t);
         let k = ctx.k;
         let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
-        self.active.clear();
-        match ctx.mode {
-            Mode::Ia => {
-                for f in 0..k {
-                    let r = row(f);
-                    if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
-                        if r.iter().all(|&x| x == 0.0) {
-                            return Err(NetworkError::VanishesOnTet {
-                                tet: t,
-                                function: f,
-                            });
-                        }
-                        self.active.push(f as u16);
-                    }
-                }
-            }
-            Mode::Mi => mi_active(&tet, ctx, &mut self.active),
-        }
+        active_functions(ctx, t, &tet, &mut self.active)?;
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),
             Mode::Mi => self.active.len() < 2,
@@ -441,18 +424,8 @@ fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32
     }
 }
 
-/// Block id of complex vertex `v`, creating its key and position on first use.
-fn vertex_id(
-    w: &mut Worker,
-    c: &Complex,
-    ctx: &Ctx,
-    st: &mut State,
-    tet: &[u32; 4],
-    v: u32,
-) -> u32 {
-    if w.vid[v as usize] != NONE {
-        return w.vid[v as usize];
-    }
+/// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
+pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
     let vert = c.vertices()[v as usize];
     let mut key = VKey {
         grid: [u32::MAX; 4],
@@ -466,12 +439,28 @@ fn vertex_id(
         }
     }
     key.grid[..n].sort_unstable();
-    if !(ctx.mode == Mode::Mi && vert.dim() == 0) {
+    if !(mode == Mode::Mi && vert.dim() == 0) {
         for (j, &f) in vert.functions().iter().enumerate() {
-            key.funcs[j] = w.active[f as usize];
+            key.funcs[j] = active[f as usize];
         }
         key.funcs.sort_unstable();
     }
+    key
+}
+
+/// Block id of complex vertex `v`, creating its key and position on first use.
+fn vertex_id(
+    w: &mut Worker,
+    c: &Complex,
+    ctx: &Ctx,
+    st: &mut State,
+    tet: &[u32; 4],
+    v: u32,
+) -> u32 {
+    if w.vid[v as usize] != NONE {
+        return w.vid[v as usize];
+    }
+    let key = vertex_key(ctx.mode, c, v, tet, &w.active);
     let next = st.out.keys.len() as u32;
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
@@ -504,6 +493,36 @@ fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
             v.insert(node);
         }
     }
+}
+
+/// The active functions of tet `t` (ascending): IA, those with a sign change
+/// or a zero at its vertices; MI, those not strictly dominated at all 4.
+pub(crate) fn active_functions(
+    ctx: &Ctx,
+    t: usize,
+    tet: &[u32; 4],
+    out: &mut Vec<u16>,
+) -> Result<(), NetworkError> {
+    out.clear();
+    let k = ctx.k;
+    match ctx.mode {
+        Mode::Ia => {
+            for f in 0..k {
+                let r = tet.map(|v| ctx.values[v as usize * k + f]);
+                if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
+                    if r.iter().all(|&x| x == 0.0) {
+                        return Err(NetworkError::VanishesOnTet {
+                            tet: t,
+                            function: f,
+                        });
+                    }
+                    out.push(f as u16);
+                }
+            }
+        }
+        Mode::Mi => mi_active(tet, ctx, out),
+    }
+    Ok(())
 }
 
 /// IA sign bits at tet vertex 0 (every inactive function has one sign on the tet).

@@ -11,6 +11,7 @@
 mod block;
 mod boxfast;
 mod merge;
+mod raytrace;
 mod topology;
 pub mod uf;
 
@@ -94,6 +95,10 @@ pub struct NetworkOptions {
     pub block: usize,
     /// Compute cell volumes (floating point, for invariant checks).
     pub volumes: bool,
+    /// Identify cells by topological ray shooting (Sec. 7.1) when the grid
+    /// allows it (a box, no network vertex at a grid vertex); otherwise, or
+    /// when false, by cell grouping.
+    pub raytrace: bool,
 }
 
 impl NetworkOptions {
@@ -104,6 +109,7 @@ impl NetworkOptions {
             float: false,
             block: 16,
             volumes: false,
+            raytrace: true,
         }
     }
 }
@@ -166,6 +172,8 @@ pub struct Network {
     pub components: usize,
     /// Tets with a part of the network.
     pub active_tets: usize,
+    /// How cells were identified: "raytrace" or "grouping".
+    pub cells_method: &'static str,
     /// Seconds per stage.
     pub seconds: Vec<(&'static str, f64)>,
 }
@@ -245,7 +253,7 @@ pub fn compute(
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m);
+    let topo = topology::topology(&mut m, options.raytrace.then_some(&ctx));
     let t3 = Instant::now();
     Ok(Network {
         mode: options.mode,
@@ -265,6 +273,7 @@ pub fn compute(
         cells: topo.cells,
         components: topo.components,
         active_tets: m.active_tets,
+        cells_method: topo.cells_method,
         seconds: vec![
             ("tets", (t1 - t0).as_secs_f64()),
             ("merge", (t2 - t1).as_secs_f64()),
