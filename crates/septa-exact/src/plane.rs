@@ -178,6 +178,17 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
         }
         return if up { next_up(p) } else { next_down(p) };
     }
+    // Significant bits of the factors (odd mantissas of m and n bits have a
+    // product of m + n - 1 or m + n bits): above 54 the product is surely
+    // rounded, so widen without the TwoProduct test; at most 53 it is exact.
+    let sig = |x: f64| 53 - ((x.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
+    let bits = sig(a) + sig(b);
+    if bits > 54 {
+        return if up { next_up(p) } else { next_down(p) };
+    }
+    if bits <= 53 {
+        return p;
+    }
     let (_, e) = two_prod(a, b);
     if up {
         if e > 0.0 {
@@ -281,6 +292,20 @@ pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Ex
 /// Sign of `n . x + d` for a plane `(n, d)` and a point `x` (TopoCut's
 /// `T_pv`, App. B eq. 13), exact.
 pub fn plane_point_sign(plane: &[f64; 4], x: &[f64; 3]) -> Sign {
+    // Static filter: v = fl(fl(fl(fl(a x) + fl(b y)) + fl(c z)) + d). Each of
+    // the 3 products and 3 sums commits a relative error <= u = 2^-53 of its
+    // result, so |v - exact| <= (3u + 3u(1 + u)^3) * S <= 7u * S with
+    // S = |a x| + |b y| + |c z| + |d| (all terms enter each partial sum at
+    // most once; the (1+u)^k growth is absorbed by the spare u). Requires no
+    // underflow: S is large enough or we fall through to the interval path.
+    let t = [plane[0] * x[0], plane[1] * x[1], plane[2] * x[2]];
+    let v = t[0] + t[1] + t[2] + plane[3];
+    let s = t[0].abs() + t[1].abs() + t[2].abs() + plane[3].abs();
+    let bound = 8.0 * f64::EPSILON * 0.5 * s;
+    if s > 1e-250 && s < 1e250 && v.abs() > bound {
+        EVALUATIONS.fetch_add(1, Ordering::Relaxed);
+        return if v > 0.0 { Sign::Positive } else { Sign::Negative };
+    }
     fn f<R: Ring>(p: &[f64; 4], x: &[f64; 3]) -> R {
         let mut acc = R::of(p[3]);
         for k in 0..3 {

@@ -67,23 +67,35 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 
 /// Joins half-faces into cells.
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
-    // incident (face, traverses min -> max, its own direction label)
-    let mut inc: FxMap<(u32, u32), Vec<(u32, bool, (LineDir, bool))>> = FxMap::default();
+    // incident (edge key, face loop, traverses min -> max, its own direction
+    // label), grouped by sorting (no per-edge allocation)
+    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> = Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
     for (f, fl) in faces.iter().enumerate() {
         let n = fl.verts.len();
         for i in 0..n {
             let (a, b) = (fl.verts[i], fl.verts[(i + 1) % n]);
-            inc.entry((a.min(b), a.max(b))).or_default().push((f as u32, a < b, fl.dirs[i]));
+            let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+            inc.push((key, f as u32, a < b, fl.dirs[i]));
         }
     }
+    inc.sort_unstable_by_key(|x| (x.0, x.1));
     let nf = faces.iter().map(|f| f.face + 1).max().unwrap_or(0) as usize;
     let mut parent: Vec<u32> = (0..2 * nf as u32).collect();
     let fid = |f: u32| faces[f as usize].face;
     let is_plane = |f: u32| matches!(faces[f as usize].support, Support::Plane(_));
     let mut ordered = 0usize;
-    let mut keys: Vec<(u32, (u32, u32))> = Vec::new();
-    let _ = &mut keys;
-    for (_, list) in inc.iter_mut() {
+    let mut nedges = 0usize;
+    let mut list: Vec<(u32, bool, (LineDir, bool))> = Vec::new();
+    let mut g0 = 0;
+    while g0 < inc.len() {
+        let mut g1 = g0 + 1;
+        while g1 < inc.len() && inc[g1].0 == inc[g0].0 {
+            g1 += 1;
+        }
+        list.clear();
+        list.extend(inc[g0..g1].iter().map(|x| (x.1, x.2, x.3)));
+        g0 = g1;
+        nedges += 1;
         let k = list.len();
         if k > 2 {
             ordered += 1;
@@ -203,5 +215,5 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
         }
     }
     let _ = neg3::<Interval>;
-    Cells { cell_of, count: ids.len(), edges: inc.len(), ordered_edges: ordered }
+    Cells { cell_of, count: ids.len(), edges: nedges, ordered_edges: ordered }
 }

@@ -13,8 +13,10 @@ use smallvec::SmallVec;
 pub enum EdgeLine {
     /// Part of mesh edge `e`.
     Mesh(u32),
-    /// Part of the intersection with plane `p`.
-    Plane(u32),
+    /// Part of the intersection with plane `p`; the flag is true when the
+    /// piece lies on the positive side of `p` (then the piece runs along
+    /// `n_p x n_t`, see [`super::geom::LineDir::TriPlane`]).
+    Plane(u32, bool),
 }
 
 /// A convex piece of a triangle, counter-clockwise about the outward normal.
@@ -112,7 +114,7 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                     if si.as_i8() * sj.as_i8() < 0 {
                         let x = match line {
                             EdgeLine::Mesh(e) => nodes.get(Def::EP(e, q)),
-                            EdgeLine::Plane(p) => {
+                            EdgeLine::Plane(p, _) => {
                                 let k = nodes.get(Def::TPP(t, p.min(q), p.max(q)));
                                 let mut z: SmallVec<[u32; 4]> = SmallVec::new();
                                 z.push(p);
@@ -129,7 +131,7 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                     }
                 }
                 // In a convex piece, an edge with both ends on q lies on q.
-                for (piece, on) in [(&mut a, &a_on), (&mut b, &b_on)] {
+                for (piece, on, pos) in [(&mut a, &a_on, true), (&mut b, &b_on, false)] {
                     let m = piece.nodes.len();
                     for i in 0..m {
                         if on[i] && on[(i + 1) % m] {
@@ -138,10 +140,10 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                                     let [u, v] = c.edges[e as usize];
                                     c.pv_sign(q, u) == 0 && c.pv_sign(q, v) == 0
                                 }
-                                EdgeLine::Plane(_) => false,
+                                EdgeLine::Plane(..) => false,
                             };
                             if !in_q {
-                                piece.lines[i] = EdgeLine::Plane(q);
+                                piece.lines[i] = EdgeLine::Plane(q, pos);
                             }
                         }
                     }

@@ -320,9 +320,9 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
             fl.verts.push(a);
             match piece.lines[i] {
                 EdgeLine::Mesh(e) => fl.dirs.push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
-                EdgeLine::Plane(p) => {
+                EdgeLine::Plane(p, fwd) => {
                     let dir = LineDir::TriPlane(t, p);
-                    let fwd = c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive;
+                    debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
                     fl.dirs.push((dir, fwd));
                     bnd.gamma.insert((a.min(b), a.max(b)), t);
                     pedges[p as usize].push(GEdge { a, b, dir, fwd });
