@@ -100,7 +100,6 @@ pub fn run(a: Args) -> CliResult {
         "min_cell_volume": min_vol,
         "holes": out.stats.holes,
         "check": check_msg,
-        "predicates": out.stats.predicates,
         "exact_fallbacks": out.stats.exact_fallbacks,
         "ordered_edges": out.stats.ordered_edges,
         "dropped_planes": out.stats.dropped_planes.len(),

@@ -26,4 +26,4 @@ pub use exact::Exact;
 pub use sign::Sign;
 pub use validate::{check_finite, NonFinite};
 pub use det::{det_sign, det_sign_diff};
-pub use plane::{evaluation_count, fallback_count, filtered_sign, plane_point_sign, Interval, Ring};
+pub use plane::{fallback_count, filtered_sign, plane_point_sign, Interval, Ring};

@@ -29,17 +29,13 @@ use crate::{Exact, Sign};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 static FALLBACKS: AtomicU64 = AtomicU64::new(0);
-static EVALUATIONS: AtomicU64 = AtomicU64::new(0);
 
-/// Number of filtered signs that needed the exact fallback since start.
+/// Number of filtered signs that needed the exact fallback since start
+/// (all threads; only the rare fallbacks touch this shared counter).
 pub fn fallback_count() -> u64 {
     FALLBACKS.load(Ordering::Relaxed)
 }
 
-/// Number of filtered signs evaluated since start.
-pub fn evaluation_count() -> u64 {
-    EVALUATIONS.load(Ordering::Relaxed)
-}
 
 /// The arithmetic a generic predicate needs: a commutative ring containing
 /// the doubles.
@@ -275,7 +271,6 @@ impl Ring for Interval {
 #[inline]
 #[track_caller]
 pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Exact) -> Sign {
-    EVALUATIONS.fetch_add(1, Ordering::Relaxed);
     if let Some(s) = fast().sign() {
         return s;
     }
@@ -303,7 +298,6 @@ pub fn plane_point_sign(plane: &[f64; 4], x: &[f64; 3]) -> Sign {
     let s = t[0].abs() + t[1].abs() + t[2].abs() + plane[3].abs();
     let bound = 8.0 * f64::EPSILON * 0.5 * s;
     if s > 1e-250 && s < 1e250 && v.abs() > bound {
-        EVALUATIONS.fetch_add(1, Ordering::Relaxed);
         return if v > 0.0 { Sign::Positive } else { Sign::Negative };
     }
     fn f<R: Ring>(p: &[f64; 4], x: &[f64; 3]) -> R {

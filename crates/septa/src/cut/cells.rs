@@ -104,6 +104,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let d: (LineDir, bool) = if fwd0 { h0 } else { (h0.0, !h0.1) };
             let items: Vec<(u32, bool)> = list.iter().map(|x| (x.0, x.1)).collect();
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
+            let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
             let class = |x: (Support, (LineDir, bool))| -> u8 {
                 fn b<R: Ring>(c: &Ctx, d: (LineDir, bool), w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
@@ -113,7 +114,12 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 fn a<R: Ring>(c: &Ctx, w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
-                let sb = filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x));
+                let iw0 = wvec::<Interval>(c, w0.0, w0.1);
+                let iwx = wvec::<Interval>(c, x.0, x.1);
+                let sb = match dot3(&dv_i, &cross3(&iw0, &iwx)).sign() {
+                    Some(s) => s,
+                    None => filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x)),
+                };
                 match sb {
                     Sign::Positive => 1,
                     Sign::Negative => 3,
@@ -141,6 +147,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 })
                 .collect();
+            let iws: Vec<V3<Interval>> = items.iter().map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up))).collect();
             let mut idx: Vec<usize> = (0..k).collect();
             idx.sort_by(|&x, &y| {
                 if cls[x] != cls[y] {
@@ -155,7 +162,8 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     let dv = dir_vec::<R>(c, d.0, d.1);
                     dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
                 }
-                match filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy)) {
+                let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
+                match quick.unwrap_or_else(|| filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy))) {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,

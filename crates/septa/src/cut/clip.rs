@@ -4,7 +4,7 @@
 //! convex polygons because every cut is a full plane).
 
 use super::geom::{Ctx, Def};
-use super::nodes::Nodes;
+use rayon::prelude::*;
 use septa_exact::Sign;
 use smallvec::SmallVec;
 
@@ -24,8 +24,8 @@ pub enum EdgeLine {
 pub struct Piece {
     /// The triangle.
     pub tri: u32,
-    /// Corner nodes.
-    pub nodes: SmallVec<[u32; 8]>,
+    /// Corners as face triples (merged into cut-vertices later).
+    pub nodes: SmallVec<[Def; 8]>,
     /// Line of the edge from corner `i` to corner `i + 1`.
     pub lines: SmallVec<[EdgeLine; 8]>,
 }
@@ -36,18 +36,29 @@ pub struct Clipped {
     pub pieces: Vec<Piece>,
     /// Interior cut-vertices of triangles with the planes through them
     /// (including planes containing the triangle), for line point lists.
-    pub interior: Vec<(u32, SmallVec<[u32; 4]>)>,
+    pub interior: Vec<(Def, SmallVec<[u32; 4]>)>,
 }
 
-/// Clips every triangle by the planes crossing it.
-pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
-    let np = c.planes.len() as u32;
+/// Clips every triangle by the planes crossing it (in parallel; the
+/// result is in triangle order whatever the thread count).
+pub fn clip_all(c: &Ctx) -> Clipped {
+    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> =
+        (0..c.tris.len() as u32).into_par_iter().map(|t| clip_tri(c, t)).collect();
     let mut out = Clipped { pieces: Vec::new(), interior: Vec::new() };
+    for (p, i) in per {
+        out.pieces.extend(p);
+        out.interior.extend(i);
+    }
+    out
+}
+
+fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
+    let np = c.planes.len() as u32;
     let mut polys: Vec<Piece> = Vec::new();
     let mut next: Vec<Piece> = Vec::new();
     let mut signs: Vec<Sign> = Vec::new();
-    for (t, tri) in c.tris.iter().enumerate() {
-        let t = t as u32;
+    let tri = &c.tris[t as usize];
+    {
         let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
         let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
         for p in 0..np {
@@ -60,19 +71,19 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
         }
         let first = Piece {
             tri: t,
-            nodes: tri.iter().map(|&v| nodes.get(Def::V(v))).collect(),
+            nodes: tri.iter().map(|&v| Def::V(v)).collect(),
             lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
         };
         polys.clear();
         polys.push(first);
         // planes through each interior vertex, local to this triangle
-        let mut inner: Vec<(u32, SmallVec<[u32; 4]>)> = Vec::new();
+        let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
         for &q in &crossing {
             next.clear();
             for poly in polys.drain(..) {
                 signs.clear();
                 for &n in &poly.nodes {
-                    let d = nodes.defs[n as usize];
+                    let d = n;
                     let s = c.side(d, q);
                     if s == Sign::Zero {
                         if let Def::TPP(..) = d {
@@ -113,9 +124,9 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                     }
                     if si.as_i8() * sj.as_i8() < 0 {
                         let x = match line {
-                            EdgeLine::Mesh(e) => nodes.get(Def::EP(e, q)),
+                            EdgeLine::Mesh(e) => Def::EP(e, q),
                             EdgeLine::Plane(p, _) => {
-                                let k = nodes.get(Def::TPP(t, p.min(q), p.max(q)));
+                                let k = Def::TPP(t, p.min(q), p.max(q));
                                 let mut z: SmallVec<[u32; 4]> = SmallVec::new();
                                 z.push(p);
                                 z.push(q);
@@ -153,11 +164,11 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
             }
             std::mem::swap(&mut polys, &mut next);
         }
+        let mut interior = Vec::with_capacity(inner.len());
         for (k, mut z) in inner {
             z.extend(coplanar.iter().copied());
-            out.interior.push((k, z));
+            interior.push((k, z));
         }
-        out.pieces.extend(polys.drain(..));
+        (polys, interior)
     }
-    out
 }

@@ -1,7 +1,7 @@
 //! Cut-faces with holes (TopoCut Sec. 2.2 and 6.1): a cut-face of a plane
 //! may be bounded by several loops. Outer loops run counter-clockwise about
 //! the plane normal, holes clockwise (decided exactly by the turn at the
-//! lexicographically smallest corner). A hole contains no point of another
+//! smallest corner in a generic direction). A hole contains no point of another
 //! plane (a line through it would also cross the face), so its face lies in
 //! the same convex cell of the plane's line arrangement: candidates are the
 //! outer loops with a compatible side on every other plane; when several
@@ -22,13 +22,35 @@ fn coord_cmp(c: &Ctx, a: Def, b: Def, k: usize) -> Sign {
     filtered_sign(|| f::<Interval>(c, a, b, k), || f::<Exact>(c, a, b, k))
 }
 
-/// Position of the lexicographically smallest corner (projected `(i, j)`).
+/// Sign of `g . (b - a)` for a fixed direction `g` in general position with
+/// respect to axis-aligned data (so ties, which need the exact path, are rare).
+fn generic_cmp(c: &Ctx, a: Def, b: Def) -> Sign {
+    const G: [f64; 3] = [0.7548776662466927, 0.5698402909980532, 0.3247179572447460];
+    fn f<R: Ring>(c: &Ctx, a: Def, b: Def) -> R {
+        let (ha, wa) = c.hom::<R>(a);
+        let (hb, wb) = c.hom::<R>(b);
+        let g = [R::of(G[0]), R::of(G[1]), R::of(G[2])];
+        let ga = ha[0].mul(&g[0]).add(&ha[1].mul(&g[1])).add(&ha[2].mul(&g[2]));
+        let gb = hb[0].mul(&g[0]).add(&hb[1].mul(&g[1])).add(&hb[2].mul(&g[2]));
+        gb.mul(&wa).sub(&ga.mul(&wb)).mul(&wa).mul(&wb)
+    }
+    filtered_sign(|| f::<Interval>(c, a, b), || f::<Exact>(c, a, b))
+}
+
+/// Position of the smallest corner in the order (g.x, x_i, x_j): a vertex of
+/// the loop's convex hull.
 fn lexmin(c: &Ctx, ccw: &Ccw, rep: &[Def], verts: &[u32]) -> usize {
     let mut best = 0;
     for m in 1..verts.len() {
         let (a, b) = (rep[verts[best] as usize], rep[verts[m] as usize]);
-        let sx = coord_cmp(c, a, b, ccw.i);
-        if sx == Sign::Negative || (sx == Sign::Zero && coord_cmp(c, a, b, ccw.j) == Sign::Negative) {
+        let mut s = generic_cmp(c, a, b);
+        if s == Sign::Zero {
+            s = coord_cmp(c, a, b, ccw.i);
+        }
+        if s == Sign::Zero {
+            s = coord_cmp(c, a, b, ccw.j);
+        }
+        if s == Sign::Negative {
             best = m;
         }
     }

@@ -31,6 +31,7 @@ use geom::{Ctx, Def, LineDir};
 use nodes::{FxMap, Nodes};
 use plane_graph::{Boundary, GEdge};
 use septa_exact::Sign;
+use rayon::prelude::*;
 use std::time::Instant;
 
 /// Options of [`cut_mesh`].
@@ -142,9 +143,8 @@ pub struct CutCounts {
 pub struct CutStats {
     /// Seconds per stage.
     pub seconds: Vec<(String, f64)>,
-    /// Filtered predicate evaluations during this cut.
-    pub predicates: u64,
-    /// Of which needed the exact fallback.
+    /// Filtered predicates that needed the exact fallback during this cut
+    /// (process-wide counter: concurrent cuts in other threads add to it).
     pub exact_fallbacks: u64,
     /// Cut-edges whose face-cycle order was computed (more than two faces).
     pub ordered_edges: usize,
@@ -244,8 +244,16 @@ impl CutCellMesh {
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
 /// (`a x + b y + c z + d = 0`).
 pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]], opts: &CutOptions) -> Result<CutCellMesh, CutError> {
-    let _ = opts.threads;
-    let ev0 = septa_exact::evaluation_count();
+    if opts.threads == 0 {
+        return cut_impl(vertices, triangles, planes);
+    }
+    match rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build() {
+        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
+        Err(_) => cut_impl(vertices, triangles, planes),
+    }
+}
+
+fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) -> Result<CutCellMesh, CutError> {
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
     let mut clock = Instant::now();
@@ -259,10 +267,12 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     let nv = vertices.len();
     let np = planes.len();
     let mut pv = vec![0i8; np * nv];
-    for (p, pl) in planes.iter().enumerate() {
-        for (v, x) in vertices.iter().enumerate() {
-            pv[p * nv + v] = septa_exact::plane_point_sign(pl, x).as_i8();
-        }
+    if nv > 0 {
+        pv.par_chunks_mut(nv).zip(planes.par_iter()).for_each(|(row, pl)| {
+            for (r, x) in row.iter_mut().zip(vertices) {
+                *r = septa_exact::plane_point_sign(pl, x).as_i8();
+            }
+        });
     }
     let c = Ctx { verts: vertices, tris: triangles, planes: &planes, edges, tri_edges, edge_tris, pv };
     let mut crosses = vec![false; np * np];
@@ -276,10 +286,12 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     let mut line_pts = lines::LinePoints::default();
     let chains = lines::mesh_edges(&c, &mut nodes, &mut line_pts, &crosses);
     lap("mesh_edges", &mut stats);
-    let clipped = clip::clip_all(&c, &mut nodes);
-    for (n, z) in &clipped.interior {
-        lines::register(&mut line_pts, &crosses, np, *n, z);
+    let clipped = clip::clip_all(&c);
+    for (d, z) in &clipped.interior {
+        let n = nodes.get(*d);
+        lines::register(&mut line_pts, &crosses, np, n, z);
     }
+    let piece_nodes: Vec<Vec<u32>> = clipped.pieces.iter().map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect()).collect();
     lap("triangles", &mut stats);
     let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
     lap("plane_lines", &mut stats);
@@ -310,12 +322,12 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         }
     }
     let mut faces: Vec<FaceLoop> = Vec::with_capacity(clipped.pieces.len());
-    for piece in &clipped.pieces {
+    for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
         let t = piece.tri;
-        let n = piece.nodes.len();
+        let n = pn.len();
         let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
         for i in 0..n {
-            let (na, nb) = (piece.nodes[i], piece.nodes[(i + 1) % n]);
+            let (na, nb) = (pn[i], pn[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
             fl.verts.push(a);
             match piece.lines[i] {
@@ -340,15 +352,22 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         }
     }
     lap("edges", &mut stats);
-    let mut unclassified = 0u64;
     let mut nholes = 0usize;
     for f in faces.iter_mut().enumerate() {
         f.1.face = f.0 as u32;
     }
     let mut nface = faces.len() as u32;
-    for p in 0..np {
-        let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut unclassified);
-        let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+    let per_plane: Vec<(Vec<plane_graph::PlaneLoop>, u64, usize, usize)> = (0..np)
+        .into_par_iter()
+        .map(|p| {
+            let mut u = 0u64;
+            let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut u);
+            let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+            (loops, u, h, t)
+        })
+        .collect();
+    for (loops, u, h, t) in per_plane {
+        let _ = u; // loops of unbounded, outside regions
         nholes += h;
         stats.hole_containment_tests += t;
         let mut id = vec![u32::MAX; loops.len()];
@@ -409,7 +428,6 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         cut_cells: cells.count,
     };
     lap("output", &mut stats);
-    stats.predicates = septa_exact::evaluation_count() - ev0;
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
     out.stats = stats;
     Ok(out)

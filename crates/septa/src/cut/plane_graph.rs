@@ -82,9 +82,10 @@ impl Ccw {
         Ccw { i: (k + 1) % 3, j: (k + 2) % 3, flip: n[k] < 0.0 }
     }
 
-    fn half(&self, c: &Ctx, d: (LineDir, bool)) -> u8 {
-        let comp = |k: usize| {
-            filtered_sign(|| dir_vec::<Interval>(c, d.0, d.1)[k], || dir_vec::<Exact>(c, d.0, d.1)[k].clone())
+    fn half(&self, c: &Ctx, d: (LineDir, bool), iv: &V3<Interval>) -> u8 {
+        let comp = |k: usize| match iv[k].sign() {
+            Some(s) => s,
+            None => filtered_sign(|| dir_vec::<Interval>(c, d.0, d.1)[k], || dir_vec::<Exact>(c, d.0, d.1)[k].clone()),
         };
         let y = comp(self.j);
         if y == Sign::Positive || (y == Sign::Zero && comp(self.i) == Sign::Positive) {
@@ -106,14 +107,22 @@ impl Ccw {
 
     /// Sorts directions counter-clockwise about the plane normal.
     fn sort(&self, c: &Ctx, items: &mut [(u32, (LineDir, bool))]) {
-        let halves: Vec<u8> = items.iter().map(|x| self.half(c, x.1)).collect();
+        // interval directions computed once per item; exact only on doubt
+        let iv: Vec<V3<Interval>> = items.iter().map(|x| dir_vec::<Interval>(c, x.1 .0, x.1 .1)).collect();
+        let halves: Vec<u8> = items.iter().zip(&iv).map(|(x, v)| self.half(c, x.1, v)).collect();
         let mut idx: Vec<usize> = (0..items.len()).collect();
+        let (i, j) = (self.i, self.j);
         idx.sort_by(|&x, &y| {
             let (hx, hy) = (halves[x], halves[y]);
             if hx != hy {
                 return hx.cmp(&hy);
             }
-            match self.cross(c, items[x].1, items[y].1) {
+            let cr = iv[x][i].mul(&iv[y][j]).sub(&iv[x][j].mul(&iv[y][i]));
+            let s = match cr.sign() {
+                Some(s) => s,
+                None => self.cross(c, items[x].1, items[y].1),
+            };
+            match s {
                 Sign::Positive => std::cmp::Ordering::Less,
                 Sign::Negative => std::cmp::Ordering::Greater,
                 Sign::Zero => std::cmp::Ordering::Equal,
