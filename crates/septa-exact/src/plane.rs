@@ -220,6 +220,21 @@ impl Interval {
         }
     }
 
+    /// `self / o`, or `None` when `o` contains zero. Each bound of a
+    /// correctly rounded quotient is widened by one ulp outward.
+    pub fn div(&self, o: &Interval) -> Option<Interval> {
+        if o.lo <= 0.0 && o.hi >= 0.0 {
+            return None;
+        }
+        let q = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
+        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !lo.is_finite() || !hi.is_finite() {
+            return None;
+        }
+        Some(Interval { lo: next_down(lo), hi: next_up(hi) })
+    }
+
     /// Midpoint (an approximation of the value, for embeddings and pre-sorts).
     #[inline]
     pub fn mid(&self) -> f64 {

@@ -6,6 +6,7 @@
 use super::geom::{Ctx, Def};
 use rayon::prelude::*;
 use septa_exact::Sign;
+use septa_exact::{Interval, Ring};
 use smallvec::SmallVec;
 
 /// The line an edge of a piece lies on.
@@ -28,6 +29,37 @@ pub struct Piece {
     pub nodes: SmallVec<[Def; 8]>,
     /// Line of the edge from corner `i` to corner `i + 1`.
     pub lines: SmallVec<[EdgeLine; 8]>,
+    /// Interval coordinates of the corners (a filter for side tests), or
+    /// `None` when the filter could not bound them.
+    pub boxes: SmallVec<[Option<[Interval; 3]>; 8]>,
+}
+
+/// Interval coordinates of a cut-vertex.
+fn coords(c: &Ctx, d: Def) -> Option<[Interval; 3]> {
+    let (h, w) = c.hom::<Interval>(d);
+    Some([h[0].div(&w)?, h[1].div(&w)?, h[2].div(&w)?])
+}
+
+/// Side of a corner on plane `q`: interval test on its coordinates, then the
+/// full filtered predicate.
+fn corner_side(c: &Ctx, d: Def, b: &Option<[Interval; 3]>, q: u32) -> Sign {
+    if let Def::V(v) = d {
+        return Sign::from_i8(c.pv_sign(q, v));
+    }
+    if let Some(x) = b {
+        let pl = &c.planes[q as usize];
+        let v = Interval::point(pl[3])
+            .add(&Interval::point(pl[0]).mul(&x[0]))
+            .add(&Interval::point(pl[1]).mul(&x[1]))
+            .add(&Interval::point(pl[2]).mul(&x[2]));
+        if v.lo > 0.0 {
+            return Sign::Positive;
+        }
+        if v.hi < 0.0 {
+            return Sign::Negative;
+        }
+    }
+    c.side(d, q)
 }
 
 /// Output of clipping all triangles.
@@ -72,6 +104,7 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
         let first = Piece {
             tri: t,
             nodes: tri.iter().map(|&v| Def::V(v)).collect(),
+            boxes: tri.iter().map(|_| None).collect(),
             lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
         };
         polys.clear();
@@ -82,9 +115,9 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
             next.clear();
             for poly in polys.drain(..) {
                 signs.clear();
-                for &n in &poly.nodes {
+                for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
                     let d = n;
-                    let s = c.side(d, q);
+                    let s = corner_side(c, d, bx, q);
                     if s == Sign::Zero {
                         if let Def::TPP(..) = d {
                             if let Some(e) = inner.iter_mut().find(|e| e.0 == n) {
@@ -102,8 +135,8 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                     next.push(poly);
                     continue;
                 }
-                let mut a = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new() };
-                let mut b = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new() };
+                let mut a = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
+                let mut b = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
                 let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let n = poly.nodes.len();
@@ -114,11 +147,13 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                     let zero = si == Sign::Zero;
                     if si != Sign::Negative {
                         a.nodes.push(poly.nodes[i]);
+                        a.boxes.push(poly.boxes[i]);
                         a.lines.push(line);
                         a_on.push(zero);
                     }
                     if si != Sign::Positive {
                         b.nodes.push(poly.nodes[i]);
+                        b.boxes.push(poly.boxes[i]);
                         b.lines.push(line);
                         b_on.push(zero);
                     }
@@ -134,8 +169,10 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                                 k
                             }
                         };
+                        let bx = coords(c, x);
                         for (piece, on) in [(&mut a, &mut a_on), (&mut b, &mut b_on)] {
                             piece.nodes.push(x);
+                            piece.boxes.push(bx);
                             piece.lines.push(line);
                             on.push(true);
                         }

@@ -102,7 +102,7 @@ fn contains(c: &Ctx, ccw: &Ccw, rep: &[Def], l: &PlaneLoop, p: Def) -> bool {
 pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (usize, usize) {
     let pl = &c.planes[p as usize];
     let ccw = Ccw::new(&[pl[0], pl[1], pl[2]]);
-    let outer: Vec<bool> = loops.iter().map(|l| is_outer(c, &ccw, rep, l)).collect();
+    let outer: Vec<bool> = loops.iter().map(|l| l.has_line_edge || is_outer(c, &ccw, rep, l)).collect();
     let holes: Vec<usize> = (0..loops.len()).filter(|&k| !outer[k]).collect();
     for (k, l) in loops.iter_mut().enumerate() {
         l.outer = k as u32;

@@ -50,6 +50,10 @@ pub struct PlaneLoop {
     /// Index (in the plane's list) of the outer loop of the cut-face this
     /// loop bounds: itself for an outer boundary, the enclosing loop for a hole.
     pub outer: u32,
+    /// The loop has an edge on a plane-plane line only (not on the mesh):
+    /// then it is an outer boundary, since no plane-plane line reaches into
+    /// a hole of an inside face (it would have to cross the face).
+    pub has_line_edge: bool,
 }
 
 /// Boundary information for edges (compact end points, sorted).
@@ -269,6 +273,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     }
     // status of loops
     let mut status: Vec<Option<Status>> = vec![None; loops.len()];
+    let mut line_edge = vec![false; loops.len()];
     let mut parent: Vec<u32> = (0..loops.len() as u32).collect();
     for h in 0..nh {
         let e = &es[h / 2];
@@ -288,6 +293,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
                 }
             }
             None => {
+                line_edge[l] = true;
                 if h % 2 == 0 {
                     let (a, b) = (find(&mut parent, loop_of[h]), find(&mut parent, loop_of[h ^ 1]));
                     if a != b {
@@ -329,7 +335,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
         if s != Status::Inside {
             continue;
         }
-        faces.push(PlaneLoop { plane: p, verts: cyc.iter().map(|&h| tail(h)).collect(), dirs: cyc.iter().map(|&h| hdir(h)).collect(), outer: 0 });
+        faces.push(PlaneLoop { plane: p, verts: cyc.iter().map(|&h| tail(h)).collect(), dirs: cyc.iter().map(|&h| hdir(h)).collect(), outer: 0, has_line_edge: line_edge[l] });
     }
     faces
 }
