@@ -69,7 +69,8 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
     // incident (edge key, face loop, traverses min -> max, its own direction
     // label), grouped by sorting (no per-edge allocation)
-    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> = Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
+    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> =
+        Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
     for (f, fl) in faces.iter().enumerate() {
         let n = fl.verts.len();
         for i in 0..n {
@@ -107,24 +108,40 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
             let class = |x: (Support, (LineDir, bool))| -> u8 {
-                fn b<R: Ring>(c: &Ctx, d: (LineDir, bool), w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
+                fn b<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    w0: (Support, (LineDir, bool)),
+                    x: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(&dv, &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)))
+                    dot3(
+                        &dv,
+                        &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)),
+                    )
                 }
-                fn a<R: Ring>(c: &Ctx, w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
+                fn a<R: Ring>(
+                    c: &Ctx,
+                    w0: (Support, (LineDir, bool)),
+                    x: (Support, (LineDir, bool)),
+                ) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
                 let iw0 = wvec::<Interval>(c, w0.0, w0.1);
                 let iwx = wvec::<Interval>(c, x.0, x.1);
                 let sb = match dot3(&dv_i, &cross3(&iw0, &iwx)).sign() {
                     Some(s) => s,
-                    None => filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x)),
+                    None => {
+                        filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x))
+                    }
                 };
                 match sb {
                     Sign::Positive => 1,
                     Sign::Negative => 3,
                     Sign::Zero => {
-                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x)) == Sign::Positive {
+                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x))
+                            == Sign::Positive
+                        {
                             0
                         } else {
                             2
@@ -147,7 +164,10 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 })
                 .collect();
-            let iws: Vec<V3<Interval>> = items.iter().map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up))).collect();
+            let iws: Vec<V3<Interval>> = items
+                .iter()
+                .map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up)))
+                .collect();
             let mut idx: Vec<usize> = (0..k).collect();
             idx.sort_by(|&x, &y| {
                 if cls[x] != cls[y] {
@@ -158,12 +178,22 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 }
                 let wx = (faces[items[x].0 as usize].support, hof(items[x].1));
                 let wy = (faces[items[y].0 as usize].support, hof(items[y].1));
-                fn f<R: Ring>(c: &Ctx, d: (LineDir, bool), wx: (Support, (LineDir, bool)), wy: (Support, (LineDir, bool))) -> R {
+                fn f<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    wx: (Support, (LineDir, bool)),
+                    wy: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
+                    dot3(
+                        &dv,
+                        &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)),
+                    )
                 }
                 let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
-                match quick.unwrap_or_else(|| filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy))) {
+                match quick.unwrap_or_else(|| {
+                    filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy))
+                }) {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,
@@ -223,5 +253,10 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
         }
     }
     let _ = neg3::<Interval>;
-    Cells { cell_of, count: ids.len(), edges: nedges, ordered_edges: ordered }
+    Cells {
+        cell_of,
+        count: ids.len(),
+        edges: nedges,
+        ordered_edges: ordered,
+    }
 }

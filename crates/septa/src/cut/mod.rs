@@ -30,8 +30,8 @@ use clip::EdgeLine;
 use geom::{Ctx, Def, LineDir};
 use nodes::{FxMap, Nodes};
 use plane_graph::{Boundary, GEdge};
-use septa_exact::Sign;
 use rayon::prelude::*;
+use septa_exact::Sign;
 use std::time::Instant;
 
 /// Options of [`cut_mesh`].
@@ -86,7 +86,9 @@ pub enum CutError {
         b: u32,
     },
     /// An edge with only one triangle.
-    #[error("edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight")]
+    #[error(
+        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
+    )]
     NotWatertight {
         /// Triangle index.
         triangle: usize,
@@ -213,28 +215,41 @@ impl CutCellMesh {
             match f.support {
                 Support::Tri(_) => {
                     if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
-                        return Err(CutError::Inconsistent(format!("boundary face {i} does not bound exactly one cell")));
+                        return Err(CutError::Inconsistent(format!(
+                            "boundary face {i} does not bound exactly one cell"
+                        )));
                     }
                 }
                 Support::Plane(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1] {
-                        return Err(CutError::Inconsistent(format!("plane face {i} does not bound two distinct cells")));
+                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
+                    {
+                        return Err(CutError::Inconsistent(format!(
+                            "plane face {i} does not bound two distinct cells"
+                        )));
                     }
                 }
             }
         }
         let total: f64 = self.cell_volumes.iter().sum();
         let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
-        let min = self.cell_volumes.iter().copied().fold(f64::INFINITY, f64::min);
+        let min = self
+            .cell_volumes
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
         if err > 1e-9 {
-            return Err(CutError::Inconsistent(format!("cell volumes sum to {total}, mesh volume {}", self.mesh_volume)));
+            return Err(CutError::Inconsistent(format!(
+                "cell volumes sum to {total}, mesh volume {}",
+                self.mesh_volume
+            )));
         }
         if min <= 0.0 {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
         }
         let c = &self.counts;
         Ok(Validation {
-            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - c.cut_cells as i64,
+            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - c.cut_cells as i64,
             volume_relative_error: err,
             min_cell_volume: min,
         })
@@ -243,22 +258,36 @@ impl CutCellMesh {
 
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
 /// (`a x + b y + c z + d = 0`).
-pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]], opts: &CutOptions) -> Result<CutCellMesh, CutError> {
+pub fn cut_mesh(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+    opts: &CutOptions,
+) -> Result<CutCellMesh, CutError> {
     if opts.threads == 0 {
         return cut_impl(vertices, triangles, planes);
     }
-    match rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build() {
+    match rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+    {
         Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
         Err(_) => cut_impl(vertices, triangles, planes),
     }
 }
 
-fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) -> Result<CutCellMesh, CutError> {
+fn cut_impl(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+) -> Result<CutCellMesh, CutError> {
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
     let mut clock = Instant::now();
     let mut lap = |name: &str, stats: &mut CutStats| {
-        stats.seconds.push((name.to_string(), clock.elapsed().as_secs_f64()));
+        stats
+            .seconds
+            .push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
@@ -268,13 +297,23 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
     let np = planes.len();
     let mut pv = vec![0i8; np * nv];
     if nv > 0 {
-        pv.par_chunks_mut(nv).zip(planes.par_iter()).for_each(|(row, pl)| {
-            for (r, x) in row.iter_mut().zip(vertices) {
-                *r = septa_exact::plane_point_sign(pl, x).as_i8();
-            }
-        });
+        pv.par_chunks_mut(nv)
+            .zip(planes.par_iter())
+            .for_each(|(row, pl)| {
+                for (r, x) in row.iter_mut().zip(vertices) {
+                    *r = septa_exact::plane_point_sign(pl, x).as_i8();
+                }
+            });
     }
-    let c = Ctx { verts: vertices, tris: triangles, planes: &planes, edges, tri_edges, edge_tris, pv };
+    let c = Ctx {
+        verts: vertices,
+        tris: triangles,
+        planes: &planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv,
+    };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {
@@ -291,7 +330,11 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
         let n = nodes.get(*d);
         lines::register(&mut line_pts, &crosses, np, n, z);
     }
-    let piece_nodes: Vec<Vec<u32>> = clipped.pieces.iter().map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect()).collect();
+    let piece_nodes: Vec<Vec<u32>> = clipped
+        .pieces
+        .iter()
+        .map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect())
+        .collect();
     lap("triangles", &mut stats);
     let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
     lap("plane_lines", &mut stats);
@@ -308,16 +351,26 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
     }
     let cid = |n: u32| canon[n as usize];
     // boundary edge maps and per-plane edge lists
-    let mut bnd = Boundary { gamma: FxMap::default(), mesh: FxMap::default() };
+    let mut bnd = Boundary {
+        gamma: FxMap::default(),
+        mesh: FxMap::default(),
+    };
     let mut pedges: Vec<Vec<GEdge>> = vec![Vec::new(); np];
     for (e, chain) in chains.iter().enumerate() {
         let [u, v] = c.edges[e];
-        let inside: Vec<u32> = (0..np as u32).filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0).collect();
+        let inside: Vec<u32> = (0..np as u32)
+            .filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0)
+            .collect();
         for w in chain.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
             for &p in &inside {
-                pedges[p as usize].push(GEdge { a, b, dir: LineDir::Mesh(e as u32), fwd: true });
+                pedges[p as usize].push(GEdge {
+                    a,
+                    b,
+                    dir: LineDir::Mesh(e as u32),
+                    fwd: true,
+                });
             }
         }
     }
@@ -325,16 +378,26 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
     for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
         let t = piece.tri;
         let n = pn.len();
-        let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
+        let mut fl = FaceLoop {
+            support: Support::Tri(t),
+            verts: Vec::with_capacity(n),
+            dirs: Vec::with_capacity(n),
+            face: 0,
+        };
         for i in 0..n {
             let (na, nb) = (pn[i], pn[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
             fl.verts.push(a);
             match piece.lines[i] {
-                EdgeLine::Mesh(e) => fl.dirs.push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
+                EdgeLine::Mesh(e) => fl
+                    .dirs
+                    .push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
                 EdgeLine::Plane(p, fwd) => {
                     let dir = LineDir::TriPlane(t, p);
-                    debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
+                    debug_assert_eq!(
+                        fwd,
+                        c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive
+                    );
                     fl.dirs.push((dir, fwd));
                     bnd.gamma.insert((a.min(b), a.max(b)), t);
                     pedges[p as usize].push(GEdge { a, b, dir, fwd });
@@ -346,7 +409,12 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
     for ((p, q), pts) in &plines {
         for w in pts.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
-            let ge = GEdge { a, b, dir: LineDir::PlanePlane(*p, *q), fwd: true };
+            let ge = GEdge {
+                a,
+                b,
+                dir: LineDir::PlanePlane(*p, *q),
+                fwd: true,
+            };
             pedges[*p as usize].push(ge);
             pedges[*q as usize].push(ge);
         }
@@ -379,7 +447,12 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
         }
         for l in loops {
             let face = id[l.outer as usize];
-            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs, face });
+            faces.push(FaceLoop {
+                support: Support::Plane(l.plane),
+                verts: l.verts,
+                dirs: l.dirs,
+                face,
+            });
         }
     }
     stats.holes = nholes;
@@ -402,7 +475,14 @@ fn cut_impl(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]]) 
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
     let nf = nface as usize;
-    out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
+    out.faces = vec![
+        CutFace {
+            support: Support::Plane(0),
+            loops: Vec::new(),
+            cells: [u32::MAX; 2]
+        };
+        nf
+    ];
     for f in faces.iter() {
         let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
         let i = f.face as usize;
