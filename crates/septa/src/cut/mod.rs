@@ -189,6 +189,8 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// Euler characteristic of the input surface (`V - E + T`).
+    pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
     pub cell_volumes: Vec<f64>,
     /// Timings and predicate statistics.
@@ -204,6 +206,15 @@ pub struct Validation {
     pub volume_relative_error: f64,
     /// Smallest cell volume.
     pub min_cell_volume: f64,
+    /// Euler characteristic of the domain, `chi(mesh) / 2`.
+    pub domain_euler: i64,
+    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
+    /// counted on each cell's own boundary: equals `domain_euler` when
+    /// every cut-face is a disc (holes are joined by one edge each), whatever
+    /// the topology of the cells (a cell around a handle has `chi = 0`).
+    pub euler_by_cell: i64,
+    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
+    pub non_ball_cells: usize,
 }
 
 impl CutCellMesh {
@@ -247,11 +258,46 @@ impl CutCellMesh {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
         }
         let c = &self.counts;
+        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
+        // faces and join edges (one per hole) per cell
+        let mut cv: Vec<(u32, u32)> = Vec::new();
+        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
+        let mut cf = vec![0i64; self.num_cells];
+        for f in &self.faces {
+            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
+                cf[cell as usize] += 1;
+                // a joined hole adds one edge and keeps one face: chi contribution 0
+                cf[cell as usize] -= f.loops.len() as i64 - 1;
+                for l in &f.loops {
+                    for (k, &v) in l.iter().enumerate() {
+                        let w = l[(k + 1) % l.len()];
+                        cv.push((cell, v));
+                        ce.push((cell, v.min(w), v.max(w)));
+                    }
+                }
+            }
+        }
+        cv.sort_unstable();
+        cv.dedup();
+        ce.sort_unstable();
+        ce.dedup();
+        let mut chi2 = cf;
+        for &(cell, _) in &cv {
+            chi2[cell as usize] += 1;
+        }
+        for &(cell, _, _) in &ce {
+            chi2[cell as usize] -= 1;
+        }
+        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
+        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
         Ok(Validation {
             euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
                 - c.cut_cells as i64,
             volume_relative_error: err,
             min_cell_volume: min,
+            domain_euler: self.mesh_euler / 2,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
+            non_ball_cells: non_ball,
         })
     }
 }
@@ -501,6 +547,7 @@ fn cut_impl(
         cf.loops.push(verts);
     }
     out.mesh_volume = output::mesh_volume(vertices, triangles);
+    out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;
     out.counts = CutCounts {
         cut_vertices: out.vertex_defs.len(),
         cut_edges: cells.edges + nholes,
