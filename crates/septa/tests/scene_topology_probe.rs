@@ -107,7 +107,7 @@ impl Probe {
         let euler = verts.len() as i64 - edges.len() as i64 + faces.len() as i64;
         // Components of faces through shared edges.
         let mut parent: Vec<usize> = (0..faces.len()).collect();
-        fn find(p: &mut Vec<usize>, x: usize) -> usize {
+        fn find(p: &mut [usize], x: usize) -> usize {
             let mut x = x;
             while p[x] != x {
                 p[x] = p[p[x]];

@@ -32,8 +32,10 @@
 pub mod builtin;
 mod composite;
 mod error;
+mod gradbound;
 mod interval;
 mod mesh;
+mod normals;
 mod patch;
 mod primitive;
 mod regions;
