@@ -204,3 +204,52 @@ fn mesh_from_obj_file_in_a_scene() {
     assert!(s.functions[0].eval([1.0, 1.0, 1.0]) < 0.0);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn stl_binary_and_ascii_match_obj() {
+    let obj = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n\
+               v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n\
+               f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    let mesh = parse_obj(obj).unwrap();
+    let mut bin = vec![0u8; 80];
+    bin.extend((mesh.triangles.len() as u32).to_le_bytes());
+    let mut ascii = String::from("solid cube\n");
+    for t in &mesh.triangles {
+        bin.extend([0u8; 12]);
+        ascii.push_str("facet normal 0 0 0\nouter loop\n");
+        for &v in t {
+            let p = mesh.vertices[v as usize];
+            for c in p {
+                bin.extend((c as f32).to_le_bytes());
+            }
+            ascii.push_str(&format!("vertex {} {} {}\n", p[0], p[1], p[2]));
+        }
+        bin.extend([0u8; 2]);
+        ascii.push_str("endloop\nendfacet\n");
+    }
+    ascii.push_str("endsolid cube\n");
+    let b = Primitive::cuboid([0.0; 3], [0.5; 3]);
+    for m in [
+        septa::scene::parse_stl(&bin).unwrap(),
+        septa::scene::parse_stl(ascii.as_bytes()).unwrap(),
+    ] {
+        assert_eq!(m.triangles.len(), 12);
+        let m = Primitive::Mesh(std::sync::Arc::new(m));
+        for p in [[0.1, 0.2, -0.3], [0.9, -0.7, 0.2], [0.0, 0.0, 0.45]] {
+            assert!((m.eval(p) - b.eval(p)).abs() < 1e-12, "at {p:?}");
+        }
+    }
+    // Through a scene file, by extension.
+    let dir = std::env::temp_dir().join(format!("septa_scene_stl_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("cube.stl"), &bin).unwrap();
+    let text = r#"{"grid": {"resolution": 4, "bounds": [[-1,-1,-1],[1,1,1]]},
+        "functions": [{"type": "mesh", "path": "cube.stl"}]}"#;
+    let s = Scene::from_json(text, "s.json", Some(&dir)).unwrap();
+    assert_eq!(s.functions[0].eval([0.0; 3]), 0.5);
+    std::fs::write(dir.join("bad.stl"), b"solid x\nvertex 1 2\nendsolid\n").unwrap();
+    let text = text.replace("cube.stl", "bad.stl");
+    let e = Scene::from_json(&text, "s.json", Some(&dir)).unwrap_err();
+    assert!(e.message.contains("bad.stl:2:"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

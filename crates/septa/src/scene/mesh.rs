@@ -124,10 +124,10 @@ impl TriMesh {
     }
 }
 
-/// Problem found while reading an OBJ file.
+/// Problem found while reading a mesh file.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ObjError {
-    /// 1-based line number.
+pub struct MeshFileError {
+    /// 1-based line number (0 when not line-based).
     pub line: usize,
     /// What is wrong.
     pub message: String,
@@ -136,11 +136,11 @@ pub struct ObjError {
 /// Read the `v` and `f` records of a Wavefront OBJ text (polygons are
 /// fan-triangulated; `f 1/2/3` forms and negative indices are accepted;
 /// other records are ignored).
-pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
+pub fn parse_obj(text: &str) -> Result<TriMesh, MeshFileError> {
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for (n, line) in text.lines().enumerate() {
-        let err = |message: String| ObjError {
+        let err = |message: String| MeshFileError {
             line: n + 1,
             message,
         };
@@ -184,11 +184,71 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
         }
     }
     if triangles.is_empty() {
-        return Err(ObjError {
+        return Err(MeshFileError {
             line: 0,
             message: "no triangles".into(),
         });
     }
+    Ok(TriMesh {
+        vertices,
+        triangles,
+    })
+}
+
+/// Read an STL file, binary or ASCII (a triangle soup: the winding number
+/// and the distance need no shared vertices).
+pub fn parse_stl(bytes: &[u8]) -> Result<TriMesh, MeshFileError> {
+    let fail = |line: usize, message: String| MeshFileError { line, message };
+    let binary_len = |n: usize| 84 + 50 * n;
+    let is_binary = bytes.len() >= 84 && {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        binary_len(n) == bytes.len()
+    };
+    let mut vertices = Vec::new();
+    if is_binary {
+        let n = (bytes.len() - 84) / 50;
+        for t in 0..n {
+            let at = 84 + 50 * t + 12;
+            for v in 0..3 {
+                let c = [0, 1, 2].map(|a| {
+                    let i = at + 12 * v + 4 * a;
+                    f32::from_le_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]) as f64
+                });
+                if c.iter().any(|x| !x.is_finite()) {
+                    return Err(fail(0, format!("triangle {t}: non-finite coordinate")));
+                }
+                vertices.push(c);
+            }
+        }
+    } else {
+        let text = std::str::from_utf8(bytes)
+            .map_err(|_| fail(0, "neither binary STL (size mismatch) nor text".into()))?;
+        for (n, line) in text.lines().enumerate() {
+            let mut it = line.split_whitespace();
+            if it.next() == Some("vertex") {
+                let c: Vec<f64> = it
+                    .map(|s| s.parse::<f64>())
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| fail(n + 1, format!("bad vertex coordinate: {e}")))?;
+                if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
+                    return Err(fail(n + 1, "a vertex needs 3 finite coordinates".into()));
+                }
+                vertices.push([c[0], c[1], c[2]]);
+            }
+        }
+        if vertices.len() % 3 != 0 {
+            return Err(fail(
+                0,
+                format!("{} vertices is not a multiple of 3", vertices.len()),
+            ));
+        }
+    }
+    if vertices.is_empty() {
+        return Err(fail(0, "no triangles".into()));
+    }
+    let triangles = (0..vertices.len() as u32 / 3)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
     Ok(TriMesh {
         vertices,
         triangles,
