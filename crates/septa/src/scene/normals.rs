@@ -56,6 +56,17 @@ impl Scene {
     }
 }
 
+impl Scene {
+    /// The grid vertices and every function's value at them (row-major
+    /// `(N, k)`, see [`super::sample_grid`]): the dense input of the
+    /// IA / MI pipeline.
+    pub fn sample(&self) -> (Vec<V3>, Vec<f64>) {
+        let v = self.grid.vertices();
+        let values = super::sample_grid(&self.functions, &v);
+        (v, values)
+    }
+}
+
 impl GridSpec {
     /// The box spanned by grid vertices `first ..= last`, with exactly the
     /// coordinates [`GridSpec::vertex`] gives (vertex coordinates are
