@@ -35,6 +35,7 @@ mod error;
 mod gradbound;
 mod interval;
 mod mesh;
+mod mesh_bvh;
 mod normals;
 mod patch;
 mod primitive;

@@ -460,10 +460,10 @@ fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {
     if triangles.is_empty() {
         return err(&tp, "no triangles");
     }
-    Ok(TriMesh {
-        vertices,
-        triangles,
-    })
+    match TriMesh::new(vertices, triangles) {
+        Some(m) => Ok(m),
+        None => err(&tp, "bad triangles"),
+    }
 }
 
 fn transform(o: &Obj, ctx: &Ctx) -> Result<Primitive, Located> {
