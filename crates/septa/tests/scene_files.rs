@@ -165,6 +165,23 @@ fn reference_function_file_as_scene_functions() {
     assert_eq!(s.mode, Mode::Mi);
     assert_eq!(s.functions.len(), 2);
     assert_eq!(s.regions.region_mi(1), 1);
+    // The reference implementation's own config file loads as a scene.
+    std::fs::write(
+        dir.join("config.json"),
+        r#"{"gridResolution": 20, "gridBbox": [[-1,-1,-1],[1,1,1]], "funcFile": "funcs.json",
+            "outputDir": "out", "useLookup": true, "useSecondaryLookup": true, "useTopoRayShooting": true}"#,
+    )
+    .unwrap();
+    let c = Scene::load(dir.join("config.json").to_str().unwrap()).unwrap();
+    assert_eq!(c.grid, septa::scene::GridSpec::cube(20, -1.0, 1.0));
+    assert_eq!(c.functions, s.functions);
+    std::fs::write(
+        dir.join("bad.json"),
+        "{\"gridResolution\": 0, \"gridBbox\": [[0,0,0],[1,1,1]],\n \"funcFile\": \"funcs.json\"}",
+    )
+    .unwrap();
+    let e = Scene::load(dir.join("bad.json").to_str().unwrap()).unwrap_err();
+    assert_eq!((e.line, e.path.to_string().as_str()), (1, "gridResolution"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
