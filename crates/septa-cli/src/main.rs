@@ -2,6 +2,7 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod bench_grid;
 mod cut;
 mod demo;
 mod network;

@@ -38,11 +38,7 @@ impl Exact {
         let negative = bits >> 63 == 1;
         let biased = ((bits >> 52) & 0x7ff) as i64;
         let fraction = bits & ((1u64 << 52) - 1);
-        let (m, e) = if biased == 0 {
-            (fraction, -1074)
-        } else {
-            (fraction | (1u64 << 52), biased - 1075)
-        };
+        let (m, e) = if biased == 0 { (fraction, -1074) } else { (fraction | (1u64 << 52), biased - 1075) };
         let m = BigInt::from(m);
         Exact { mantissa: if negative { -m } else { m }, exponent: e }
     }

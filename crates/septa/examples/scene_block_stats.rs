@@ -50,11 +50,7 @@ fn main() {
     }
     let t2 = std::time::Instant::now();
     let (v, values) = s.sample();
-    println!(
-        "dense sampling: {} vertices x {k} functions in {:.2} s",
-        v.len(),
-        t2.elapsed().as_secs_f64()
-    );
+    println!("dense sampling: {} vertices x {k} functions in {:.2} s", v.len(), t2.elapsed().as_secs_f64());
     drop((v, values));
     println!(
         "{} res {res} block {b}: {total} blocks, {skipped} skipped by bounds, {empty} uniform on the grid ({:.2} s)",

@@ -21,6 +21,7 @@
 //! coordinates, computed only for output.
 #![warn(missing_docs)]
 
+pub mod baseline;
 pub mod complex;
 pub mod cut;
 pub mod grid;

@@ -4,9 +4,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa::scene::{
-    block_may_be_active_ia, block_may_be_active_mi, builtin, sample_grid, Mode, RegionRule, Scene,
-};
+use septa::scene::{block_may_be_active_ia, block_may_be_active_mi, builtin, sample_grid, Mode, RegionRule, Scene};
 
 fn scene_err(text: &str) -> septa::scene::SceneError {
     Scene::from_json(text, "bad.json", None).unwrap_err()
@@ -20,10 +18,7 @@ fn errors_name_file_line_and_field() {
     let e = scene_err(&format!(
         "{{{GRID},\n \"functions\": [\n  {{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1}},\n  {{\"type\": \"blob\"}}]}}"
     ));
-    assert_eq!(
-        (e.line, e.path.to_string().as_str()),
-        (4, "functions[1].type")
-    );
+    assert_eq!((e.line, e.path.to_string().as_str()), (4, "functions[1].type"));
     assert!(e.message.contains("unknown primitive `blob`"), "{e}");
     assert!(e.to_string().starts_with("bad.json:4:"), "{e}");
 
@@ -32,29 +27,20 @@ fn errors_name_file_line_and_field() {
         "{{{GRID},\n \"functions\": [\n  {{\"type\": \"torus\", \"center\": [0,0,0],\n   \"axis_vector\": [0,0,1], \"major_radius\": 1}}]}}"
     ));
     assert_eq!((e.line, e.path.to_string().as_str()), (3, "functions[0]"));
-    assert!(
-        e.message.contains("missing parameter `minor_radius`"),
-        "{e}"
-    );
+    assert!(e.message.contains("missing parameter `minor_radius`"), "{e}");
 
     // Negative radius.
     let e = scene_err(&format!(
         "{{{GRID},\n \"functions\": [{{\"type\": \"capsule\", \"a\": [0,0,0], \"b\": [1,0,0],\n \"radius\": -0.2}}]}}"
     ));
-    assert_eq!(
-        (e.line, e.column, e.path.to_string().as_str()),
-        (3, 12, "functions[0].radius")
-    );
+    assert_eq!((e.line, e.column, e.path.to_string().as_str()), (3, 12, "functions[0].radius"));
     assert!(e.message.contains("negative radius -0.2"), "{e}");
 
     // Empty grid: zero resolution, and max not above min.
     let e = scene_err(
         "{\"grid\": {\"resolution\": [4, 0, 4],\n \"bounds\": [[0,0,0],[1,1,1]]}, \"functions\": [{\"type\": \"zero\"}]}",
     );
-    assert_eq!(
-        (e.line, e.path.to_string().as_str()),
-        (1, "grid.resolution")
-    );
+    assert_eq!((e.line, e.path.to_string().as_str()), (1, "grid.resolution"));
     assert!(e.message.contains("empty grid"), "{e}");
     let e = scene_err(
         "{\"grid\": {\"resolution\": 4,\n \"bounds\": [[0,0,0],[1,0,1]]}, \"functions\": [{\"type\": \"zero\"}]}",
@@ -66,10 +52,7 @@ fn errors_name_file_line_and_field() {
     let e = scene_err(&format!(
         "{{{GRID},\n \"functions\": [{{\"name\": \"a\", \"type\": \"zero\"}}],\n \"regions\": [{{\"when\": \"a\", \"region\": 1}},\n   {{\"when\": \"a & bee\", \"region\": 2}}]}}"
     ));
-    assert_eq!(
-        (e.line, e.path.to_string().as_str()),
-        (4, "regions[1].when")
-    );
+    assert_eq!((e.line, e.path.to_string().as_str()), (4, "regions[1].when"));
     assert!(e.message.contains("unknown function `bee`"), "{e}");
 
     // A surface of interest naming a region no rule produces.
@@ -88,9 +71,7 @@ fn errors_name_file_line_and_field() {
         "{{{GRID}, \"functions\": [{{\"name\": \"a\", \"type\": \"zero\"}}, {{\"name\": \"a\", \"type\": \"zero\"}}]}}"
     ));
     assert_eq!(e.path.to_string(), "functions[1].name");
-    let e = scene_err(&format!(
-        "{{{GRID}, \"mode\": \"xx\", \"functions\": [{{\"type\": \"zero\"}}]}}"
-    ));
+    let e = scene_err(&format!("{{{GRID}, \"mode\": \"xx\", \"functions\": [{{\"type\": \"zero\"}}]}}"));
     assert_eq!(e.path.to_string(), "mode");
     let e = scene_err(
         "{\"grid\": {\"resolution\": 4, \"bounds\": [[0,0,0],[1,1,1]], \"split\": 4}, \"functions\": [{\"type\": \"zero\"}]}",
@@ -98,14 +79,8 @@ fn errors_name_file_line_and_field() {
     assert_eq!(e.path.to_string(), "grid.split");
 
     // Missing file, unknown built-in.
-    assert!(Scene::load("/nonexistent/scene.json")
-        .unwrap_err()
-        .message
-        .contains("cannot read"));
-    assert!(Scene::load("builtin:nope")
-        .unwrap_err()
-        .message
-        .contains("sphere-with-hole"));
+    assert!(Scene::load("/nonexistent/scene.json").unwrap_err().message.contains("cannot read"));
+    assert!(Scene::load("builtin:nope").unwrap_err().message.contains("sphere-with-hole"));
 }
 
 #[test]
@@ -121,11 +96,7 @@ fn region_forms_agree() {
     for f in forms {
         let s = Scene::from_json(&format!("{{{GRID}, {funcs}, {f}}}"), "s.json", None).unwrap();
         for signs in [[false, false], [false, true], [true, false], [true, true]] {
-            assert_eq!(
-                s.regions.region_ia(&signs),
-                reference.regions.region_ia(&signs),
-                "{f}"
-            );
+            assert_eq!(s.regions.region_ia(&signs), reference.regions.region_ia(&signs), "{f}");
         }
     }
     // CSG solid and unnamed functions (named by index).
@@ -138,10 +109,7 @@ fn region_forms_agree() {
     )
     .unwrap();
     assert_eq!(s.names, vec!["0", "1"]);
-    assert_eq!(
-        s.regions,
-        RegionRule::solid(septa::scene::Expr::parse("0 - 1", &|n: &str| n.parse().ok()).unwrap())
-    );
+    assert_eq!(s.regions, RegionRule::solid(septa::scene::Expr::parse("0 - 1", &|n: &str| n.parse().ok()).unwrap()));
     assert_eq!(s.regions.region_ia(&[true, false]), 1);
     assert_eq!(s.regions.region_ia(&[true, true]), 0);
     assert!(s.interest.surface(0, 1));
@@ -156,11 +124,8 @@ fn reference_function_file_as_scene_functions() {
         r#"[{"type": "sphere", "center": [0,0,0], "radius": 0.5}, {"type": "zero"}]"#,
     )
     .unwrap();
-    std::fs::write(
-        dir.join("scene.json"),
-        format!("{{{GRID}, \"mode\": \"mi\", \"functions\": \"funcs.json\"}}"),
-    )
-    .unwrap();
+    std::fs::write(dir.join("scene.json"), format!("{{{GRID}, \"mode\": \"mi\", \"functions\": \"funcs.json\"}}"))
+        .unwrap();
     let s = Scene::load(dir.join("scene.json").to_str().unwrap()).unwrap();
     assert_eq!(s.mode, Mode::Mi);
     assert_eq!(s.functions.len(), 2);
@@ -193,28 +158,16 @@ fn every_builtin_loads_and_samples_deterministically() {
         let n = s.grid.resolution;
         assert!(n.iter().all(|&r| (20..=48).contains(&r)), "{name}");
         let pts = s.grid.vertices();
-        let one = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let two = rayon::ThreadPoolBuilder::new()
-            .num_threads(2)
-            .build()
-            .unwrap();
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        let two = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
         let a = one.install(|| sample_grid(&s.functions, &pts));
         let b = two.install(|| sample_grid(&s.functions, &pts));
-        assert!(
-            a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
-            "{name}"
-        );
+        assert!(a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()), "{name}");
         // Once per vertex per function, row-major.
         let k = s.functions.len();
         assert_eq!(a.len(), pts.len() * k);
         let i = pts.len() / 3;
-        assert_eq!(
-            a[i * k + k - 1].to_bits(),
-            s.functions[k - 1].eval(pts[i]).to_bits()
-        );
+        assert_eq!(a[i * k + k - 1].to_bits(), s.functions[k - 1].eval(pts[i]).to_bits());
         // General position: no sampled value is exactly zero.
         assert!(a.iter().all(|v| *v != 0.0), "{name}: a zero sample");
         // Every region of interest occurs at some vertex.
@@ -222,16 +175,10 @@ fn every_builtin_loads_and_samples_deterministically() {
             if s.mode == Mode::Ia {
                 let seen: std::collections::BTreeSet<i64> = a
                     .chunks(k)
-                    .map(|row| {
-                        s.regions
-                            .region_ia(&row.iter().map(|v| *v > 0.0).collect::<Vec<_>>())
-                    })
+                    .map(|row| s.regions.region_ia(&row.iter().map(|v| *v > 0.0).collect::<Vec<_>>()))
                     .collect();
                 for (x, y) in s.interest.surfaces.iter().flatten() {
-                    assert!(
-                        seen.contains(x) && seen.contains(y),
-                        "{name}: region pair ({x},{y}) unseen"
-                    );
+                    assert!(seen.contains(x) && seen.contains(y), "{name}: region pair ({x},{y}) unseen");
                 }
             }
         }
@@ -288,13 +235,9 @@ fn inactive_blocks_are_empty() {
                 Mode::Mi => {
                     if !block_may_be_active_mi(&s.functions, lo, hi) {
                         skipped += 1;
-                        let arg =
-                            |r: &[f64]| (0..k).max_by(|&a, &b| r[a].total_cmp(&r[b])).unwrap();
+                        let arg = |r: &[f64]| (0..k).max_by(|&a, &b| r[a].total_cmp(&r[b])).unwrap();
                         let m0 = arg(rows[0]);
-                        assert!(
-                            rows.iter().all(|r| arg(r) == m0),
-                            "{name}: two materials in a skipped box"
-                        );
+                        assert!(rows.iter().all(|r| arg(r) == m0), "{name}: two materials in a skipped box");
                     }
                 }
             }
@@ -345,10 +288,7 @@ fn scene_blocks_on_grid_vertices() {
                         }
                     };
                     let l0 = label(rows[0]);
-                    assert!(
-                        rows.iter().all(|r| label(r) == l0),
-                        "{name}: block {first:?} skipped but not uniform"
-                    );
+                    assert!(rows.iter().all(|r| label(r) == l0), "{name}: block {first:?} skipped but not uniform");
                 }
             }
         }
@@ -371,8 +311,7 @@ fn normals_from_gradients() {
     assert_eq!(Scene::toward_lesser(n, 0, 2), n);
     let a = builtin::apollonius_18();
     let n = a.normal_mi(0, 1, [0.0, 0.0, 0.0]);
-    let g = [0, 1, 2]
-        .map(|i| a.functions[0].gradient([0.0; 3])[i] - a.functions[1].gradient([0.0; 3])[i]);
+    let g = [0, 1, 2].map(|i| a.functions[0].gradient([0.0; 3])[i] - a.functions[1].gradient([0.0; 3])[i]);
     let len = (g[0] * g[0] + g[1] * g[1] + g[2] * g[2]).sqrt();
     for i in 0..3 {
         assert!((n[i] - g[i] / len).abs() < 1e-15);
@@ -410,23 +349,11 @@ fn mi_difference_bounds_never_skip_an_interface() {
             for y in 0..=n {
                 for z in 0..=n {
                     let t = [x, y, z];
-                    let p = [0, 1, 2].map(|a| {
-                        if t[a] == n {
-                            hi[a]
-                        } else {
-                            lo[a] + 2.0 * h * t[a] as f64 / n as f64
-                        }
-                    });
+                    let p = [0, 1, 2].map(|a| if t[a] == n { hi[a] } else { lo[a] + 2.0 * h * t[a] as f64 / n as f64 });
                     let v: Vec<f64> = fs.iter().map(|f| f.eval(p)).collect();
                     let m = (0..v.len()).max_by(|&a, &b| v[a].total_cmp(&v[b])).unwrap();
-                    assert!(
-                        v.iter().enumerate().all(|(j, x)| j == m || *x < v[m]),
-                        "tie in a skipped box"
-                    );
-                    assert!(
-                        owner.is_none_or(|o| o == m),
-                        "two materials in a skipped box {lo:?} {hi:?}"
-                    );
+                    assert!(v.iter().enumerate().all(|(j, x)| j == m || *x < v[m]), "tie in a skipped box");
+                    assert!(owner.is_none_or(|o| o == m), "two materials in a skipped box {lo:?} {hi:?}");
                     owner = Some(m);
                 }
             }

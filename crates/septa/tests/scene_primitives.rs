@@ -158,8 +158,7 @@ fn closed_form_values() {
     assert_eq!(l.eval([0.3, 0.4, 7.0]), -0.5);
     // A rigid motion of a sphere is the moved sphere.
     let r = septa::scene::rotation([1.0, 2.0, 3.0], 0.7);
-    let moved =
-        Primitive::transform(r, [0.2, -0.1, 0.3], Primitive::sphere([0.1, 0.0, 0.0], 0.4)).unwrap();
+    let moved = Primitive::transform(r, [0.2, -0.1, 0.3], Primitive::sphere([0.1, 0.0, 0.0], 0.4)).unwrap();
     let c = [0, 1, 2].map(|i| r[i][0] * 0.1 + [0.2, -0.1, 0.3][i]);
     let direct = Primitive::sphere(c, 0.4);
     for p in [[0.0; 3], [0.5, 0.2, -0.3], [-0.7, 0.1, 0.9]] {
@@ -192,11 +191,8 @@ fn mesh_distance_equals_box_distance() {
 fn mesh_from_obj_file_in_a_scene() {
     let dir = std::env::temp_dir().join(format!("septa_scene_mesh_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("tet.obj"),
-        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n",
-    )
-    .unwrap();
+    std::fs::write(dir.join("tet.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n")
+        .unwrap();
     let text = r#"{"grid": {"resolution": 4, "bounds": [[-1,-1,-1],[1,1,1]]},
         "functions": [{"name": "tet", "type": "mesh", "path": "tet.obj"}]}"#;
     let s = Scene::from_json(text, "s.json", Some(&dir)).unwrap();
@@ -229,10 +225,7 @@ fn stl_binary_and_ascii_match_obj() {
     }
     ascii.push_str("endsolid cube\n");
     let b = Primitive::cuboid([0.0; 3], [0.5; 3]);
-    for m in [
-        septa::scene::parse_stl(&bin).unwrap(),
-        septa::scene::parse_stl(ascii.as_bytes()).unwrap(),
-    ] {
+    for m in [septa::scene::parse_stl(&bin).unwrap(), septa::scene::parse_stl(ascii.as_bytes()).unwrap()] {
         assert_eq!(m.triangles().len(), 12);
         let m = Primitive::Mesh(std::sync::Arc::new(m));
         for p in [[0.1, 0.2, -0.3], [0.9, -0.7, 0.2], [0.0, 0.0, 0.45]] {
@@ -261,11 +254,7 @@ fn uv_sphere(r: f64, n: usize) -> septa::scene::TriMesh {
         let th = std::f64::consts::PI * i as f64 / n as f64;
         for j in 0..2 * n {
             let ph = std::f64::consts::PI * j as f64 / n as f64 + 0.1 * i as f64;
-            v.push([
-                r * th.sin() * ph.cos(),
-                r * th.sin() * ph.sin(),
-                r * th.cos(),
-            ]);
+            v.push([r * th.sin() * ph.cos(), r * th.sin() * ph.sin(), r * th.cos()]);
         }
     }
     let id = |i: usize, j: usize| (2 + (i - 1) * 2 * n + j % (2 * n)) as u32;
@@ -291,21 +280,13 @@ fn mesh_hierarchy_matches_exhaustive_search() {
     for i in 0..2000 {
         // Half the points within 1% of the surface.
         let dir = normalize3(random_point(&mut rng, 1.0));
-        let rad = if i % 2 == 0 {
-            0.6 * rng.gen_range(0.99..1.01)
-        } else {
-            rng.gen_range(0.0..1.5)
-        };
+        let rad = if i % 2 == 0 { 0.6 * rng.gen_range(0.99..1.01) } else { rng.gen_range(0.0..1.5) };
         let p = dir.map(|x| x * rad);
         let f = prim.eval(p);
         assert_eq!(f.abs(), m.closest_exhaustive(p).0, "distance at {p:?}");
         let exact = m.winding_number_exact(p);
         let fast = m.winding_number(p);
-        assert_eq!(
-            exact > 0.5,
-            fast > 0.5,
-            "inside test at {p:?}: {exact} vs {fast}"
-        );
+        assert_eq!(exact > 0.5, fast > 0.5, "inside test at {p:?}: {exact} vs {fast}");
         assert!((exact - fast).abs() < 0.05, "{exact} vs {fast}");
         assert_eq!(f > 0.0, exact > 0.5);
         if (rad - 0.6).abs() < 0.006 {

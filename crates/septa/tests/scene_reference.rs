@@ -44,10 +44,7 @@ fn u32le(b: &[u8], i: usize) -> usize {
 
 fn read_npz(path: &PathBuf) -> HashMap<String, Npy> {
     let z = std::fs::read(path).unwrap();
-    let eocd = (0..=z.len() - 22)
-        .rev()
-        .find(|&i| z[i..i + 4] == [0x50, 0x4b, 0x05, 0x06])
-        .expect("zip end record");
+    let eocd = (0..=z.len() - 22).rev().find(|&i| z[i..i + 4] == [0x50, 0x4b, 0x05, 0x06]).expect("zip end record");
     let n = u16le(&z, eocd + 10);
     let mut at = u32le(&z, eocd + 16);
     let mut out = HashMap::new();
@@ -75,11 +72,7 @@ fn read_npz(path: &PathBuf) -> HashMap<String, Npy> {
 
 fn parse_npy(b: &[u8]) -> Npy {
     assert_eq!(&b[..6], b"\x93NUMPY");
-    let (hlen, hstart) = if b[6] == 1 {
-        (u16le(b, 8), 10)
-    } else {
-        (u32le(b, 8), 12)
-    };
+    let (hlen, hstart) = if b[6] == 1 { (u16le(b, 8), 10) } else { (u32le(b, 8), 12) };
     let header = std::str::from_utf8(&b[hstart..hstart + hlen]).unwrap();
     let field = |k: &str| {
         let i = header.find(k).unwrap() + k.len();
@@ -90,32 +83,18 @@ fn parse_npy(b: &[u8]) -> Npy {
     assert!(field("'fortran_order'").starts_with("False"));
     let shape_s = field("'shape'");
     let shape_s = &shape_s[1..shape_s.find(')').unwrap()];
-    let shape = shape_s
-        .split(',')
-        .filter(|s| !s.trim().is_empty())
-        .map(|s| s.trim().parse().unwrap())
-        .collect();
-    Npy {
-        shape,
-        descr,
-        data: b[hstart + hlen..].to_vec(),
-    }
+    let shape = shape_s.split(',').filter(|s| !s.trim().is_empty()).map(|s| s.trim().parse().unwrap()).collect();
+    Npy { shape, descr, data: b[hstart + hlen..].to_vec() }
 }
 
 impl Npy {
     fn f64s(&self) -> Vec<f64> {
         assert_eq!(self.descr, "<f8");
-        self.data
-            .chunks_exact(8)
-            .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-            .collect()
+        self.data.chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
     }
     fn i64s(&self) -> Vec<i64> {
         assert_eq!(self.descr, "<i8");
-        self.data
-            .chunks_exact(8)
-            .map(|c| i64::from_le_bytes(c.try_into().unwrap()))
-            .collect()
+        self.data.chunks_exact(8).map(|c| i64::from_le_bytes(c.try_into().unwrap())).collect()
     }
     /// A numpy unicode scalar (`<U...`, UTF-32 little endian).
     fn text(&self) -> String {
@@ -154,20 +133,11 @@ fn reference_cases_resample_bit_for_bit() {
         let stored_v = npz["vertices"].f64s();
         assert_eq!(npz["vertices"].shape, vec![verts.len(), 3]);
         let flat: Vec<f64> = verts.iter().flatten().copied().collect();
-        assert!(
-            flat.iter()
-                .zip(&stored_v)
-                .all(|(a, b)| a.to_bits() == b.to_bits()),
-            "{case:?}: grid vertices differ"
-        );
+        assert!(flat.iter().zip(&stored_v).all(|(a, b)| a.to_bits() == b.to_bits()), "{case:?}: grid vertices differ");
         let values = sample_grid(&functions, &verts);
         let stored = npz["values"].f64s();
         assert_eq!(npz["values"].shape, vec![verts.len(), functions.len()]);
-        let differing = values
-            .iter()
-            .zip(&stored)
-            .filter(|(a, b)| a.to_bits() != b.to_bits())
-            .count();
+        let differing = values.iter().zip(&stored).filter(|(a, b)| a.to_bits() != b.to_bits()).count();
         assert_eq!(differing, 0, "{case:?}: {differing} values differ");
     }
 }

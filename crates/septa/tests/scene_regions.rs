@@ -19,13 +19,7 @@ fn table(e: &Expr) -> Vec<bool> {
 
 #[test]
 fn expression_precedence_and_errors() {
-    let same = |x: &str, y: &str| {
-        assert_eq!(
-            table(&parse(x).unwrap()),
-            table(&parse(y).unwrap()),
-            "{x} vs {y}"
-        )
-    };
+    let same = |x: &str, y: &str| assert_eq!(table(&parse(x).unwrap()), table(&parse(y).unwrap()), "{x} vs {y}");
     same("a | b - c", "(a | b) - c");
     same("a - b - c", "(a - b) - c");
     same("a | b & c", "a | (b & c)");
@@ -33,10 +27,7 @@ fn expression_precedence_and_errors() {
     same("!!a", "a");
     same("a - b", "a & !b");
     same("!(a | b)", "!a & !b");
-    assert_ne!(
-        table(&parse("a - (b - c)").unwrap()),
-        table(&parse("a - b - c").unwrap())
-    );
+    assert_ne!(table(&parse("a - (b - c)").unwrap()), table(&parse("a - b - c").unwrap()));
     assert!(parse("a & e").unwrap_err().contains("unknown function `e`"));
     assert!(parse("(a | b").unwrap_err().contains("missing `)`"));
     assert!(parse("a |").is_err());
@@ -51,16 +42,7 @@ fn expression_precedence_and_errors() {
 #[test]
 fn first_match_wins_and_identity() {
     let r = RegionRule::Rules {
-        rules: vec![
-            Rule {
-                when: Expr::Func(0),
-                region: 5,
-            },
-            Rule {
-                when: Expr::Func(1),
-                region: 7,
-            },
-        ],
+        rules: vec![Rule { when: Expr::Func(0), region: 5 }, Rule { when: Expr::Func(1), region: 7 }],
         otherwise: -1,
     };
     assert_eq!(r.region_ia(&[true, true]), 5);
@@ -113,11 +95,7 @@ fn points(seed: u64) -> Vec<[f64; 3]> {
     (0..20000)
         .map(|i| {
             let zr = if i % 2 == 0 { 0.4 } else { 1.0 };
-            [
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-1.0..1.0),
-                rng.gen_range(-zr..zr),
-            ]
+            [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-zr..zr)]
         })
         .collect()
 }
@@ -153,9 +131,7 @@ fn saucer_square_is_bloomenthals_region_function() {
 #[test]
 fn sphere_with_hole_is_bloomenthals_region_function() {
     let s = builtin::sphere_with_hole();
-    let d = |p: [f64; 3], c: [f64; 3]| {
-        ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt()
-    };
+    let d = |p: [f64; 3], c: [f64; 3]| ((p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2) + (p[2] - c[2]).powi(2)).sqrt();
     let mut counts = [0; 3];
     for p in points(2) {
         let want = if d(p, [0.25, 0.15, 0.5]) < 0.3 {
@@ -227,14 +203,9 @@ fn csg_builtins_inside_outside() {
     // Monte Carlo volume of the rule agrees with the analytic volume.
     let mut rng = ChaCha8Rng::seed_from_u64(9);
     let n = 200_000;
-    let inside = (0..n)
-        .filter(|_| region_at(&b, [0, 1, 2].map(|_| rng.gen_range(-0.6..0.6))) == 1)
-        .count();
+    let inside = (0..n).filter(|_| region_at(&b, [0, 1, 2].map(|_| rng.gen_range(-0.6..0.6))) == 1).count();
     let vol = inside as f64 / n as f64 * 1.2f64.powi(3);
-    assert!(
-        (vol - builtin::box_minus_cylinder_volume()).abs() < 0.01,
-        "{vol}"
-    );
+    assert!((vol - builtin::box_minus_cylinder_volume()).abs() < 0.01, "{vol}");
 
     let c = builtin::cad_part();
     assert_eq!(region_at(&c, [0.3, 0.3, -0.2]), 1); // plate
@@ -256,13 +227,7 @@ fn mi_builtins() {
     assert_eq!(v.functions.len(), 5);
     // Each line's own points belong to its material (negated distance 0 is
     // the maximum).
-    let pts = [
-        [0.31, -0.12, 0.05],
-        [-0.28, 0.35, -0.1],
-        [0.05, 0.02, 0.4],
-        [-0.4, -0.38, 0.22],
-        [0.22, 0.41, -0.45],
-    ];
+    let pts = [[0.31, -0.12, 0.05], [-0.28, 0.35, -0.1], [0.05, 0.02, 0.4], [-0.4, -0.38, 0.22], [0.22, 0.41, -0.45]];
     for (i, p) in pts.iter().enumerate() {
         let vals: Vec<f64> = v.functions.iter().map(|f| f.eval(*p)).collect();
         let arg = (0..5).max_by(|&x, &y| vals[x].total_cmp(&vals[y])).unwrap();

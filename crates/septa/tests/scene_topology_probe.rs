@@ -29,9 +29,7 @@ impl Probe {
             for j in 0..n {
                 for k in 0..n {
                     let t = [i, j, k];
-                    pts.push(
-                        [0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * (t[a] as f64 + 0.5) / n as f64),
-                    );
+                    pts.push([0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * (t[a] as f64 + 0.5) / n as f64));
                 }
             }
         }
@@ -40,9 +38,7 @@ impl Probe {
         let labels = v
             .chunks(kf)
             .map(|row| match s.mode {
-                Mode::Ia => s
-                    .regions
-                    .region_ia(&row.iter().map(|x| *x > 0.0).collect::<Vec<_>>()),
+                Mode::Ia => s.regions.region_ia(&row.iter().map(|x| *x > 0.0).collect::<Vec<_>>()),
                 Mode::Mi => {
                     let m = (0..kf).max_by(|&a, &b| row[a].total_cmp(&row[b])).unwrap();
                     s.regions.region_mi(m)
@@ -73,10 +69,7 @@ impl Probe {
                         let q = [(i + 1, j, k), (i, j + 1, k), (i, j, k + 1)][ax];
                         let m = self.at(q);
                         let pair = (l.unwrap(), m);
-                        if m.is_none()
-                            || !((pair.0 == a && pair.1 == Some(b))
-                                || (pair.0 == b && pair.1 == Some(a)))
-                        {
+                        if m.is_none() || !((pair.0 == a && pair.1 == Some(b)) || (pair.0 == b && pair.1 == Some(a))) {
                             continue;
                         }
                         // Face at the shared side: corner coordinates.
@@ -121,15 +114,9 @@ impl Probe {
                 parent[x] = y;
             }
         }
-        let comps = (0..faces.len())
-            .filter(|&x| find(&mut parent, x) == x)
-            .count();
+        let comps = (0..faces.len()).filter(|&x| find(&mut parent, x) == x).count();
         // Boundary loops: components of edges used by one face.
-        let bedges: Vec<(P, P)> = edges
-            .iter()
-            .filter(|(_, f)| f.len() == 1)
-            .map(|(e, _)| *e)
-            .collect();
+        let bedges: Vec<(P, P)> = edges.iter().filter(|(_, f)| f.len() == 1).map(|(e, _)| *e).collect();
         (comps, euler, components(&bedges).0)
     }
 
@@ -193,14 +180,8 @@ fn components(edges: &[(P, P)]) -> (usize, usize) {
 #[test]
 #[ignore]
 fn builtin_topology_probe() {
-    let names = [
-        "saucer-square",
-        "sphere-with-hole",
-        "sphere-plane-hole",
-        "patch-blend",
-        "cad-part",
-        "box-minus-cylinder",
-    ];
+    let names =
+        ["saucer-square", "sphere-with-hole", "sphere-plane-hole", "patch-blend", "cad-part", "box-minus-cylinder"];
     let mut bad = vec![];
     for name in names {
         let (surfs, curves) = builtin::expected(name).unwrap();
@@ -209,10 +190,7 @@ fn builtin_topology_probe() {
         for e in surfs {
             let (pair, c, e, l) = (e.regions, e.components, e.euler, e.boundary_loops);
             let got = probe.surface(pair[0], pair[1]);
-            println!(
-                "{name} surface {pair:?}: components, euler, loops = {got:?} (expected {:?})",
-                (c, e, l)
-            );
+            println!("{name} surface {pair:?}: components, euler, loops = {got:?} (expected {:?})", (c, e, l));
             if got != (c, e, l) {
                 bad.push(format!("{name} {pair:?}"));
             }
@@ -221,10 +199,7 @@ fn builtin_topology_probe() {
             let (t, c) = (e.regions, e.components);
             let got = probe.curve(t);
             // Voxel curves grow spurs, so only components are compared.
-            println!(
-                "{name} curve {t:?}: components, ends = {got:?} (expected {c}, closed {})",
-                e.closed
-            );
+            println!("{name} curve {t:?}: components, ends = {got:?} (expected {c}, closed {})", e.closed);
             if got.0 != c {
                 bad.push(format!("{name} {t:?}"));
             }

@@ -1,1 +1,252 @@
-//! (in progress)
+//! Surface networks on tetrahedral grids (Du et al. 2022, Sec. 3, 6, 7):
+//! per-tet complexes assembled into polygons with global plane-based keys,
+//! then patches, chains, corners, shells and cells.
+//!
+//! The grid is processed in blocks (in parallel with rayon); every vertex
+//! key names a grid element and functions (Sec. 5.1), so duplicates across
+//! tets and blocks unify exactly and independently of processing order.
+//! Regions are joined across tet faces by (face, region label) keys, and
+//! shells by wedges around edges, so block summaries merge in any order.
+
+mod block;
+mod merge;
+mod topology;
+pub mod uf;
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+use smallvec::SmallVec;
+
+pub use crate::complex::Mode;
+use crate::complex::Options;
+use crate::grid::Grid;
+
+/// Global key of a network vertex: the sorted grid vertices of the grid
+/// element it lies in (padded with `u32::MAX`), and the sorted global ids of
+/// the functions defining it (padded with `u16::MAX`; none for grid vertices).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct VKey {
+    /// Grid vertices of the element.
+    pub grid: [u32; 4],
+    /// Functions.
+    pub funcs: [u16; 4],
+}
+
+/// Why a network could not be computed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NetworkError {
+    /// The value array does not match the grid.
+    #[error("expected {expected} values ({vertices} vertices x {functions} functions), got {got}")]
+    ValueCount {
+        /// Needed.
+        expected: usize,
+        /// Grid vertices.
+        vertices: usize,
+        /// Functions.
+        functions: usize,
+        /// Given.
+        got: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("value of function {function} at vertex {vertex} is not finite ({value})")]
+    NonFinite {
+        /// Grid vertex.
+        vertex: usize,
+        /// Function.
+        function: usize,
+        /// Value.
+        value: f64,
+    },
+    /// No functions given.
+    #[error("no functions given")]
+    NoFunctions,
+    /// More than 65535 functions.
+    #[error("{0} functions: at most 65535 are supported")]
+    TooManyFunctions(usize),
+    /// IA: a function is zero on a whole tet (its zero set is not a surface there).
+    #[error("function {function} vanishes on the whole tet {tet}")]
+    VanishesOnTet {
+        /// Tet id.
+        tet: usize,
+        /// Function.
+        function: usize,
+    },
+    /// The per-tet construction failed.
+    #[error("tet {tet}: {message}")]
+    Tet {
+        /// Tet id.
+        tet: usize,
+        /// What failed.
+        message: String,
+    },
+}
+
+/// How to compute the network.
+#[derive(Clone, Debug)]
+pub struct NetworkOptions {
+    /// IA or MI.
+    pub mode: Mode,
+    /// Naive floating-point predicates (for measuring only).
+    pub float: bool,
+    /// Block edge in cubes.
+    pub block: usize,
+    /// Compute cell volumes (floating point, for invariant checks).
+    pub volumes: bool,
+}
+
+impl NetworkOptions {
+    /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
+    pub fn new(mode: Mode) -> NetworkOptions {
+        NetworkOptions { mode, float: false, block: 16, volumes: false }
+    }
+}
+
+/// A patch: a maximal connected manifold piece of the network.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// IA `[f, f]`; MI `[a, b]`, `a < b`, the two materials (positive side: `f_a > f_b`).
+    pub label: [u16; 2],
+    /// Number of polygons.
+    pub faces: usize,
+}
+
+/// A cell: a connected 3D region of the complement of the network.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellInfo {
+    /// Its bounding shells.
+    pub shells: Vec<u32>,
+    /// IA: sign bits (bit `f` set iff `f > 0`); MI: the material in word 0.
+    pub label: SmallVec<[u64; 2]>,
+    /// Volume (only with [`NetworkOptions::volumes`], else 0).
+    pub volume: f64,
+}
+
+/// A complete surface network.
+#[derive(Clone, Debug)]
+pub struct Network {
+    /// IA or MI.
+    pub mode: Mode,
+    /// Number of functions.
+    pub functions: usize,
+    /// Vertex positions (floating point, output only).
+    pub points: Vec<[f64; 3]>,
+    /// Vertex keys (exact identity of each vertex).
+    pub keys: Vec<VKey>,
+    /// Polygon `f` is `face_verts[face_start[f]..face_start[f+1]]`,
+    /// counter-clockwise seen from its positive side.
+    pub face_start: Vec<u32>,
+    /// See `face_start`.
+    pub face_verts: Vec<u32>,
+    /// Per polygon: IA `[f, f]`, MI `[a, b]`.
+    pub face_label: Vec<[u16; 2]>,
+    /// Per polygon: `[cell on the positive side, cell on the negative side]` (`u32::MAX`: outside the grid).
+    pub face_cells: Vec<[u32; 2]>,
+    /// Per polygon: its patch.
+    pub face_patch: Vec<u32>,
+    /// Network edges (vertex pairs, ascending).
+    pub edges: Vec<[u32; 2]>,
+    /// Patches.
+    pub patches: Vec<Patch>,
+    /// Chains as vertex paths (a closed chain repeats its first vertex).
+    pub chains: Vec<Vec<u32>>,
+    /// Corner vertices.
+    pub corners: Vec<u32>,
+    /// Shells as lists of half-patches (`2p` positive side of patch `p`, `2p + 1` negative).
+    pub shells: Vec<Vec<u32>>,
+    /// Cells.
+    pub cells: Vec<CellInfo>,
+    /// Connected components of the network.
+    pub components: usize,
+    /// Tets with a part of the network.
+    pub active_tets: usize,
+    /// Seconds per stage.
+    pub seconds: Vec<(&'static str, f64)>,
+}
+
+impl Network {
+    /// Number of polygons.
+    pub fn num_faces(&self) -> usize {
+        self.face_label.len()
+    }
+
+    /// Vertices of polygon `f`.
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_verts[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+    }
+
+    /// The counts the reference reports, by name.
+    pub fn counts(&self) -> Vec<(&'static str, usize)> {
+        vec![
+            ("vertices", self.points.len()),
+            ("faces", self.num_faces()),
+            ("edges", self.edges.len()),
+            ("patches", self.patches.len()),
+            ("chains", self.chains.len()),
+            ("corners", self.corners.len()),
+            ("shells", self.shells.len()),
+            ("cells", self.cells.len()),
+            ("components", self.components),
+            ("active_tets", self.active_tets),
+        ]
+    }
+}
+
+/// Computes the IA or MI network of `k` functions given by their values at
+/// the grid vertices (`values[v * k + f]`), on the current rayon pool.
+pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) -> Result<Network, NetworkError> {
+    let t0 = Instant::now();
+    let n = grid.num_vertices();
+    if k == 0 {
+        return Err(NetworkError::NoFunctions);
+    }
+    if k > u16::MAX as usize - 1 {
+        return Err(NetworkError::TooManyFunctions(k));
+    }
+    if values.len() != n * k {
+        return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
+    }
+    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+        return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
+    }
+    let ctx = block::Ctx {
+        grid,
+        values,
+        k,
+        mode: options.mode,
+        options: Options::with_float(options.float),
+        volumes: options.volumes,
+    };
+    let blocks = grid.blocks(options.block);
+    let outs: Vec<block::BlockOut> =
+        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
+    let t1 = Instant::now();
+    let mut m = merge::merge(options.mode, outs);
+    let t2 = Instant::now();
+    let topo = topology::topology(&mut m);
+    let t3 = Instant::now();
+    Ok(Network {
+        mode: options.mode,
+        functions: k,
+        points: m.points,
+        keys: m.keys,
+        face_start: m.face_start,
+        face_verts: m.face_verts,
+        face_label: m.face_label,
+        face_cells: topo.face_cells,
+        face_patch: topo.face_patch,
+        edges: topo.edges,
+        patches: topo.patches,
+        chains: topo.chains,
+        corners: topo.corners,
+        shells: topo.shells,
+        cells: topo.cells,
+        components: topo.components,
+        active_tets: m.active_tets,
+        seconds: vec![
+            ("tets", (t1 - t0).as_secs_f64()),
+            ("merge", (t2 - t1).as_secs_f64()),
+            ("topology", (t3 - t2).as_secs_f64()),
+        ],
+    })
+}

@@ -24,38 +24,14 @@ use super::vec3::{normalize, V3};
 /// ```
 pub fn list() -> &'static [(&'static str, &'static str)] {
     &[
-        (
-            "saucer-square",
-            "Bloomenthal 4.8.1: a saucer blended into a square (non-manifold rim)",
-        ),
-        (
-            "sphere-with-hole",
-            "Bloomenthal 4.8.2: a sphere surface with a disk removed (one disk)",
-        ),
-        (
-            "sphere-plane-hole",
-            "Bloomenthal 4.8.3: sphere and square with a hole, curves of interest",
-        ),
-        (
-            "patch-blend",
-            "Bloomenthal 4.8.4: a blob blended into a bicubic patch",
-        ),
-        (
-            "cad-part",
-            "Du et al. Fig. 19 spirit: plate, boss, bore and holes by CSG (genus 3)",
-        ),
-        (
-            "apollonius-18",
-            "Du et al. Fig. 15: material interface of 18 spheres (Apollonius diagram)",
-        ),
-        (
-            "voronoi-lines-5",
-            "Du et al. Fig. 20: Voronoi diagram of 5 rotated lines (material interface)",
-        ),
-        (
-            "box-minus-cylinder",
-            "CSG: box (6 half-spaces) minus a cylinder; sharp edges are chains",
-        ),
+        ("saucer-square", "Bloomenthal 4.8.1: a saucer blended into a square (non-manifold rim)"),
+        ("sphere-with-hole", "Bloomenthal 4.8.2: a sphere surface with a disk removed (one disk)"),
+        ("sphere-plane-hole", "Bloomenthal 4.8.3: sphere and square with a hole, curves of interest"),
+        ("patch-blend", "Bloomenthal 4.8.4: a blob blended into a bicubic patch"),
+        ("cad-part", "Du et al. Fig. 19 spirit: plate, boss, bore and holes by CSG (genus 3)"),
+        ("apollonius-18", "Du et al. Fig. 15: material interface of 18 spheres (Apollonius diagram)"),
+        ("voronoi-lines-5", "Du et al. Fig. 20: Voronoi diagram of 5 rotated lines (material interface)"),
+        ("box-minus-cylinder", "CSG: box (6 half-spaces) minus a cylinder; sharp edges are chains"),
     ]
 }
 
@@ -116,26 +92,15 @@ pub fn expected(name: &str) -> Option<(Vec<ExpectedSurface>, Vec<ExpectedCurve>)
     };
     let disk = |a, b| s(a, b, 1, 1, 1);
     let annulus = |a, b| s(a, b, 1, 0, 2);
-    let c = |a, b, d, closed| ExpectedCurve {
-        regions: [a, b, d],
-        components: 1,
-        closed,
-    };
+    let c = |a, b, d, closed| ExpectedCurve { regions: [a, b, d], components: 1, closed };
     Some(match name {
-        "saucer-square" | "patch-blend" => (
-            vec![disk(1, 2), disk(1, 3), annulus(2, 3)],
-            vec![c(1, 2, 3, true), c(0, 2, 3, true)],
-        ),
+        "saucer-square" | "patch-blend" => {
+            (vec![disk(1, 2), disk(1, 3), annulus(2, 3)], vec![c(1, 2, 3, true), c(0, 2, 3, true)])
+        }
         "sphere-with-hole" => (vec![disk(0, 2)], vec![c(0, 1, 2, true)]),
         "sphere-plane-hole" => (
             vec![disk(0, 2), disk(0, 3), annulus(2, 3)],
-            vec![
-                c(0, 1, 2, false),
-                c(0, 1, 3, false),
-                c(1, 2, 3, false),
-                c(0, 2, 3, false),
-                c(2, 3, 4, true),
-            ],
+            vec![c(0, 1, 2, false), c(0, 1, 3, false), c(1, 2, 3, false), c(0, 2, 3, false), c(2, 3, 4, true)],
         ),
         "cad-part" => (vec![s(0, 1, 1, -4, 0)], vec![]),
         "box-minus-cylinder" => (vec![s(0, 1, 1, 0, 0)], vec![]),
@@ -151,10 +116,7 @@ fn rules(names: &[&str], rules: &[(&str, RegionId)], otherwise: RegionId) -> Reg
     RegionRule::Rules {
         rules: rules
             .iter()
-            .map(|(w, r)| Rule {
-                when: Expr::parse(w, &resolve).expect("built-in rule parses"),
-                region: *r,
-            })
+            .map(|(w, r)| Rule { when: Expr::parse(w, &resolve).expect("built-in rule parses"), region: *r })
             .collect(),
         otherwise,
     }
@@ -181,10 +143,7 @@ fn build(
 /// `height * W(dist / radius) - |f|`: positive inside a lens blended
 /// tangentially into the zero set of `f` (Bloomenthal's `Saucer(p) > |p_z|`).
 fn blend(w: Wyvill, f: Primitive) -> Primitive {
-    Primitive::Sum(vec![
-        Primitive::Wyvill(w),
-        Primitive::Scale(-1.0, Box::new(Primitive::Abs(Box::new(f)))),
-    ])
+    Primitive::Sum(vec![Primitive::Wyvill(w), Primitive::Scale(-1.0, Box::new(Primitive::Abs(Box::new(f))))])
 }
 
 /// Bloomenthal 4.8.1. `Saucer(p) = 0.35 W(1.4 sqrt(x^2 + y^2))`; region 0
@@ -199,12 +158,7 @@ fn blend(w: Wyvill, f: Primitive) -> Primitive {
 /// - curves: (1,2,3) the rim, one closed loop; (0,2,3) the square's
 ///   border, one closed loop; no curve end points.
 pub fn saucer_square() -> Scene {
-    let saucer = Wyvill {
-        center: [0.0; 3],
-        axis: Some(Z),
-        radius: 1.0 / 1.4,
-        height: 0.35,
-    };
+    let saucer = Wyvill { center: [0.0; 3], axis: Some(Z), radius: 1.0 / 1.4, height: 0.35 };
     build(
         33,
         Mode::Ia,
@@ -228,10 +182,7 @@ pub fn sphere_with_hole() -> Scene {
     build(
         33,
         Mode::Ia,
-        vec![
-            ("small", Primitive::sphere([0.25, 0.15, 0.5], 0.3)),
-            ("large", Primitive::sphere([0.0; 3], 0.6)),
-        ],
+        vec![("small", Primitive::sphere([0.25, 0.15, 0.5], 0.3)), ("large", Primitive::sphere([0.0; 3], 0.6))],
         |n| rules(n, &[("small", 1), ("large", 2)], 0),
         Interest::new(Some(&[[0, 2]]), &[[0, 1, 2]]),
     )
@@ -264,17 +215,8 @@ pub fn sphere_plane_hole() -> Scene {
             ("cube", Primitive::cuboid([0.0; 3], [0.85; 3])),
             ("above", Primitive::plane([0.0; 3], Z)),
         ],
-        |n| {
-            rules(
-                n,
-                &[("hole", 1), ("sphere", 0), ("!cube", 4), ("above", 2)],
-                3,
-            )
-        },
-        Interest::new(
-            Some(&[[0, 2], [0, 3], [2, 3]]),
-            &[[0, 1, 2], [0, 1, 3], [1, 2, 3], [0, 2, 3], [2, 3, 4]],
-        ),
+        |n| rules(n, &[("hole", 1), ("sphere", 0), ("!cube", 4), ("above", 2)], 3),
+        Interest::new(Some(&[[0, 2], [0, 3], [2, 3]]), &[[0, 1, 2], [0, 1, 3], [1, 2, 3], [0, 2, 3], [2, 3, 4]]),
     )
 }
 
@@ -304,12 +246,7 @@ pub fn blend_patch() -> BicubicPatch {
 pub fn patch_blend() -> Scene {
     let patch = blend_patch();
     let c = patch.point(0.5, 0.5);
-    let blob = Wyvill {
-        center: c,
-        axis: None,
-        radius: 0.5,
-        height: 0.3,
-    };
+    let blob = Wyvill { center: c, axis: None, radius: 0.5, height: 0.3 };
     let p = Primitive::Patch(Box::new(patch));
     build(
         33,
@@ -337,143 +274,38 @@ pub fn cad_part() -> Scene {
         45,
         Mode::Ia,
         vec![
-            (
-                "plate",
-                Primitive::cuboid([0.0, 0.0, -0.2], [0.7, 0.45, 0.12]),
-            ),
-            (
-                "corner",
-                Primitive::half_space([0.5, 0.45, 0.0], [1.0, 1.0, 0.0]),
-            ),
-            (
-                "boss",
-                Primitive::capped_cylinder([0.0, 0.0, -0.15], [0.0, 0.0, 0.35], 0.3),
-            ),
+            ("plate", Primitive::cuboid([0.0, 0.0, -0.2], [0.7, 0.45, 0.12])),
+            ("corner", Primitive::half_space([0.5, 0.45, 0.0], [1.0, 1.0, 0.0])),
+            ("boss", Primitive::capped_cylinder([0.0, 0.0, -0.15], [0.0, 0.0, 0.35], 0.3)),
             ("bore", Primitive::cylinder([0.0; 3], Z, 0.14)),
             ("hole1", Primitive::cylinder([-0.5, 0.0, 0.0], Z, 0.09)),
             ("hole2", Primitive::cylinder([0.5, 0.05, 0.0], Z, 0.09)),
         ],
-        |n| {
-            rules(
-                n,
-                &[("(plate & corner) | boss - bore - hole1 - hole2", 1)],
-                0,
-            )
-        },
+        |n| rules(n, &[("(plate & corner) | boss - bore - hole1 - hole2", 1)], 0),
         Interest::all(),
     )
 }
 
 /// The 18 spheres (centre, radius) of the reference data's `mi18_R20`.
 pub const APOLLONIUS_SPHERES: [(V3, f64); 18] = [
-    (
-        [
-            0.018914599520410746,
-            0.7207419141214966,
-            -0.5693446196485861,
-        ],
-        0.09537845024235195,
-    ),
-    (
-        [
-            -0.3010696767832233,
-            -0.12267768164387893,
-            0.5243241501127069,
-        ],
-        0.04682792227322452,
-    ),
-    (
-        [
-            0.07934990027689515,
-            -0.7559054188110906,
-            0.40562097387969054,
-        ],
-        0.058432898189735044,
-    ),
-    (
-        [
-            -0.27242925360145254,
-            0.46148592548544687,
-            -0.31488827313336804,
-        ],
-        0.05081481005325864,
-    ),
-    (
-        [
-            -0.5855332844045364,
-            -0.15501922168459326,
-            -0.47447161491816064,
-        ],
-        0.03360820063976646,
-    ),
-    (
-        [
-            0.4005834762080842,
-            -0.3513459872223361,
-            -0.023694440909383885,
-        ],
-        0.09826634798211148,
-    ),
-    (
-        [0.738651509862059, 0.3596639052376538, 0.0659629688758947],
-        0.034920208364083376,
-    ),
-    (
-        [-0.542956785959797, 0.7518806611458122, 0.025709736876605938],
-        0.02042790512236933,
-    ),
-    (
-        [0.1975836088600007, 0.4426929829476769, 0.18080528168486476],
-        0.09255679343118124,
-    ),
-    (
-        [
-            -0.7366513973372755,
-            0.04574282121603468,
-            -0.06506258738335402,
-        ],
-        0.015611462123488806,
-    ),
-    (
-        [0.22612507062300002, 0.5642125415690509, 0.14870562896685446],
-        0.033408770296350095,
-    ),
-    (
-        [
-            0.543810433650254,
-            0.015193410434415022,
-            0.017422215146452813,
-        ],
-        0.077772718693196,
-    ),
-    (
-        [-0.5633247427440695, 0.5114027505908432, 0.29325904960521143],
-        0.0808387247399321,
-    ),
-    (
-        [-0.49341398556778365, 0.483782657815248, -0.4938817183084796],
-        0.017339735562716146,
-    ),
-    (
-        [0.5683631588593123, 0.5780535938842695, 0.6024593542665289],
-        0.052471874742291126,
-    ),
-    (
-        [-0.3615225782180508, -0.788653074234934, 0.23315343291991653],
-        0.07479184451578237,
-    ),
-    (
-        [
-            0.5369107464004388,
-            -0.3489954762167326,
-            -0.45565093253924227,
-        ],
-        0.06753982420599292,
-    ),
-    (
-        [0.48808773303201547, 0.7418733965519535, -0.5591602713261161],
-        0.05339911493794029,
-    ),
+    ([0.018914599520410746, 0.7207419141214966, -0.5693446196485861], 0.09537845024235195),
+    ([-0.3010696767832233, -0.12267768164387893, 0.5243241501127069], 0.04682792227322452),
+    ([0.07934990027689515, -0.7559054188110906, 0.40562097387969054], 0.058432898189735044),
+    ([-0.27242925360145254, 0.46148592548544687, -0.31488827313336804], 0.05081481005325864),
+    ([-0.5855332844045364, -0.15501922168459326, -0.47447161491816064], 0.03360820063976646),
+    ([0.4005834762080842, -0.3513459872223361, -0.023694440909383885], 0.09826634798211148),
+    ([0.738651509862059, 0.3596639052376538, 0.0659629688758947], 0.034920208364083376),
+    ([-0.542956785959797, 0.7518806611458122, 0.025709736876605938], 0.02042790512236933),
+    ([0.1975836088600007, 0.4426929829476769, 0.18080528168486476], 0.09255679343118124),
+    ([-0.7366513973372755, 0.04574282121603468, -0.06506258738335402], 0.015611462123488806),
+    ([0.22612507062300002, 0.5642125415690509, 0.14870562896685446], 0.033408770296350095),
+    ([0.543810433650254, 0.015193410434415022, 0.017422215146452813], 0.077772718693196),
+    ([-0.5633247427440695, 0.5114027505908432, 0.29325904960521143], 0.0808387247399321),
+    ([-0.49341398556778365, 0.483782657815248, -0.4938817183084796], 0.017339735562716146),
+    ([0.5683631588593123, 0.5780535938842695, 0.6024593542665289], 0.052471874742291126),
+    ([-0.3615225782180508, -0.788653074234934, 0.23315343291991653], 0.07479184451578237),
+    ([0.5369107464004388, -0.3489954762167326, -0.45565093253924227], 0.06753982420599292),
+    ([0.48808773303201547, 0.7418733965519535, -0.5591602713261161], 0.05339911493794029),
 ];
 
 /// Du et al. Fig. 15: the material interface of `r_i - |p - c_i|` for 18
@@ -485,11 +317,8 @@ pub const APOLLONIUS_SPHERES: [(V3, f64); 18] = [
 /// the materials; every pair is of interest. At 100^3 and 200^3 the
 /// reference reports 71 patches, 93 chains, 18 cells.
 pub fn apollonius_18() -> Scene {
-    let funcs: Vec<(String, Primitive)> = APOLLONIUS_SPHERES
-        .iter()
-        .enumerate()
-        .map(|(i, (c, r))| (format!("s{i}"), Primitive::sphere(*c, *r)))
-        .collect();
+    let funcs: Vec<(String, Primitive)> =
+        APOLLONIUS_SPHERES.iter().enumerate().map(|(i, (c, r))| (format!("s{i}"), Primitive::sphere(*c, *r))).collect();
     let mut s = build(
         20,
         Mode::Mi,
@@ -530,13 +359,7 @@ pub fn voronoi_lines_5() -> Scene {
             (names[i], Primitive::line(*p, d))
         })
         .collect();
-    build(
-        33,
-        Mode::Mi,
-        funcs,
-        |_| RegionRule::Identity,
-        Interest::all(),
-    )
+    build(33, Mode::Mi, funcs, |_| RegionRule::Identity, Interest::all())
 }
 
 /// CSG check: the box `[-0.5, 0.5]^3` as the intersection of 6
@@ -555,20 +378,11 @@ pub fn box_minus_cylinder() -> Scene {
         33,
         Mode::Ia,
         vec![
-            (
-                "xlo",
-                Primitive::half_space([-h, 0.0, 0.0], [-1.0, 0.0, 0.0]),
-            ),
+            ("xlo", Primitive::half_space([-h, 0.0, 0.0], [-1.0, 0.0, 0.0])),
             ("xhi", Primitive::half_space([h, 0.0, 0.0], [1.0, 0.0, 0.0])),
-            (
-                "ylo",
-                Primitive::half_space([0.0, -h, 0.0], [0.0, -1.0, 0.0]),
-            ),
+            ("ylo", Primitive::half_space([0.0, -h, 0.0], [0.0, -1.0, 0.0])),
             ("yhi", Primitive::half_space([0.0, h, 0.0], [0.0, 1.0, 0.0])),
-            (
-                "zlo",
-                Primitive::half_space([0.0, 0.0, -h], [0.0, 0.0, -1.0]),
-            ),
+            ("zlo", Primitive::half_space([0.0, 0.0, -h], [0.0, 0.0, -1.0])),
             ("zhi", Primitive::half_space([0.0, 0.0, h], Z)),
             ("hole", Primitive::cylinder([0.05, -0.03, 0.0], Z, 0.25)),
         ],

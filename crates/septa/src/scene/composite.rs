@@ -63,12 +63,7 @@ impl Transform {
     /// Build; `None` when `linear` is singular.
     pub fn new(linear: Mat3, translation: V3, inner: Primitive) -> Option<Transform> {
         let inverse = inverse(&linear)?;
-        Some(Transform {
-            linear,
-            translation,
-            inverse,
-            inner,
-        })
+        Some(Transform { linear, translation, inverse, inner })
     }
     fn local(&self, p: V3) -> V3 {
         mat_vec(&self.inverse, sub(p, self.translation))
@@ -175,9 +170,7 @@ pub(crate) fn sum_gradient(terms: &[Primitive], p: V3) -> V3 {
 }
 
 pub(crate) fn sum_bounds(terms: &[Primitive], lo: V3, hi: V3) -> Interval {
-    terms.iter().fold(Interval::point(0.0), |s, t| {
-        s.add(t.bounds_interval(lo, hi))
-    })
+    terms.iter().fold(Interval::point(0.0), |s, t| s.add(t.bounds_interval(lo, hi)))
 }
 
 /// Index of the term with the extreme value (`max = true`: largest);

@@ -67,11 +67,7 @@ pub struct SceneError {
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}:{}:{}: {}: {}",
-            self.file, self.line, self.column, self.path, self.message
-        )
+        write!(f, "{}:{}:{}: {}: {}", self.file, self.line, self.column, self.path, self.message)
     }
 }
 
@@ -85,10 +81,7 @@ pub(crate) struct Located {
 }
 
 pub(crate) fn err<T>(path: &JsonPath, message: impl Into<String>) -> Result<T, Located> {
-    Err(Located {
-        path: path.clone(),
-        message: message.into(),
-    })
+    Err(Located { path: path.clone(), message: message.into() })
 }
 
 /// Line and column (1-based) where the value at `path` starts in the JSON
@@ -194,8 +187,7 @@ fn skip_value(b: &[u8], mut i: usize) -> Option<usize> {
             None
         }
         _ => {
-            while i < b.len() && !matches!(b[i], b',' | b'}' | b']' | b' ' | b'\n' | b'\t' | b'\r')
-            {
+            while i < b.len() && !matches!(b[i], b',' | b'}' | b']' | b' ' | b'\n' | b'\t' | b'\r') {
                 i += 1;
             }
             Some(i)

@@ -40,10 +40,7 @@ impl Primitive {
             }
             Primitive::Cylinder(c) if !c.squared => {
                 let o = offset_box(lo, hi, c.point);
-                let t = o[0]
-                    .scale(c.axis[0])
-                    .add(o[1].scale(c.axis[1]))
-                    .add(o[2].scale(c.axis[2]));
+                let t = o[0].scale(c.axis[0]).add(o[1].scale(c.axis[1])).add(o[2].scale(c.axis[2]));
                 let perp = [0, 1, 2].map(|a| o[a].sub(t.scale(c.axis[a])));
                 let rho = lipschitz(|p| norm(c.perp(p)), 1.0, lo, hi);
                 Some(perp.map(|x| x.div(rho).neg()))
@@ -117,21 +114,13 @@ mod tests {
                 for y in 0..=n {
                     for z in 0..=n {
                         let t = [x, y, z];
-                        let p = [0, 1, 2].map(|a| {
-                            if t[a] == n {
-                                hi[a]
-                            } else {
-                                lo[a] + 2.0 * h * t[a] as f64 / n as f64
-                            }
-                        });
+                        let p =
+                            [0, 1, 2].map(|a| if t[a] == n { hi[a] } else { lo[a] + 2.0 * h * t[a] as f64 / n as f64 });
                         min = min.min(fs[i].eval(p) - fs[j].eval(p));
                     }
                 }
             }
-            assert!(
-                bound <= min,
-                "pair {i} {j}: bound {bound} above sampled min {min}"
-            );
+            assert!(bound <= min, "pair {i} {j}: bound {bound} above sampled min {min}");
             if min > 0.0 {
                 positive += 1;
                 if bound > 0.0 {

@@ -43,10 +43,7 @@ pub(crate) fn up(x: f64) -> f64 {
 
 impl Interval {
     /// The whole real line.
-    pub const ENTIRE: Interval = Interval {
-        lo: f64::NEG_INFINITY,
-        hi: f64::INFINITY,
-    };
+    pub const ENTIRE: Interval = Interval { lo: f64::NEG_INFINITY, hi: f64::INFINITY };
 
     /// `[lo, hi]`; a NaN end or `lo > hi` gives [`Interval::ENTIRE`].
     pub fn new(lo: f64, hi: f64) -> Interval {
@@ -99,12 +96,7 @@ impl Interval {
 
     /// Product.
     pub fn mul(self, o: Interval) -> Interval {
-        let p = [
-            self.lo * o.lo,
-            self.lo * o.hi,
-            self.hi * o.lo,
-            self.hi * o.hi,
-        ];
+        let p = [self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi];
         if p.iter().any(|x| x.is_nan()) {
             return Interval::ENTIRE;
         }

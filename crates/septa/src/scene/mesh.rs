@@ -37,11 +37,7 @@ impl TriMesh {
             return None;
         }
         let bvh = Bvh::build(&vertices, &triangles);
-        Some(TriMesh {
-            vertices,
-            triangles,
-            bvh,
-        })
+        Some(TriMesh { vertices, triangles, bvh })
     }
 
     /// Vertex positions.
@@ -137,10 +133,7 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, MeshFileError> {
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for (n, line) in text.lines().enumerate() {
-        let err = |message: String| MeshFileError {
-            line: n + 1,
-            message,
-        };
+        let err = |message: String| MeshFileError { line: n + 1, message };
         let mut it = line.split_whitespace();
         match it.next() {
             Some("v") => {
@@ -158,15 +151,11 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, MeshFileError> {
                 let mut idx = Vec::new();
                 for s in it {
                     let first = s.split('/').next().unwrap_or("");
-                    let i: i64 = first
-                        .parse()
-                        .map_err(|_| err(format!("bad face index `{s}`")))?;
+                    let i: i64 = first.parse().map_err(|_| err(format!("bad face index `{s}`")))?;
                     let nv = vertices.len() as i64;
                     let k = if i < 0 { nv + i } else { i - 1 };
                     if k < 0 || k >= nv {
-                        return Err(err(format!(
-                            "face index {i} out of range (have {nv} vertices)"
-                        )));
+                        return Err(err(format!("face index {i} out of range (have {nv} vertices)")));
                     }
                     idx.push(k as u32);
                 }
@@ -181,15 +170,9 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, MeshFileError> {
         }
     }
     if triangles.is_empty() {
-        return Err(MeshFileError {
-            line: 0,
-            message: "no triangles".into(),
-        });
+        return Err(MeshFileError { line: 0, message: "no triangles".into() });
     }
-    TriMesh::new(vertices, triangles).ok_or(MeshFileError {
-        line: 0,
-        message: "bad triangle".into(),
-    })
+    TriMesh::new(vertices, triangles).ok_or(MeshFileError { line: 0, message: "bad triangle".into() })
 }
 
 /// Read an STL file, binary or ASCII (a triangle soup: the winding number
@@ -218,8 +201,8 @@ pub fn parse_stl(bytes: &[u8]) -> Result<TriMesh, MeshFileError> {
             }
         }
     } else {
-        let text = std::str::from_utf8(bytes)
-            .map_err(|_| fail(0, "neither binary STL (size mismatch) nor text".into()))?;
+        let text =
+            std::str::from_utf8(bytes).map_err(|_| fail(0, "neither binary STL (size mismatch) nor text".into()))?;
         for (n, line) in text.lines().enumerate() {
             let mut it = line.split_whitespace();
             if it.next() == Some("vertex") {
@@ -234,20 +217,12 @@ pub fn parse_stl(bytes: &[u8]) -> Result<TriMesh, MeshFileError> {
             }
         }
         if vertices.len() % 3 != 0 {
-            return Err(fail(
-                0,
-                format!("{} vertices is not a multiple of 3", vertices.len()),
-            ));
+            return Err(fail(0, format!("{} vertices is not a multiple of 3", vertices.len())));
         }
     }
     if vertices.is_empty() {
         return Err(fail(0, "no triangles".into()));
     }
-    let triangles = (0..vertices.len() as u32 / 3)
-        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-        .collect();
-    TriMesh::new(vertices, triangles).ok_or(MeshFileError {
-        line: 0,
-        message: "bad triangle".into(),
-    })
+    let triangles = (0..vertices.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    TriMesh::new(vertices, triangles).ok_or(MeshFileError { line: 0, message: "bad triangle".into() })
 }

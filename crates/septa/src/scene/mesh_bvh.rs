@@ -99,18 +99,10 @@ fn box_dist2(p: V3, lo: V3, hi: V3) -> f64 {
 impl Bvh {
     /// Build over `tris` of `v` (median split on the longest centroid axis).
     pub fn build(v: &[V3], t: &[[u32; 3]]) -> Bvh {
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * t.len() / LEAF + 1),
-            tris: (0..t.len()).collect(),
-        };
+        let mut bvh = Bvh { nodes: Vec::with_capacity(2 * t.len() / LEAF + 1), tris: (0..t.len()).collect() };
         let cent: Vec<V3> = t
             .iter()
-            .map(|x| {
-                scale(
-                    add(add(v[x[0] as usize], v[x[1] as usize]), v[x[2] as usize]),
-                    1.0 / 3.0,
-                )
-            })
+            .map(|x| scale(add(add(v[x[0] as usize], v[x[1] as usize]), v[x[2] as usize]), 1.0 / 3.0))
             .collect();
         bvh.node(v, t, &cent, 0, t.len());
         bvh
@@ -134,35 +126,18 @@ impl Bvh {
             moment = add(moment, scale(cent[k], w));
             total += w;
         }
-        let center = if total > 0.0 {
-            scale(moment, 1.0 / total)
-        } else {
-            scale(add(lo, hi), 0.5)
-        };
+        let center = if total > 0.0 { scale(moment, 1.0 / total) } else { scale(add(lo, hi), 0.5) };
         let mut radius = 0.0f64;
         for &k in &self.tris[first..end] {
             for i in t[k] {
                 radius = radius.max(norm(sub(v[i as usize], center)));
             }
         }
-        self.nodes.push(Node {
-            lo,
-            hi,
-            first,
-            count: end - first,
-            children: [0, 0],
-            area,
-            center,
-            radius,
-        });
+        self.nodes.push(Node { lo, hi, first, count: end - first, children: [0, 0], area, center, radius });
         if end - first > LEAF {
-            let axis = (0..3)
-                .max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y])))
-                .unwrap_or(0);
+            let axis = (0..3).max_by(|&x, &y| (hi[x] - lo[x]).total_cmp(&(hi[y] - lo[y]))).unwrap_or(0);
             let mid = (first + end) / 2;
-            self.tris[first..end].select_nth_unstable_by(mid - first, |&x, &y| {
-                cent[x][axis].total_cmp(&cent[y][axis])
-            });
+            self.tris[first..end].select_nth_unstable_by(mid - first, |&x, &y| cent[x][axis].total_cmp(&cent[y][axis]));
             let l = self.node(v, t, cent, first, mid);
             let r = self.node(v, t, cent, mid, end);
             self.nodes[id].children = [l, r];

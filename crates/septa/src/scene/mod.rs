@@ -56,7 +56,6 @@ pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
 pub use scene::{load_function_list, GridSpec, Mode, Scene};
 pub use shapes::{
-    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, Plane, PointSet, Sphere,
-    SphereKind, Torus,
+    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, Plane, PointSet, Sphere, SphereKind, Torus,
 };
 pub use spec::PRIMITIVE_TYPES;

@@ -18,10 +18,7 @@ impl Scene {
     /// (MI patches, where `f_i = f_j`): the gradient of `f_i - f_j`,
     /// pointing into material `i`.
     pub fn normal_mi(&self, i: usize, j: usize, p: V3) -> V3 {
-        normalize(sub(
-            self.functions[i].gradient(p),
-            self.functions[j].gradient(p),
-        ))
+        normalize(sub(self.functions[i].gradient(p), self.functions[j].gradient(p)))
     }
 
     /// Orient `n`, a normal pointing into `region_of_n` across a surface

@@ -30,12 +30,7 @@ fn bern(s: f64) -> [f64; 4] {
 
 fn bern_d1(s: f64) -> [f64; 4] {
     let r = 1.0 - s;
-    [
-        -3.0 * r * r,
-        3.0 * r * r - 6.0 * s * r,
-        6.0 * s * r - 3.0 * s * s,
-        3.0 * s * s,
-    ]
+    [-3.0 * r * r, 3.0 * r * r - 6.0 * s * r, 6.0 * s * r - 3.0 * s * s, 3.0 * s * s]
 }
 
 fn bern_d2(s: f64) -> [f64; 4] {
@@ -48,12 +43,7 @@ fn bern_iv(s: Interval) -> [Interval; 4] {
     let r = one.sub(s);
     let r2 = r.sqr();
     let s2 = s.sqr();
-    [
-        r2.mul(r),
-        s.mul(r2).scale(3.0),
-        s2.mul(r).scale(3.0),
-        s2.mul(s),
-    ]
+    [r2.mul(r), s.mul(r2).scale(3.0), s2.mul(r).scale(3.0), s2.mul(s)]
 }
 
 fn bern_d1_iv(s: Interval) -> [Interval; 4] {
@@ -69,10 +59,7 @@ fn bern_d1_iv(s: Interval) -> [Interval; 4] {
 
 impl BicubicPatch {
     fn st(&self, p: V3) -> (f64, f64) {
-        (
-            (p[0] - self.origin[0]) / self.size[0],
-            (p[1] - self.origin[1]) / self.size[1],
-        )
+        ((p[0] - self.origin[0]) / self.size[0], (p[1] - self.origin[1]) / self.size[1])
     }
 
     #[allow(clippy::needless_range_loop)]
@@ -98,11 +85,7 @@ impl BicubicPatch {
 
     /// The surface point at parameters `(s, t)`.
     pub fn point(&self, s: f64, t: f64) -> V3 {
-        [
-            self.origin[0] + s * self.size[0],
-            self.origin[1] + t * self.size[1],
-            self.combine(bern(s), bern(t)),
-        ]
+        [self.origin[0] + s * self.size[0], self.origin[1] + t * self.size[1], self.combine(bern(s), bern(t))]
     }
 
     pub(crate) fn eval(&self, p: V3) -> f64 {
@@ -125,21 +108,13 @@ impl BicubicPatch {
         let e = p[2] - h;
         // d = e / w; d_x = -h_x / w - e (h_x h_xx + h_y h_xy) / w^3.
         let w3 = w * w * w;
-        [
-            -hx / w - e * (hx * hxx + hy * hxy) / w3,
-            -hy / w - e * (hx * hxy + hy * hyy) / w3,
-            1.0 / w,
-        ]
+        [-hx / w - e * (hx * hxx + hy * hxy) / w3, -hy / w - e * (hx * hxy + hy * hyy) / w3, 1.0 / w]
     }
 
     #[allow(clippy::needless_range_loop)]
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        let s = Interval::new(lo[0], hi[0])
-            .sub(Interval::point(self.origin[0]))
-            .div(Interval::point(self.size[0]));
-        let t = Interval::new(lo[1], hi[1])
-            .sub(Interval::point(self.origin[1]))
-            .div(Interval::point(self.size[1]));
+        let s = Interval::new(lo[0], hi[0]).sub(Interval::point(self.origin[0])).div(Interval::point(self.size[0]));
+        let t = Interval::new(lo[1], hi[1]).sub(Interval::point(self.origin[1])).div(Interval::point(self.size[1]));
         let comb = |a: [Interval; 4], b: [Interval; 4]| {
             let mut v = Interval::point(0.0);
             for i in 0..4 {

@@ -78,26 +78,16 @@ const PAD_REL: f64 = 256.0 * f64::EPSILON;
 impl Primitive {
     /// Sphere `r - |p - c|`.
     pub fn sphere(center: V3, radius: f64) -> Primitive {
-        Primitive::Sphere(Sphere {
-            center,
-            radius,
-            kind: SphereKind::Signed,
-        })
+        Primitive::Sphere(Sphere { center, radius, kind: SphereKind::Signed })
     }
     /// Plane `n . (p - point)` (normal normalized here).
     pub fn plane(point: V3, normal: V3) -> Primitive {
-        Primitive::Plane(Plane {
-            point,
-            normal: normalize(normal),
-        })
+        Primitive::Plane(Plane { point, normal: normalize(normal) })
     }
     /// Half-space `-n . (p - point)`, positive on the side opposite the
     /// outward normal.
     pub fn half_space(point: V3, outward: V3) -> Primitive {
-        Primitive::HalfSpace(Plane {
-            point,
-            normal: normalize(outward),
-        })
+        Primitive::HalfSpace(Plane { point, normal: normalize(outward) })
     }
     /// Axis-aligned box from centre and half sizes.
     pub fn cuboid(center: V3, half: V3) -> Primitive {
@@ -105,12 +95,7 @@ impl Primitive {
     }
     /// Infinite cylinder `r - dist(p, axis)`.
     pub fn cylinder(point: V3, axis: V3, radius: f64) -> Primitive {
-        Primitive::Cylinder(Cylinder {
-            point,
-            axis: normalize(axis),
-            radius,
-            squared: false,
-        })
+        Primitive::Cylinder(Cylinder { point, axis: normalize(axis), radius, squared: false })
     }
     /// Capped cylinder between `a` and `b`.
     pub fn capped_cylinder(a: V3, b: V3, radius: f64) -> Primitive {
@@ -122,12 +107,7 @@ impl Primitive {
     }
     /// Torus.
     pub fn torus(center: V3, axis: V3, major: f64, minor: f64) -> Primitive {
-        Primitive::Torus(Torus {
-            center,
-            axis: normalize(axis),
-            major,
-            minor,
-        })
+        Primitive::Torus(Torus { center, axis: normalize(axis), major, minor })
     }
     /// Affine transform `p -> A p + t` of `inner`; `None` if `A` is singular.
     pub fn transform(linear: Mat3, translation: V3, inner: Primitive) -> Option<Primitive> {
@@ -244,11 +224,7 @@ impl Primitive {
             return 0.0;
         }
         let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + range.mag().min(1e300);
-        let rel = if matches!(self, Primitive::Mesh(_)) {
-            1e-10
-        } else {
-            PAD_REL
-        };
+        let rel = if matches!(self, Primitive::Mesh(_)) { 1e-10 } else { PAD_REL };
         rel * m
     }
 
@@ -266,19 +242,10 @@ impl Primitive {
             Cone(s) => mag(s.apex),
             Torus(s) => mag(s.center) + s.major.abs() + s.minor.abs(),
             Capsule(s) => mag(s.a).max(mag(s.b)) + s.radius.abs(),
-            Points(s) => s
-                .points
-                .iter()
-                .zip(&s.weights)
-                .map(|(p, w)| mag(*p) + w.abs())
-                .fold(0.0, f64::max),
+            Points(s) => s.points.iter().zip(&s.weights).map(|(p, w)| mag(*p) + w.abs()).fold(0.0, f64::max),
             Mesh(m) => m.magnitude(),
             Patch(p) => {
-                let h = p
-                    .heights
-                    .iter()
-                    .flatten()
-                    .fold(0.0f64, |a, b| a.max(b.abs()));
+                let h = p.heights.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
                 h + p.origin[0].abs().max(p.origin[1].abs()) + p.size[0].max(p.size[1])
             }
             Wyvill(w) => mag(w.center) + w.height.abs(),

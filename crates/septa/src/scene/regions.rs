@@ -60,11 +60,7 @@ impl Expr {
     /// ```
     pub fn parse(text: &str, resolve: &impl Fn(&str) -> Option<usize>) -> Result<Expr, String> {
         let toks = tokenize(text)?;
-        let mut p = Parser {
-            toks,
-            pos: 0,
-            resolve,
-        };
+        let mut p = Parser { toks, pos: 0, resolve };
         let e = p.diff()?;
         if p.pos != p.toks.len() {
             return Err(format!("unexpected `{}` in `{text}`", p.toks[p.pos]));
@@ -143,11 +139,7 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
             self.pos += 1;
             v.push(self.and()?);
         }
-        Ok(if v.len() == 1 {
-            v.pop().unwrap()
-        } else {
-            Expr::Or(v)
-        })
+        Ok(if v.len() == 1 { v.pop().unwrap() } else { Expr::Or(v) })
     }
     fn and(&mut self) -> Result<Expr, String> {
         let mut v = vec![self.not()?];
@@ -155,11 +147,7 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
             self.pos += 1;
             v.push(self.not()?);
         }
-        Ok(if v.len() == 1 {
-            v.pop().unwrap()
-        } else {
-            Expr::And(v)
-        })
+        Ok(if v.len() == 1 { v.pop().unwrap() } else { Expr::And(v) })
     }
     fn not(&mut self) -> Result<Expr, String> {
         match self.peek() {
@@ -217,21 +205,15 @@ pub enum RegionRule {
 impl RegionRule {
     /// A solid from a CSG expression: region 1 inside, 0 outside.
     pub fn solid(e: Expr) -> RegionRule {
-        RegionRule::Rules {
-            rules: vec![Rule { when: e, region: 1 }],
-            otherwise: 0,
-        }
+        RegionRule::Rules { rules: vec![Rule { when: e, region: 1 }], otherwise: 0 }
     }
 
     fn first_match(&self, atom: impl Fn(usize) -> bool) -> Option<RegionId> {
         match self {
             RegionRule::Identity => None,
-            RegionRule::Rules { rules, otherwise } => Some(
-                rules
-                    .iter()
-                    .find(|r| r.when.eval(&atom))
-                    .map_or(*otherwise, |r| r.region),
-            ),
+            RegionRule::Rules { rules, otherwise } => {
+                Some(rules.iter().find(|r| r.when.eval(&atom)).map_or(*otherwise, |r| r.region))
+            }
         }
     }
 
@@ -248,29 +230,21 @@ impl RegionRule {
     /// assert_eq!(r.region_ia(&[false, false]), 0);
     /// ```
     pub fn region_ia(&self, positive: &[bool]) -> RegionId {
-        self.first_match(|i| positive.get(i).copied().unwrap_or(false))
-            .unwrap_or_else(|| {
-                positive
-                    .iter()
-                    .take(62)
-                    .enumerate()
-                    .fold(0, |m, (j, &s)| if s { m | (1 << j) } else { m })
-            })
+        self.first_match(|i| positive.get(i).copied().unwrap_or(false)).unwrap_or_else(|| {
+            positive.iter().take(62).enumerate().fold(0, |m, (j, &s)| if s { m | (1 << j) } else { m })
+        })
     }
 
     /// Region of an MI cell whose material is function `material`.
     pub fn region_mi(&self, material: usize) -> RegionId {
-        self.first_match(|i| i == material)
-            .unwrap_or(material as RegionId)
+        self.first_match(|i| i == material).unwrap_or(material as RegionId)
     }
 
     /// Every region a rule can give (none for [`RegionRule::Identity`]).
     pub fn regions(&self) -> BTreeSet<RegionId> {
         match self {
             RegionRule::Identity => BTreeSet::new(),
-            RegionRule::Rules { rules, otherwise } => {
-                rules.iter().map(|r| r.region).chain([*otherwise]).collect()
-            }
+            RegionRule::Rules { rules, otherwise } => rules.iter().map(|r| r.region).chain([*otherwise]).collect(),
         }
     }
 }
@@ -321,10 +295,7 @@ impl Interest {
     /// The first triple of interest whose three regions all occur among
     /// `around` (the regions of the cells around a chain), if any.
     pub fn curve(&self, around: &[RegionId]) -> Option<[RegionId; 3]> {
-        self.curves
-            .iter()
-            .find(|t| t.iter().all(|r| around.contains(r)))
-            .copied()
+        self.curves.iter().find(|t| t.iter().all(|r| around.contains(r))).copied()
     }
 }
 

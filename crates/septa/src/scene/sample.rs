@@ -28,15 +28,13 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     }
     // Chunks of rows keep the per-task overhead small.
     const ROWS: usize = 256;
-    out.par_chunks_mut(ROWS * k)
-        .zip(points.par_chunks(ROWS))
-        .for_each(|(rows, pts)| {
-            for (row, p) in rows.chunks_mut(k).zip(pts) {
-                for (v, f) in row.iter_mut().zip(functions) {
-                    *v = f.eval(*p);
-                }
+    out.par_chunks_mut(ROWS * k).zip(points.par_chunks(ROWS)).for_each(|(rows, pts)| {
+        for (row, p) in rows.chunks_mut(k).zip(pts) {
+            for (v, f) in row.iter_mut().zip(functions) {
+                *v = f.eval(*p);
             }
-        });
+        }
+    });
     out
 }
 
@@ -84,15 +82,10 @@ fn ia_sign(f: &Primitive, lo: V3, hi: V3, depth: u32) -> Option<bool> {
 fn mi_owner(functions: &[Primitive], lo: V3, hi: V3, depth: u32) -> Option<usize> {
     // The owner, if any, has the largest computed value at the centre too.
     let c = [0, 1, 2].map(|a| 0.5 * (lo[a] + hi[a]));
-    let owner = (0..functions.len())
-        .max_by(|&i, &j| functions[i].eval(c).total_cmp(&functions[j].eval(c)))
-        .unwrap_or(0);
+    let owner =
+        (0..functions.len()).max_by(|&i, &j| functions[i].eval(c).total_cmp(&functions[j].eval(c))).unwrap_or(0);
     let f = &functions[owner];
-    if functions
-        .iter()
-        .enumerate()
-        .all(|(j, g)| j == owner || difference_lower(f, g, lo, hi) > 0.0)
-    {
+    if functions.iter().enumerate().all(|(j, g)| j == owner || difference_lower(f, g, lo, hi) > 0.0) {
         return Some(owner);
     }
     if depth == 0 {
@@ -121,9 +114,7 @@ fn mi_owner(functions: &[Primitive], lo: V3, hi: V3, depth: u32) -> Option<usize
 /// assert!(!block_may_be_active_ia(&f, [2.0, 2.0, 2.0], [3.0, 3.0, 3.0]));
 /// ```
 pub fn block_may_be_active_ia(functions: &[Primitive], min: V3, max: V3) -> bool {
-    functions
-        .iter()
-        .any(|f| ia_sign(f, min, max, REFINE).is_none())
+    functions.iter().any(|f| ia_sign(f, min, max, REFINE).is_none())
 }
 
 /// MI block test: false iff one function provably exceeds every other

@@ -51,11 +51,7 @@ pub struct GridSpec {
 impl GridSpec {
     /// `n^3` cubes over `[lo, hi]`, 5 tets per cube.
     pub fn cube(n: usize, lo: f64, hi: f64) -> GridSpec {
-        GridSpec {
-            resolution: [n; 3],
-            bounds: [[lo; 3], [hi; 3]],
-            split: 5,
-        }
+        GridSpec { resolution: [n; 3], bounds: [[lo; 3], [hi; 3]], split: 5 }
     }
 
     /// Position of grid vertex `(i, j, k)`: `lo + (hi - lo) * i / n` per
@@ -114,11 +110,7 @@ impl Scene {
                 path: JsonPath::default(),
                 message: format!(
                     "no built-in scene `{name}` (known: {})",
-                    super::builtin::list()
-                        .iter()
-                        .map(|(n, _)| *n)
-                        .collect::<Vec<_>>()
-                        .join(", ")
+                    super::builtin::list().iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
                 ),
             });
         }
@@ -153,13 +145,7 @@ impl Scene {
         })?;
         scene(&v, base_dir).map_err(|l| {
             let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
-            SceneError {
-                file: file.to_string(),
-                line,
-                column,
-                path: l.path,
-                message: l.message,
-            }
+            SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
         })
     }
 }
@@ -167,11 +153,7 @@ impl Scene {
 /// Read a reference implementation function file (a JSON list of
 /// primitives, or `{"input": [...]}`), with the reference's meaning of a
 /// negative sphere radius (unsigned distance).
-pub fn load_function_list(
-    text: &str,
-    file: &str,
-    base_dir: Option<&Path>,
-) -> Result<Vec<Primitive>, SceneError> {
+pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Vec<Primitive>, SceneError> {
     let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
         file: file.to_string(),
         line: e.line(),
@@ -179,19 +161,10 @@ pub fn load_function_list(
         path: JsonPath::default(),
         message: e.to_string(),
     })?;
-    let ctx = Ctx {
-        base_dir,
-        compat: true,
-    };
+    let ctx = Ctx { base_dir, compat: true };
     function_list(&v, &JsonPath::default(), &ctx).map_err(|l| {
         let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
-        SceneError {
-            file: file.to_string(),
-            line,
-            column,
-            path: l.path,
-            message: l.message,
-        }
+        SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
     })
 }
 
@@ -201,17 +174,11 @@ fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>
         _ => (v, path.clone()),
     };
     let a = array(v, &path)?;
-    a.iter()
-        .enumerate()
-        .map(|(i, f)| primitive(f, &path.index(i), ctx))
-        .collect()
+    a.iter().enumerate().map(|(i, f)| primitive(f, &path.index(i), ctx)).collect()
 }
 
 fn resolve(names: &[String], name: &str) -> Option<usize> {
-    names
-        .iter()
-        .position(|n| n == name)
-        .or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
+    names.iter().position(|n| n == name).or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
 }
 
 fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
@@ -229,12 +196,7 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     for (i, x) in res.iter().enumerate() {
         match x.as_i64() {
             Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
-            Some(n) => {
-                return err(
-                    &rp,
-                    format!("empty grid: resolution {n} (needs at least 1 cube per axis)"),
-                )
-            }
+            Some(n) => return err(&rp, format!("empty grid: resolution {n} (needs at least 1 cube per axis)")),
             None => return err(&rp, "resolution must be a whole number"),
         }
     }
@@ -247,19 +209,11 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
         return err(&bp, "empty grid: each max must exceed its min");
     }
-    let split = if o.has("split") {
-        num(o.get("split")?, &path.key("split"))?
-    } else {
-        5.0
-    };
+    let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
     if split != 5.0 && split != 6.0 {
         return err(&path.key("split"), "split must be 5 or 6");
     }
-    Ok(GridSpec {
-        resolution,
-        bounds,
-        split: split as u8,
-    })
+    Ok(GridSpec { resolution, bounds, split: split as u8 })
 }
 
 fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
@@ -291,24 +245,23 @@ fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
                 _ => err(&p, format!("unknown operator `{k}` (union, intersection, difference, complement, function)")),
             }
         }
-        _ => err(path, "expected an expression string or {\"union\"|\"intersection\"|\"difference\"|\"complement\": ...}"),
+        _ => err(
+            path,
+            "expected an expression string or {\"union\"|\"intersection\"|\"difference\"|\"complement\": ...}",
+        ),
     }
 }
 
 fn region_id(v: &Value, path: &JsonPath) -> Result<RegionId, Located> {
-    v.as_i64()
-        .map_or_else(|| err(path, "a region is an integer"), Ok)
+    v.as_i64().map_or_else(|| err(path, "a region is an integer"), Ok)
 }
 
 fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Located> {
     let (list, lp, mut otherwise) = match v {
         Value::Object(_) => {
             let o = Obj::new(v, path)?;
-            let other = if o.has("otherwise") {
-                Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?)
-            } else {
-                None
-            };
+            let other =
+                if o.has("otherwise") { Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?) } else { None };
             (o.get("rules")?, path.key("rules"), other)
         }
         _ => (v, path.clone(), None),
@@ -322,15 +275,9 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
             otherwise.get_or_insert(region);
             break;
         }
-        out.push(Rule {
-            when: expr(o.get("when")?, &o.path.key("when"), names)?,
-            region,
-        });
+        out.push(Rule { when: expr(o.get("when")?, &o.path.key("when"), names)?, region });
     }
-    Ok(RegionRule::Rules {
-        rules: out,
-        otherwise: otherwise.unwrap_or(0),
-    })
+    Ok(RegionRule::Rules { rules: out, otherwise: otherwise.unwrap_or(0) })
 }
 
 fn tuples<const N: usize>(
@@ -349,10 +296,7 @@ fn tuples<const N: usize>(
         for j in 0..N {
             r[j] = region_id(&a[j], &p.index(j))?;
             if !known.is_empty() && !known.contains(&r[j]) {
-                return err(
-                    &p.index(j),
-                    format!("region {} is never produced by the region rule", r[j]),
-                );
+                return err(&p.index(j), format!("region {} is never produced by the region rule", r[j]));
             }
         }
         out.push(r);
@@ -363,7 +307,10 @@ fn tuples<const N: usize>(
 fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
     let root = JsonPath::default();
     if v.is_array() {
-        return err(&root, "a scene is an object with `grid` and `functions` (this looks like a reference function list)");
+        return err(
+            &root,
+            "a scene is an object with `grid` and `functions` (this looks like a reference function list)",
+        );
     }
     let o = Obj::new(v, &root)?;
     if o.has("funcFile") {
@@ -376,15 +323,12 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         _ => return err(&root.key("mode"), "mode must be \"ia\" or \"mi\""),
     };
     let fp = root.key("functions");
-    let ctx = Ctx {
-        base_dir,
-        compat: false,
-    };
+    let ctx = Ctx { base_dir, compat: false };
     let (functions, names) = match o.get("functions")? {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            let text = std::fs::read_to_string(&full)
-                .or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+            let text =
+                std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
             let f = load_function_list(&text, &full.display().to_string(), full.parent())
                 .or_else(|e| err(&fp, e.to_string()))?;
             let names = (0..f.len()).map(|i| i.to_string()).collect();
@@ -400,9 +344,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
                 let name = match f.get("name") {
                     None => i.to_string(),
                     Some(Value::String(s)) => {
-                        let ok = !s.is_empty()
-                            && s.chars()
-                                .all(|c| c.is_alphanumeric() || c == '_' || c == '.');
+                        let ok = !s.is_empty() && s.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '.');
                         if !ok || (s.parse::<usize>().is_ok() && *s != i.to_string()) {
                             return err(&p.key("name"), format!("bad function name `{s}` (letters, digits, `_`, `.`; a number only if it is the function's own index)"));
                         }
@@ -422,9 +364,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         return err(&fp, "no functions");
     }
     let regions = match (o.map.get("regions"), o.map.get("solid")) {
-        (Some(_), Some(_)) => {
-            return err(&root.key("solid"), "give `regions` or `solid`, not both")
-        }
+        (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
         (Some(r), None) => rules(r, &root.key("regions"), &names)?,
         (None, Some(s)) => RegionRule::solid(expr(s, &root.key("solid"), &names)?),
         (None, None) => {
@@ -447,14 +387,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         None => Vec::new(),
         Some(c) => tuples::<3>(c, &root.key("curves"), &known)?,
     };
-    Ok(Scene {
-        grid,
-        mode,
-        names,
-        functions,
-        regions,
-        interest: Interest::new(surfaces.as_deref(), &curves),
-    })
+    Ok(Scene { grid, mode, names, functions, regions, interest: Interest::new(surfaces.as_deref(), &curves) })
 }
 
 /// A reference implementation config (`{"gridResolution": R, "gridBbox":
@@ -488,19 +421,14 @@ fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> 
     let file = o.str("funcFile")?;
     let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
     let fp = root.key("funcFile");
-    let text = std::fs::read_to_string(&full)
-        .or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
-    let functions = load_function_list(&text, &full.display().to_string(), full.parent())
-        .or_else(|e| err(&fp, e.to_string()))?;
+    let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+    let functions =
+        load_function_list(&text, &full.display().to_string(), full.parent()).or_else(|e| err(&fp, e.to_string()))?;
     if functions.is_empty() {
         return err(&fp, "no functions");
     }
     Ok(Scene {
-        grid: GridSpec {
-            resolution: [n; 3],
-            bounds,
-            split: 5,
-        },
+        grid: GridSpec { resolution: [n; 3], bounds, split: 5 },
         mode: Mode::Ia,
         names: (0..functions.len()).map(|i| i.to_string()).collect(),
         functions,

@@ -235,11 +235,7 @@ impl Cylinder {
 pub(crate) fn segment_closest(p: V3, a: V3, b: V3) -> (f64, V3) {
     let ab = sub(b, a);
     let l2 = dot(ab, ab);
-    let t = if l2 > 0.0 {
-        (dot(sub(p, a), ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
+    let t = if l2 > 0.0 { (dot(sub(p, a), ab) / l2).clamp(0.0, 1.0) } else { 0.0 };
     let q = add(a, scale(ab, t));
     (norm(sub(p, q)), q)
 }
@@ -333,10 +329,8 @@ impl Cone {
     pub(crate) fn eval(&self, p: V3) -> f64 {
         let v = sub(p, self.apex);
         let d = self.apex;
-        let dist = ((p[0] - d[0]) * (p[0] - d[0])
-            + (p[1] - d[1]) * (p[1] - d[1])
-            + (p[2] - d[2]) * (p[2] - d[2]))
-            .sqrt();
+        let dist =
+            ((p[0] - d[0]) * (p[0] - d[0]) + (p[1] - d[1]) * (p[1] - d[1]) + (p[2] - d[2]) * (p[2] - d[2])).sqrt();
         dot(self.axis, v) - self.cos_angle * dist
     }
     pub(crate) fn gradient(&self, p: V3) -> V3 {

@@ -64,10 +64,7 @@ pub(crate) struct Obj<'a> {
 impl<'a> Obj<'a> {
     pub fn new(v: &'a Value, path: &JsonPath) -> Result<Obj<'a>, Located> {
         match v.as_object() {
-            Some(map) => Ok(Obj {
-                map,
-                path: path.clone(),
-            }),
+            Some(map) => Ok(Obj { map, path: path.clone() }),
             None => err(path, "expected an object"),
         }
     }
@@ -86,20 +83,14 @@ impl<'a> Obj<'a> {
     pub fn nonneg(&self, k: &str) -> Result<f64, Located> {
         let r = self.f64(k)?;
         if r < 0.0 {
-            return err(
-                &self.path.key(k),
-                format!("negative {} {r}", k.replace('_', " ")),
-            );
+            return err(&self.path.key(k), format!("negative {} {r}", k.replace('_', " ")));
         }
         Ok(r)
     }
     pub fn positive(&self, k: &str) -> Result<f64, Located> {
         let r = self.f64(k)?;
         if r <= 0.0 {
-            return err(
-                &self.path.key(k),
-                format!("`{k}` must be positive, got {r}"),
-            );
+            return err(&self.path.key(k), format!("`{k}` must be positive, got {r}"));
         }
         Ok(r)
     }
@@ -147,11 +138,7 @@ pub(crate) fn vec3(v: &Value, path: &JsonPath) -> Result<V3, Located> {
     if a.len() != 3 {
         return err(path, format!("expected 3 numbers, got {}", a.len()));
     }
-    Ok([
-        num(&a[0], &path.index(0))?,
-        num(&a[1], &path.index(1))?,
-        num(&a[2], &path.index(2))?,
-    ])
+    Ok([num(&a[0], &path.index(0))?, num(&a[1], &path.index(1))?, num(&a[2], &path.index(2))?])
 }
 
 fn list_of<'a>(o: &Obj<'a>, k: &str, ctx: &Ctx) -> Result<Vec<Primitive>, Located> {
@@ -160,10 +147,7 @@ fn list_of<'a>(o: &Obj<'a>, k: &str, ctx: &Ctx) -> Result<Vec<Primitive>, Locate
     if a.is_empty() {
         return err(&p, "needs at least one primitive");
     }
-    a.iter()
-        .enumerate()
-        .map(|(i, v)| primitive(v, &p.index(i), ctx))
-        .collect()
+    a.iter().enumerate().map(|(i, v)| primitive(v, &p.index(i), ctx)).collect()
 }
 
 /// Read one primitive object (any `name` member is ignored here).
@@ -189,27 +173,13 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             } else {
                 SphereKind::Signed
             };
-            Primitive::Sphere(Sphere {
-                center,
-                radius: r.abs(),
-                kind,
-            })
+            Primitive::Sphere(Sphere { center, radius: r.abs(), kind })
         }
-        "plane" => Primitive::Plane(Plane {
-            point: o.vec3("point")?,
-            normal: o.dir("normal")?,
-        }),
-        "half_space" | "halfspace" => Primitive::HalfSpace(Plane {
-            point: o.vec3("point")?,
-            normal: o.dir("normal")?,
-        }),
+        "plane" => Primitive::Plane(Plane { point: o.vec3("point")?, normal: o.dir("normal")? }),
+        "half_space" | "halfspace" => Primitive::HalfSpace(Plane { point: o.vec3("point")?, normal: o.dir("normal")? }),
         "line" => Primitive::Cylinder(Cylinder {
             point: o.vec3("point")?,
-            axis: o.dir(if o.has("unit_vector") {
-                "unit_vector"
-            } else {
-                "direction"
-            })?,
+            axis: o.dir(if o.has("unit_vector") { "unit_vector" } else { "direction" })?,
             radius: 0.0,
             squared,
         }),
@@ -225,12 +195,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
                 (o.vec3("axis_point")?, o.dir("axis_vector")?)
             };
             let radius = o.nonneg("radius")?;
-            Primitive::Cylinder(Cylinder {
-                point,
-                axis,
-                radius,
-                squared,
-            })
+            Primitive::Cylinder(Cylinder { point, axis, radius, squared })
         }
         "torus" => Primitive::Torus(Torus {
             center: o.vec3("center")?,
@@ -256,18 +221,12 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             if radii.iter().any(|r| *r <= 0.0) {
                 return err(&path.key("radii"), "radii must be positive");
             }
-            Primitive::Ellipsoid(Ellipsoid {
-                center: o.vec3("center")?,
-                radii,
-            })
+            Primitive::Ellipsoid(Ellipsoid { center: o.vec3("center")?, radii })
         }
         "box" => {
             let (center, half) = if o.has("min") || o.has("max") {
                 let (a, b) = (o.vec3("min")?, o.vec3("max")?);
-                (
-                    [0, 1, 2].map(|i| 0.5 * (a[i] + b[i])),
-                    [0, 1, 2].map(|i| 0.5 * (b[i] - a[i])),
-                )
+                ([0, 1, 2].map(|i| 0.5 * (a[i] + b[i])), [0, 1, 2].map(|i| 0.5 * (b[i] - a[i])))
             } else if o.has("size") {
                 (o.vec3("center")?, o.vec3("size")?.map(|s| 0.5 * s))
             } else {
@@ -280,11 +239,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
         }
         "capped_cylinder" | "capsule" | "segment" => {
             let (a, b) = (o.vec3("a")?, o.vec3("b")?);
-            let radius = if ty == "segment" {
-                0.0
-            } else {
-                o.nonneg("radius")?
-            };
+            let radius = if ty == "segment" { 0.0 } else { o.nonneg("radius")? };
             if ty == "capped_cylinder" {
                 if a == b {
                     return err(&path.key("b"), "cap centres coincide");
@@ -300,24 +255,15 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             if pts.is_empty() {
                 return err(&pp, "needs at least one point");
             }
-            let points: Vec<V3> = pts
-                .iter()
-                .enumerate()
-                .map(|(i, v)| vec3(v, &pp.index(i)))
-                .collect::<Result<_, _>>()?;
+            let points: Vec<V3> =
+                pts.iter().enumerate().map(|(i, v)| vec3(v, &pp.index(i))).collect::<Result<_, _>>()?;
             let weights = if o.has("weights") {
                 let wp = path.key("weights");
                 let w = array(o.get("weights")?, &wp)?;
                 if w.len() != points.len() {
-                    return err(
-                        &wp,
-                        format!("{} weights for {} points", w.len(), points.len()),
-                    );
+                    return err(&wp, format!("{} weights for {} points", w.len(), points.len()));
                 }
-                w.iter()
-                    .enumerate()
-                    .map(|(i, v)| num(v, &wp.index(i)))
-                    .collect::<Result<_, _>>()?
+                w.iter().enumerate().map(|(i, v)| num(v, &wp.index(i))).collect::<Result<_, _>>()?
             } else {
                 vec![0.0; points.len()]
             };
@@ -354,19 +300,11 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
                     heights[i][j] = num(&r[j], &hp.index(i).index(j))?;
                 }
             }
-            Primitive::Patch(Box::new(BicubicPatch {
-                origin,
-                size: sz,
-                heights,
-            }))
+            Primitive::Patch(Box::new(BicubicPatch { origin, size: sz, heights }))
         }
         "wyvill" => Primitive::Wyvill(Wyvill {
             center: o.vec3("center")?,
-            axis: if o.has("axis") {
-                Some(o.dir("axis")?)
-            } else {
-                None
-            },
+            axis: if o.has("axis") { Some(o.dir("axis")?) } else { None },
             radius: o.positive("radius")?,
             height: o.f64("height")?,
         }),
@@ -385,10 +323,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
         other => {
             return err(
                 &path.key("type"),
-                format!(
-                    "unknown primitive `{other}` (known: {})",
-                    PRIMITIVE_TYPES.join(", ")
-                ),
+                format!("unknown primitive `{other}` (known: {})", PRIMITIVE_TYPES.join(", ")),
             )
         }
     })
@@ -401,59 +336,32 @@ fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {
             Some(d) => d.join(rel),
             None => Path::new(rel).to_path_buf(),
         };
-        let bytes = std::fs::read(&full).or_else(|e| {
-            err(
-                &o.path.key("path"),
-                format!("cannot read {}: {e}", full.display()),
-            )
-        })?;
-        let is_stl = full
-            .extension()
-            .is_some_and(|e| e.eq_ignore_ascii_case("stl"));
+        let bytes = std::fs::read(&full)
+            .or_else(|e| err(&o.path.key("path"), format!("cannot read {}: {e}", full.display())))?;
+        let is_stl = full.extension().is_some_and(|e| e.eq_ignore_ascii_case("stl"));
         let parsed = if is_stl {
             parse_stl(&bytes)
         } else {
             match std::str::from_utf8(&bytes) {
                 Ok(text) => parse_obj(text),
-                Err(_) => {
-                    return err(
-                        &o.path.key("path"),
-                        format!("{} is not text (OBJ expected)", full.display()),
-                    )
-                }
+                Err(_) => return err(&o.path.key("path"), format!("{} is not text (OBJ expected)", full.display())),
             }
         };
-        return parsed.or_else(|e| {
-            err(
-                &o.path.key("path"),
-                format!("{}:{}: {}", full.display(), e.line, e.message),
-            )
-        });
+        return parsed.or_else(|e| err(&o.path.key("path"), format!("{}:{}: {}", full.display(), e.line, e.message)));
     }
     let vp = o.path.key("vertices");
     let tp = o.path.key("triangles");
     let vs = array(o.get("vertices")?, &vp)?;
-    let vertices: Vec<V3> = vs
-        .iter()
-        .enumerate()
-        .map(|(i, v)| vec3(v, &vp.index(i)))
-        .collect::<Result<_, _>>()?;
+    let vertices: Vec<V3> = vs.iter().enumerate().map(|(i, v)| vec3(v, &vp.index(i))).collect::<Result<_, _>>()?;
     let ts = array(o.get("triangles")?, &tp)?;
     let mut triangles = Vec::with_capacity(ts.len());
     for (i, t) in ts.iter().enumerate() {
         let p = tp.index(i);
         let a = array(t, &p)?;
-        let idx: Vec<u32> = a
-            .iter()
-            .filter_map(|x| x.as_u64())
-            .filter(|&x| (x as usize) < vertices.len())
-            .map(|x| x as u32)
-            .collect();
+        let idx: Vec<u32> =
+            a.iter().filter_map(|x| x.as_u64()).filter(|&x| (x as usize) < vertices.len()).map(|x| x as u32).collect();
         if a.len() != 3 || idx.len() != 3 {
-            return err(
-                &p,
-                format!("a triangle needs 3 vertex indices below {}", vertices.len()),
-            );
+            return err(&p, format!("a triangle needs 3 vertex indices below {}", vertices.len()));
         }
         triangles.push([idx[0], idx[1], idx[2]]);
     }
@@ -480,9 +388,8 @@ fn transform(o: &Obj, ctx: &Ctx) -> Result<Primitive, Located> {
             m[i][i] = s[i];
         }
     }
-    let mul = |a: &Mat3, b: &Mat3| -> Mat3 {
-        [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-    };
+    let mul =
+        |a: &Mat3, b: &Mat3| -> Mat3 { [0, 1, 2].map(|i| [0, 1, 2].map(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum())) };
     if o.has("rotate") {
         let r = Obj::new(o.get("rotate")?, &o.path.key("rotate"))?;
         let angle = r.f64("degrees")?.to_radians();
@@ -500,11 +407,7 @@ fn transform(o: &Obj, ctx: &Ctx) -> Result<Primitive, Located> {
         }
         m = mul(&a, &m);
     }
-    let t = if o.has("translate") {
-        o.vec3("translate")?
-    } else {
-        [0.0; 3]
-    };
+    let t = if o.has("translate") { o.vec3("translate")? } else { [0.0; 3] };
     match Transform::new(m, t, inner) {
         Some(t) => Ok(Primitive::Transform(Box::new(t))),
         None => err(&o.path, "the transform's linear part is singular"),

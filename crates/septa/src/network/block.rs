@@ -1,0 +1,502 @@
+//! One block of the grid: per-tet complexes (Du et al. Sec. 4-6) turned into
+//! polygons with global plane-based keys, plus a summary of the block's
+//! 3D regions and shell connectivity that merges with other blocks exactly
+//! and in any order (issue 6).
+//!
+//! Memory per block is proportional to its tets while it is processed; what
+//! leaves the block is proportional to its active tets and to its surface.
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use super::uf::UnionFind;
+use super::{NetworkError, VKey};
+use crate::complex::{Complex, Mode, Options, Plane, NONE};
+use crate::grid::{Block, Grid};
+
+/// A 3D region label: IA sign bits over all functions (bit `f` set iff
+/// `f > 0`), MI the material in word 0.
+pub(crate) type Label = SmallVec<[u64; 2]>;
+
+/// Sorted grid vertices of a tet face.
+pub(crate) type FaceKey = [u32; 3];
+
+/// A side of a network face, for shell assembly.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SRef {
+    /// Side `1` (negative) or `0` (positive) of a block polygon.
+    Side(u32, u8),
+    /// The side of a half-polygon (a network face on a tet face) facing its tet.
+    Half(u32),
+    /// A piece of a transparent tet face at one edge (a wedge passing through).
+    T(u32),
+}
+
+/// A network face lying on a tet face (a function vanishing on the whole
+/// face, or two materials tied on it), seen from one of its two tets.
+#[derive(Clone, Debug)]
+pub(crate) struct HalfPoly {
+    pub face: FaceKey,
+    /// Block vertex ids, counter-clockwise seen from inside the tet.
+    pub verts: SmallVec<[u32; 8]>,
+    /// Block region (after compression: block component).
+    pub cell: u32,
+    /// IA: the (smallest) function vanishing on the face.
+    pub zero: u16,
+}
+
+/// Key of a transparent tet-face piece at an edge, across blocks.
+pub(crate) type OpenT = (FaceKey, Label, VKey, VKey);
+
+/// What a block hands to the merge.
+#[derive(Debug, Default)]
+pub(crate) struct BlockOut {
+    pub keys: Vec<VKey>,
+    pub points: Vec<[f64; 3]>,
+    pub poly_start: Vec<u32>,
+    pub poly_verts: Vec<u32>,
+    pub poly_label: Vec<[u16; 2]>,
+    pub poly_cells: Vec<[u32; 2]>,
+    pub halves: Vec<HalfPoly>,
+    pub comp_label: Vec<Label>,
+    pub comp_volume: Vec<f64>,
+    pub contacts: Vec<(FaceKey, Label, u32)>,
+    pub unions: Vec<(SRef, SRef)>,
+    pub tnodes: u32,
+    pub open_t: Vec<(OpenT, u32)>,
+    pub active_tets: usize,
+    pub tets: usize,
+}
+
+/// Per-thread reusable state.
+#[derive(Default)]
+pub(crate) struct Worker {
+    complex: Complex,
+    vals: Vec<[f64; 4]>,
+    active: Vec<u16>,
+    vid: Vec<u32>,
+    fref: Vec<Option<SRef>>,
+    tets: Vec<usize>,
+    pairs: Vec<(u32, u32)>,
+    cell_labels: Vec<Label>,
+}
+
+/// Block-local maps, dropped with the block.
+#[derive(Default)]
+struct State {
+    out: BlockOut,
+    vmap: FxHashMap<VKey, u32>,
+    contacts: FxHashMap<(FaceKey, Label), u32>,
+    tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
+    uf: UnionFind,
+    node_label: Vec<Label>,
+    node_volume: Vec<f64>,
+}
+
+/// Run-wide inputs.
+pub(crate) struct Ctx<'a> {
+    pub grid: &'a Grid,
+    pub values: &'a [f64],
+    pub k: usize,
+    pub mode: Mode,
+    pub options: Options,
+    pub volumes: bool,
+}
+
+const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+
+fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
+    let mut f = FACE_OF[i].map(|j| tet[j]);
+    f.sort_unstable();
+    f
+}
+
+impl Worker {
+    /// Processes one block.
+    pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
+        let mut st = State::default();
+        let mut tets = std::mem::take(&mut self.tets);
+        ctx.grid.block_tets(block, &mut tets);
+        for &t in &tets {
+            self.process_tet(ctx, &mut st, t)?;
+        }
+        st.out.tets = tets.len();
+        self.tets = tets;
+        Ok(finish(st))
+    }
+
+    /// The per-tet step (active functions, complex, extraction); look-up
+    /// tables slot in at the `build` call.
+    fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
+        let tet = ctx.grid.tet(t);
+        let k = ctx.k;
+        let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
+        self.active.clear();
+        match ctx.mode {
+            Mode::Ia => {
+                for f in 0..k {
+                    let r = row(f);
+                    if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
+                        if r.iter().all(|&x| x == 0.0) {
+                            return Err(NetworkError::VanishesOnTet { tet: t, function: f });
+                        }
+                        self.active.push(f as u16);
+                    }
+                }
+            }
+            Mode::Mi => mi_active(&tet, ctx, &mut self.active),
+        }
+        let empty = match ctx.mode {
+            Mode::Ia => self.active.is_empty(),
+            Mode::Mi => self.active.len() < 2,
+        };
+        let volume = if ctx.volumes { ctx.grid.tet_volume(t) } else { 0.0 };
+        if empty {
+            let label: Label = match ctx.mode {
+                Mode::Ia => ia_base_label(&tet, ctx),
+                Mode::Mi => SmallVec::from_elem(self.active[0] as u64, 1),
+            };
+            let node = st.uf.push();
+            for i in 0..4 {
+                contact(st, face_key(&tet, i), &label, node);
+            }
+            st.node_label.push(label);
+            st.node_volume.push(volume);
+            return Ok(());
+        }
+        st.out.active_tets += 1;
+        self.vals.clear();
+        for &f in &self.active {
+            self.vals.push(row(f as usize));
+        }
+        self.complex
+            .build(ctx.mode, &self.vals, &ctx.options)
+            .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
+        let owned = std::mem::take(&mut self.complex);
+        let c = &owned;
+        // Degenerate tet faces: the network contains the whole face.
+        let mut deg = [None::<u16>; 4];
+        for (i, d) in deg.iter_mut().enumerate() {
+            *d = degenerate_face(ctx.mode, &self.vals, &self.active, FACE_OF[i]);
+        }
+        // Region labels and nodes.
+        let base = st.uf.len() as u32;
+        let base_label = match ctx.mode {
+            Mode::Ia => ia_base_label(&tet, ctx),
+            Mode::Mi => SmallVec::new(),
+        };
+        self.cell_labels.clear();
+        for cell in c.cells() {
+            let label: Label = match ctx.mode {
+                Mode::Ia => {
+                    let mut l = base_label.clone();
+                    for (li, &g) in self.active.iter().enumerate() {
+                        let (w, b) = (g as usize / 64, g % 64);
+                        if cell.is_positive(li as u16) {
+                            l[w] |= 1 << b;
+                        } else {
+                            l[w] &= !(1 << b);
+                        }
+                    }
+                    l
+                }
+                Mode::Mi => SmallVec::from_elem(self.active[cell.material() as usize] as u64, 1),
+            };
+            st.uf.push();
+            st.node_label.push(label.clone());
+            st.node_volume.push(0.0);
+            self.cell_labels.push(label);
+        }
+        if ctx.volumes {
+            let corners = tet.map(|v| ctx.grid.vertex(v));
+            for (ci, cell) in c.cells().iter().enumerate() {
+                st.node_volume[base as usize + ci] = cell_volume(c, cell, &corners, &self.vals);
+            }
+        }
+        // Vertices, lazily keyed.
+        self.vid.clear();
+        self.vid.resize(c.vertices().len(), NONE);
+        self.fref.clear();
+        self.fref.resize(c.faces().len(), None);
+        self.pairs.clear();
+        for (fi, face) in c.faces().iter().enumerate() {
+            match face.plane {
+                Plane::TetFace(i) => {
+                    let i = i as usize;
+                    if let Some(z) = deg[i] {
+                        let verts = face.vertices.iter().map(|&v| vertex_id(self, c, ctx, st, &tet, v)).collect();
+                        let h = st.out.halves.len() as u32;
+                        st.out.halves.push(HalfPoly {
+                            face: face_key(&tet, i),
+                            verts,
+                            cell: base + face.cells[0],
+                            zero: z,
+                        });
+                        self.fref[fi] = Some(SRef::Half(h));
+                        if ctx.mode == Mode::Mi {
+                            self.pairs.push((i as u32, face.cells[0]));
+                        }
+                    } else {
+                        self.pairs.push((i as u32, face.cells[0]));
+                    }
+                }
+                plane => {
+                    let label = match plane {
+                        Plane::Function(f) => [self.active[f as usize]; 2],
+                        Plane::Pair(a, b) => [self.active[a as usize], self.active[b as usize]],
+                        Plane::TetFace(_) => unreachable!(),
+                    };
+                    let p = st.out.poly_label.len() as u32;
+                    if st.out.poly_start.is_empty() {
+                        st.out.poly_start.push(0);
+                    }
+                    for &v in &face.vertices {
+                        let id = vertex_id(self, c, ctx, st, &tet, v);
+                        st.out.poly_verts.push(id);
+                    }
+                    st.out.poly_start.push(st.out.poly_verts.len() as u32);
+                    st.out.poly_label.push(label);
+                    st.out.poly_cells.push([base + face.cells[0], base + face.cells[1]]);
+                    self.fref[fi] = Some(SRef::Side(p, 0));
+                }
+            }
+        }
+        // Region contacts across tet faces (cell grouping), once per (face, cell).
+        self.pairs.sort_unstable();
+        self.pairs.dedup();
+        for j in 0..self.pairs.len() {
+            let (i, cell) = self.pairs[j];
+            let label = self.cell_labels[cell as usize].clone();
+            contact(st, face_key(&tet, i as usize), &label, base + cell);
+        }
+        // Shell connectivity: around every edge of every cell between network
+        // points, the two faces of the cell there bound the same wedge.
+        for (ci, cell) in c.cells().iter().enumerate() {
+            let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
+            for &fi in &cell.faces {
+                for &e in &c.faces()[fi as usize].edges {
+                    ef.push((e, fi));
+                }
+            }
+            ef.sort_unstable();
+            let mut j = 0;
+            while j + 1 < ef.len() {
+                if ef[j].0 != ef[j + 1].0 {
+                    j += 1;
+                    continue;
+                }
+                let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
+                j += 2;
+                let [u, w] = c.edges()[e as usize].vertices;
+                if !on_network(ctx.mode, c, &self.vals, u) || !on_network(ctx.mode, c, &self.vals, w) {
+                    continue;
+                }
+                let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
+                let r2 = self.face_ref(c, ctx, st, &tet, ci as u32, f2, u, w);
+                st.out.unions.push((r1, r2));
+            }
+        }
+        self.complex = owned;
+        Ok(())
+    }
+
+    /// The shell reference of face `f` of cell `cell` at edge `(u, w)`.
+    #[allow(clippy::too_many_arguments)]
+    fn face_ref(
+        &mut self,
+        c: &Complex,
+        ctx: &Ctx,
+        st: &mut State,
+        tet: &[u32; 4],
+        cell: u32,
+        f: u32,
+        u: u32,
+        w: u32,
+    ) -> SRef {
+        let face = &c.faces()[f as usize];
+        match self.fref[f as usize] {
+            Some(SRef::Side(p, _)) => SRef::Side(p, if face.cells[0] == cell { 0 } else { 1 }),
+            Some(r) => r,
+            None => {
+                let Plane::TetFace(i) = face.plane else { unreachable!() };
+                let fk = face_key(tet, i as usize);
+                let a = vertex_id(self, c, ctx, st, tet, u);
+                let b = vertex_id(self, c, ctx, st, tet, w);
+                let key = (fk, self.cell_labels[cell as usize].clone(), a.min(b), a.max(b));
+                if let Some(t) = st.tmap.remove(&key) {
+                    SRef::T(t)
+                } else {
+                    let t = st.out.tnodes;
+                    st.out.tnodes += 1;
+                    st.tmap.insert(key, t);
+                    SRef::T(t)
+                }
+            }
+        }
+    }
+}
+
+/// Whether a complex vertex lies on the network (some function vanishes
+/// there, IA; two or more functions tie for the maximum, MI).
+fn on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> bool {
+    let vert = &c.vertices()[v as usize];
+    match mode {
+        Mode::Ia => {
+            if vert.dim() > 0 {
+                return true;
+            }
+            let corner = vert.simplex().trailing_zeros() as usize;
+            vals.iter().any(|r| r[corner] == 0.0)
+        }
+        Mode::Mi => {
+            if vert.dim() > 0 {
+                return true;
+            }
+            let corner = vert.simplex().trailing_zeros() as usize;
+            let m = vals.iter().map(|r| r[corner]).fold(f64::NEG_INFINITY, f64::max);
+            vals.iter().filter(|r| r[corner] == m).count() >= 2
+        }
+    }
+}
+
+/// Block id of complex vertex `v`, creating its key and position on first use.
+fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32; 4], v: u32) -> u32 {
+    if w.vid[v as usize] != NONE {
+        return w.vid[v as usize];
+    }
+    let vert = c.vertices()[v as usize];
+    let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
+    let mut n = 0;
+    for i in 0..4 {
+        if vert.simplex() >> i & 1 == 1 {
+            key.grid[n] = tet[i];
+            n += 1;
+        }
+    }
+    key.grid[..n].sort_unstable();
+    if !(ctx.mode == Mode::Mi && vert.dim() == 0) {
+        for (j, &f) in vert.functions().iter().enumerate() {
+            key.funcs[j] = w.active[f as usize];
+        }
+        key.funcs.sort_unstable();
+    }
+    let next = st.out.keys.len() as u32;
+    let id = *st.vmap.entry(key).or_insert(next);
+    if id == next {
+        st.out.keys.push(key);
+        let corners = tet.map(|g| ctx.grid.vertex(g));
+        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
+    }
+    w.vid[v as usize] = id;
+    id
+}
+
+fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
+    match st.contacts.remove(&(face, label.clone())) {
+        Some(other) => st.uf.union(other, node),
+        None => {
+            st.contacts.insert((face, label.clone()), node);
+        }
+    }
+}
+
+/// IA sign bits at tet vertex 0 (every inactive function has one sign on the tet).
+fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
+    let k = ctx.k;
+    let mut l: Label = SmallVec::from_elem(0, k.div_ceil(64).max(1));
+    let base = tet[0] as usize * k;
+    for f in 0..k {
+        if ctx.values[base + f] > 0.0 {
+            l[f / 64] |= 1 << (f % 64);
+        }
+    }
+    l
+}
+
+/// MI active functions: those not strictly dominated at all 4 tet vertices.
+fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
+    let k = ctx.k;
+    let v = |f: usize, i: usize| ctx.values[tet[i] as usize * k + f];
+    // A likely dominator: the maximum at vertex 0.
+    let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
+    for f in 0..k {
+        if f != g0 && (0..4).all(|i| v(g0, i) > v(f, i)) {
+            continue;
+        }
+        if (0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > v(f, i))) {
+            continue;
+        }
+        out.push(f as u16);
+    }
+}
+
+/// Whether tet face `corners` lies in the network: IA, the smallest active
+/// function vanishing at its 3 corners; MI, two active functions tied for
+/// the maximum at all 3 corners (returns the first of them).
+fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
+    match mode {
+        Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
+        Mode::Mi => {
+            let max = corners.map(|i| vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max));
+            let tied: SmallVec<[usize; 4]> =
+                (0..vals.len()).filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j])).collect();
+            (tied.len() >= 2).then(|| active[tied[0]])
+        }
+    }
+}
+
+/// Volume of a convex cell (floating point; output and invariant checks only):
+/// sum of cones from its first vertex over its faces.
+fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4], vals: &[[f64; 4]]) -> f64 {
+    let pos = |v: u32| c.vertex_position(v as usize, corners, vals);
+    let apex = pos(c.faces()[cell.faces[0] as usize].vertices[0]);
+    let mut vol = 0.0;
+    for &fi in &cell.faces {
+        let vs = &c.faces()[fi as usize].vertices;
+        let p0 = pos(vs[0]);
+        for j in 1..vs.len() - 1 {
+            let (p1, p2) = (pos(vs[j]), pos(vs[j + 1]));
+            vol += crate::grid::tet_volume(&apex, &p0, &p1, &p2).abs();
+        }
+    }
+    vol
+}
+
+/// Compresses block regions to components and exports the open contacts.
+fn finish(mut st: State) -> BlockOut {
+    let (comp, count) = st.uf.components();
+    let mut out = st.out;
+    out.comp_label = vec![SmallVec::new(); count];
+    out.comp_volume = vec![0.0; count];
+    for (n, label) in st.node_label.into_iter().enumerate() {
+        let c = comp[n] as usize;
+        out.comp_volume[c] += st.node_volume[n];
+        if out.comp_label[c].is_empty() {
+            out.comp_label[c] = label;
+        }
+    }
+    for cells in &mut out.poly_cells {
+        *cells = cells.map(|x| comp[x as usize]);
+    }
+    for h in &mut out.halves {
+        h.cell = comp[h.cell as usize];
+    }
+    let mut contacts: Vec<(FaceKey, Label, u32)> =
+        st.contacts.into_iter().map(|((f, l), n)| (f, l, comp[n as usize])).collect();
+    contacts.sort_unstable();
+    out.contacts = contacts;
+    let mut open: Vec<(OpenT, u32)> = st
+        .tmap
+        .into_iter()
+        .map(|((f, l, a, b), t)| {
+            let (ka, kb) = (out.keys[a as usize], out.keys[b as usize]);
+            ((f, l, ka.min(kb), ka.max(kb)), t)
+        })
+        .collect();
+    open.sort_unstable();
+    out.open_t = open;
+    if out.poly_start.is_empty() {
+        out.poly_start.push(0);
+    }
+    out
+}

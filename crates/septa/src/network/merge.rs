@@ -1,0 +1,200 @@
+//! Merging block outputs into one network: global vertex ids by key, regions
+//! joined across block faces, network faces on tet faces paired up.
+//! Blocks are merged in block order, so numbering is deterministic.
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use super::block::{BlockOut, FaceKey, Label, OpenT, SRef};
+use super::uf::UnionFind;
+use super::VKey;
+use crate::complex::{Mode, NONE};
+
+/// Everything the topology stage needs.
+#[derive(Default)]
+pub(crate) struct Merged {
+    pub keys: Vec<VKey>,
+    pub points: Vec<[f64; 3]>,
+    pub face_start: Vec<u32>,
+    pub face_verts: Vec<u32>,
+    pub face_label: Vec<[u16; 2]>,
+    /// Region nodes (before grouping) on each side.
+    pub face_nodes: Vec<[u32; 2]>,
+    pub region_uf: UnionFind,
+    pub region_label: Vec<Label>,
+    pub region_volume: Vec<f64>,
+    /// Shell union-find over `2 * face + side` then extra nodes.
+    pub shell_pairs: Vec<(u32, u32)>,
+    pub shell_nodes: usize,
+    pub active_tets: usize,
+}
+
+pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
+    let mut m = Merged { face_start: vec![0], ..Default::default() };
+    let mut vmap: FxHashMap<VKey, u32> = FxHashMap::default();
+    let mut contacts: FxHashMap<(FaceKey, Label), u32> = FxHashMap::default();
+    let mut open_t: FxHashMap<OpenT, u32> = FxHashMap::default();
+    // Raw shell unions, in "pre" ids: Side -> 2*face+side, Half -> halves,
+    // T -> t-nodes; resolved after the halves are paired.
+    let mut halves = Vec::new(); // (face key, global verts, region, zero)
+    let mut pre_unions: Vec<(Pre, Pre)> = Vec::new();
+    let mut t_total = 0u32;
+    let mut t_pairs = Vec::new();
+    for b in blocks {
+        let region_base = m.region_label.len() as u32;
+        let face_base = m.face_label.len() as u32;
+        let half_base = halves.len() as u32;
+        let t_base = t_total;
+        t_total += b.tnodes;
+        m.active_tets += b.active_tets;
+        // Vertices: global ids only for polygon vertices (lazily).
+        let mut remap = vec![NONE; b.keys.len()];
+        let mut gid = |v: u32, m: &mut Merged| -> u32 {
+            if remap[v as usize] == NONE {
+                let key = b.keys[v as usize];
+                let next = m.keys.len() as u32;
+                let id = *vmap.entry(key).or_insert(next);
+                if id == next {
+                    m.keys.push(key);
+                    m.points.push(b.points[v as usize]);
+                }
+                remap[v as usize] = id;
+            }
+            remap[v as usize]
+        };
+        for p in 0..b.poly_label.len() {
+            for j in b.poly_start[p]..b.poly_start[p + 1] {
+                let id = gid(b.poly_verts[j as usize], &mut m);
+                m.face_verts.push(id);
+            }
+            m.face_start.push(m.face_verts.len() as u32);
+            m.face_label.push(b.poly_label[p]);
+            m.face_nodes.push(b.poly_cells[p].map(|c| c + region_base));
+        }
+        for h in &b.halves {
+            let verts: SmallVec<[u32; 8]> = h.verts.iter().map(|&v| gid(v, &mut m)).collect();
+            halves.push((h.face, verts, h.cell + region_base, h.zero));
+        }
+        for _ in 0..b.comp_label.len() {
+            m.region_uf.push();
+        }
+        m.region_label.extend(b.comp_label);
+        m.region_volume.extend(b.comp_volume);
+        for (f, l, c) in b.contacts {
+            let node = c + region_base;
+            match contacts.remove(&(f, l.clone())) {
+                Some(o) => m.region_uf.union(o, node),
+                None => {
+                    contacts.insert((f, l), node);
+                }
+            }
+        }
+        for (key, t) in b.open_t {
+            let t = t + t_base;
+            match open_t.remove(&key) {
+                Some(o) => t_pairs.push((o, t)),
+                None => {
+                    open_t.insert(key, t);
+                }
+            }
+        }
+        let conv = |r: SRef| match r {
+            SRef::Side(p, s) => Pre::Side(2 * (p + face_base) + s as u32),
+            SRef::Half(h) => Pre::Half(h + half_base),
+            SRef::T(t) => Pre::T(t + t_base),
+        };
+        pre_unions.extend(b.unions.into_iter().map(|(a, c)| (conv(a), conv(c))));
+    }
+    // Pair the halves of network faces lying on tet faces.
+    let mut half_side: Vec<Option<u32>> = vec![None; halves.len()];
+    let mut extra_pairs = Vec::new(); // half-half unions (MI: same material both sides)
+    let mut by_key: FxHashMap<(FaceKey, SmallVec<[u32; 8]>), u32> = FxHashMap::default();
+    let mut pairs = Vec::new();
+    for (h, (face, verts, _, _)) in halves.iter().enumerate() {
+        let mut sorted = verts.clone();
+        sorted.sort_unstable();
+        match by_key.remove(&(*face, sorted.clone())) {
+            Some(o) => pairs.push((o, h as u32)),
+            None => {
+                by_key.insert((*face, sorted), h as u32);
+            }
+        }
+    }
+    let mut singles: Vec<u32> = by_key.into_values().collect();
+    singles.sort_unstable();
+    let new_face = |m: &mut Merged, verts: &[u32], label: [u16; 2], nodes: [u32; 2]| -> u32 {
+        m.face_verts.extend_from_slice(verts);
+        m.face_start.push(m.face_verts.len() as u32);
+        m.face_label.push(label);
+        m.face_nodes.push(nodes);
+        m.face_label.len() as u32 - 1
+    };
+    for (a, b) in pairs {
+        let (ha, hb) = (&halves[a as usize], &halves[b as usize]);
+        match mode {
+            Mode::Ia => {
+                let f = ha.3;
+                let pos_a = m.region_label[ha.2 as usize][f as usize / 64] >> (f % 64) & 1 == 1;
+                let (first, second) = if pos_a { (a, b) } else { (b, a) };
+                let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
+                let id = new_face(&mut m, &h1.1, [f, f], [h1.2, h2.2]);
+                half_side[first as usize] = Some(2 * id);
+                half_side[second as usize] = Some(2 * id + 1);
+            }
+            Mode::Mi => {
+                let ma = m.region_label[ha.2 as usize][0] as u16;
+                let mb = m.region_label[hb.2 as usize][0] as u16;
+                if ma == mb {
+                    extra_pairs.push((a, b));
+                    continue;
+                }
+                let (first, second) = if ma < mb { (a, b) } else { (b, a) };
+                let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
+                let id = new_face(&mut m, &h1.1, [ma.min(mb), ma.max(mb)], [h1.2, h2.2]);
+                half_side[first as usize] = Some(2 * id);
+                half_side[second as usize] = Some(2 * id + 1);
+            }
+        }
+    }
+    if mode == Mode::Ia {
+        // A function vanishing on a grid boundary face: one side only.
+        for h in singles {
+            let (_, verts, node, f) = &halves[h as usize];
+            let pos = m.region_label[*node as usize][*f as usize / 64] >> (f % 64) & 1 == 1;
+            if pos {
+                let id = new_face(&mut m, verts, [*f, *f], [*node, NONE]);
+                half_side[h as usize] = Some(2 * id);
+            } else {
+                let rev: Vec<u32> = verts.iter().rev().copied().collect();
+                let id = new_face(&mut m, &rev, [*f, *f], [NONE, *node]);
+                half_side[h as usize] = Some(2 * id + 1);
+            }
+        }
+    }
+    // Resolve shell nodes: sides first, then t-nodes, then unpaired halves.
+    let sides = 2 * m.face_label.len() as u32;
+    let half_extra_base = sides + t_total;
+    let resolve = |p: Pre| -> u32 {
+        match p {
+            Pre::Side(s) => s,
+            Pre::T(t) => sides + t,
+            Pre::Half(h) => half_side[h as usize].unwrap_or(half_extra_base + h),
+        }
+    };
+    m.shell_pairs = pre_unions.into_iter().map(|(a, b)| (resolve(a), resolve(b))).collect();
+    m.shell_pairs.extend(t_pairs.into_iter().map(|(a, b)| (sides + a, sides + b)));
+    for (a, b) in extra_pairs {
+        m.shell_pairs.push((resolve(Pre::Half(a)), resolve(Pre::Half(b))));
+        let (ra, rb) = (halves[a as usize].2, halves[b as usize].2);
+        m.region_uf.union(ra, rb);
+    }
+    m.shell_nodes = (half_extra_base as usize) + halves.len();
+    m
+}
+
+#[derive(Clone, Copy)]
+enum Pre {
+    Side(u32),
+    Half(u32),
+    T(u32),
+}

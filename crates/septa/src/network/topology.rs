@@ -1,0 +1,192 @@
+//! Topology of the merged network (Du et al. Sec. 7): edges, patches,
+//! chains, corners, components, shells, and cells by cell grouping.
+
+use super::merge::Merged;
+use super::uf::UnionFind;
+use super::{CellInfo, Patch};
+use crate::complex::NONE;
+
+/// The topology stage's results.
+pub(crate) struct Topology {
+    pub edges: Vec<[u32; 2]>,
+    pub face_patch: Vec<u32>,
+    pub patches: Vec<Patch>,
+    pub chains: Vec<Vec<u32>>,
+    pub corners: Vec<u32>,
+    pub components: usize,
+    pub shells: Vec<Vec<u32>>,
+    pub cells: Vec<CellInfo>,
+    pub face_cells: Vec<[u32; 2]>,
+}
+
+pub(crate) fn topology(m: &mut Merged) -> Topology {
+    let nf = m.face_label.len();
+    let nv = m.points.len();
+    // Edges: (a, b, face) sorted; a run of equal (a, b) is one edge.
+    let mut ef: Vec<(u32, u32, u32)> = Vec::with_capacity(m.face_verts.len());
+    for f in 0..nf {
+        let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
+        for j in 0..vs.len() {
+            let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
+            ef.push((a.min(b), a.max(b), f as u32));
+        }
+    }
+    ef.sort_unstable();
+    let mut edges = Vec::new();
+    let mut patch_uf = UnionFind::new(nf);
+    let mut vert_uf = UnionFind::new(nv);
+    let mut chain_edges = Vec::new();
+    let mut i = 0;
+    while i < ef.len() {
+        let mut j = i;
+        while j < ef.len() && ef[j].0 == ef[i].0 && ef[j].1 == ef[i].1 {
+            j += 1;
+        }
+        let (a, b) = (ef[i].0, ef[i].1);
+        edges.push([a, b]);
+        vert_uf.union(a, b);
+        match j - i {
+            2 => patch_uf.union(ef[i].2, ef[i + 1].2),
+            1 => {}
+            _ => chain_edges.push([a, b]),
+        }
+        i = j;
+    }
+    let (face_patch, np) = patch_uf.components();
+    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
+    for f in 0..nf {
+        let p = &mut patches[face_patch[f] as usize];
+        p.label = m.face_label[f];
+        p.faces += 1;
+    }
+    let (chains, corners) = chains(nv, &chain_edges);
+    let components = {
+        let (_, n) = vert_uf.components();
+        n
+    };
+    // Shells: components of face sides joined around edges (block unions),
+    // and every side of a half-patch together.
+    let mut shell_uf = UnionFind::new(m.shell_nodes);
+    for &(a, b) in &m.shell_pairs {
+        shell_uf.union(a, b);
+    }
+    let mut first_side = vec![NONE; 2 * np];
+    for f in 0..nf {
+        for s in 0..2 {
+            let hp = 2 * face_patch[f] as usize + s;
+            let node = 2 * f as u32 + s as u32;
+            if first_side[hp] == NONE {
+                first_side[hp] = node;
+            } else {
+                shell_uf.union(first_side[hp], node);
+            }
+        }
+    }
+    // Number shells by their smallest half-patch.
+    let mut shell_of_root = rustc_hash::FxHashMap::default();
+    let mut shells: Vec<Vec<u32>> = Vec::new();
+    let mut shell_of_hp = vec![NONE; 2 * np];
+    for hp in 0..2 * np {
+        if first_side[hp] == NONE {
+            continue;
+        }
+        let r = shell_uf.find(first_side[hp]);
+        let s = *shell_of_root.entry(r).or_insert_with(|| {
+            shells.push(Vec::new());
+            shells.len() as u32 - 1
+        });
+        shells[s as usize].push(hp as u32);
+        shell_of_hp[hp] = s;
+    }
+    // Cells: region groups.
+    let (region_cell, ncells) = m.region_uf.components();
+    let mut cells: Vec<CellInfo> =
+        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
+    for (r, &c) in region_cell.iter().enumerate() {
+        let cell = &mut cells[c as usize];
+        if cell.label.is_empty() {
+            cell.label = m.region_label[r].clone();
+        }
+        cell.volume += m.region_volume[r];
+    }
+    let face_cells: Vec<[u32; 2]> =
+        m.face_nodes.iter().map(|n| n.map(|x| if x == NONE { NONE } else { region_cell[x as usize] })).collect();
+    let mut shell_cell = vec![NONE; shells.len()];
+    for f in 0..nf {
+        for s in 0..2 {
+            let c = face_cells[f][s];
+            let sh = shell_of_hp[2 * face_patch[f] as usize + s];
+            if c != NONE && shell_cell[sh as usize] == NONE {
+                shell_cell[sh as usize] = c;
+            }
+        }
+    }
+    for (s, &c) in shell_cell.iter().enumerate() {
+        if c != NONE {
+            cells[c as usize].shells.push(s as u32);
+        }
+    }
+    Topology { edges, face_patch, patches, chains, corners, components, shells, cells, face_cells }
+}
+
+/// Orders chain edges into curves between corners (vertices where the
+/// number of chain edges is not 2: junctions of 3+ chains, and chain ends
+/// on the grid boundary); closed loops without corners are chains too.
+fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
+    let mut deg = vec![0u32; nv];
+    for &[a, b] in chain_edges {
+        deg[a as usize] += 1;
+        deg[b as usize] += 1;
+    }
+    // CSR adjacency.
+    let mut start = vec![0u32; nv + 1];
+    for v in 0..nv {
+        start[v + 1] = start[v] + deg[v];
+    }
+    let mut fill = start.clone();
+    let mut adj = vec![(0u32, 0u32); 2 * chain_edges.len()];
+    for (e, &[a, b]) in chain_edges.iter().enumerate() {
+        adj[fill[a as usize] as usize] = (b, e as u32);
+        fill[a as usize] += 1;
+        adj[fill[b as usize] as usize] = (a, e as u32);
+        fill[b as usize] += 1;
+    }
+    let corners: Vec<u32> = (0..nv as u32).filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2).collect();
+    let mut used = vec![false; chain_edges.len()];
+    let mut out = Vec::new();
+    let walk = |from: u32, e0: u32, used: &mut Vec<bool>| -> Vec<u32> {
+        let mut path = vec![from];
+        let (mut cur, mut e) = (from, e0);
+        loop {
+            used[e as usize] = true;
+            let [a, b] = chain_edges[e as usize];
+            let next = if a == cur { b } else { a };
+            path.push(next);
+            cur = next;
+            if deg[cur as usize] != 2 {
+                break;
+            }
+            let r = start[cur as usize] as usize..start[cur as usize + 1] as usize;
+            match adj[r].iter().find(|&&(_, x)| !used[x as usize]) {
+                Some(&(_, x)) => e = x,
+                None => break,
+            }
+        }
+        path
+    };
+    for &c in &corners {
+        for k in start[c as usize]..start[c as usize + 1] {
+            let (_, e) = adj[k as usize];
+            if !used[e as usize] {
+                out.push(walk(c, e, &mut used));
+            }
+        }
+    }
+    for e in 0..chain_edges.len() {
+        if !used[e] {
+            let from = chain_edges[e][0];
+            out.push(walk(from, e as u32, &mut used));
+        }
+    }
+    (out, corners)
+}

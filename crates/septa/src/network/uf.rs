@@ -1,0 +1,68 @@
+//! Union-find with path halving and union by index (the smaller root wins,
+//! so the result does not depend on the order of unions).
+
+/// A disjoint-set forest over `0..n`.
+#[derive(Clone, Debug, Default)]
+pub struct UnionFind {
+    parent: Vec<u32>,
+}
+
+impl UnionFind {
+    /// `n` singletons.
+    pub fn new(n: usize) -> UnionFind {
+        UnionFind { parent: (0..n as u32).collect() }
+    }
+
+    /// Adds a singleton and returns its id.
+    pub fn push(&mut self) -> u32 {
+        let id = self.parent.len() as u32;
+        self.parent.push(id);
+        id
+    }
+
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.parent.len()
+    }
+
+    /// True when empty.
+    pub fn is_empty(&self) -> bool {
+        self.parent.is_empty()
+    }
+
+    /// Root of `x`'s set (the smallest element of the set).
+    pub fn find(&mut self, mut x: u32) -> u32 {
+        while self.parent[x as usize] != x {
+            let p = self.parent[x as usize];
+            self.parent[x as usize] = self.parent[p as usize];
+            x = p;
+        }
+        x
+    }
+
+    /// Joins the sets of `a` and `b`.
+    pub fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra < rb {
+            self.parent[rb as usize] = ra;
+        } else if rb < ra {
+            self.parent[ra as usize] = rb;
+        }
+    }
+
+    /// Dense component ids `0..count`, numbered by smallest element, and the count.
+    pub fn components(&mut self) -> (Vec<u32>, usize) {
+        let n = self.parent.len();
+        let mut id = vec![u32::MAX; n];
+        let mut count = 0;
+        for x in 0..n as u32 {
+            let r = self.find(x);
+            if id[r as usize] == u32::MAX {
+                id[r as usize] = count;
+                count += 1;
+            }
+            id[x as usize] = id[r as usize];
+        }
+        (id, count as usize)
+    }
+}

@@ -1,0 +1,78 @@
+//! Every case of /work/shared/data/isn: counts equal to the reference
+//! implementation's (expected.json), on the built-in box grid, and the box
+//! grid's tets equal to the input's.
+
+use std::path::{Path, PathBuf};
+
+use septa::grid::{BoxGrid, Grid, Split, TetMesh};
+use septa::io::npz::read_grid_input;
+use septa::network::{compute, Mode, NetworkOptions};
+
+fn data_dir() -> Option<PathBuf> {
+    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../../shared/data/isn");
+    let d = if d.exists() { d } else { PathBuf::from("/work/shared/data/isn") };
+    d.join("expected.json").exists().then_some(d)
+}
+
+fn box_grid(path: &Path) -> (Grid, Vec<f64>, usize, septa::io::npz::GridInput) {
+    let input = read_grid_input(path).unwrap();
+    let r = input.grid_res.expect("grid_res");
+    let bbox = input.bbox.expect("bbox");
+    let g = BoxGrid::new([r; 3], bbox, Split::Five).unwrap();
+    (Grid::Box(g), input.values.clone(), input.k, input)
+}
+
+#[test]
+fn box_grid_equals_input_tets() {
+    let Some(dir) = data_dir() else { return };
+    for name in ["shifted4_ia_eps1e-7_R2_s0", "ia4_R20"] {
+        let (grid, _, _, input) = box_grid(&dir.join(format!("{name}.npz")));
+        assert_eq!(grid.num_tets(), input.tets.len());
+        assert_eq!(grid.num_vertices(), input.vertices.len());
+        for (t, tet) in input.tets.iter().enumerate() {
+            assert_eq!(grid.tet(t).map(|v| v as i64), *tet, "{name} tet {t}");
+        }
+        for (v, p) in input.vertices.iter().enumerate() {
+            let q = grid.vertex(v as u32);
+            for a in 0..3 {
+                assert!((p[a] - q[a]).abs() <= 1e-12 * (1.0 + p[a].abs()), "{name} vertex {v}");
+            }
+        }
+    }
+}
+
+fn check_case(dir: &Path, name: &str, expected: &serde_json::Value, mesh: bool) {
+    let (grid, values, k, input) = box_grid(&dir.join(format!("{name}.npz")));
+    let grid = if mesh { Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap()) } else { grid };
+    let mode = match expected["mode"].as_str().unwrap() {
+        "ia" => Mode::Ia,
+        _ => Mode::Mi,
+    };
+    let mut opts = NetworkOptions::new(mode);
+    opts.block = 8;
+    let net = compute(&grid, &values, k, &opts).unwrap();
+    eprintln!("{name}: {:?}", net.counts());
+    let mut wrong = Vec::new();
+    for (key, got) in net.counts() {
+        let want = expected[key].as_u64().unwrap() as usize;
+        if want != got {
+            wrong.push(format!("{key}: got {got}, reference {want}"));
+        }
+    }
+    assert!(wrong.is_empty(), "{name}: {wrong:?}");
+}
+
+#[test]
+fn counts_equal_reference() {
+    let Some(dir) = data_dir() else { return };
+    let expected: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
+    let mut failures = Vec::new();
+    for (name, exp) in expected.as_object().unwrap() {
+        let r = std::panic::catch_unwind(|| check_case(&dir, name, exp, false));
+        if let Err(e) = r {
+            failures.push(e.downcast_ref::<String>().cloned().unwrap_or_else(|| name.clone()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
