@@ -7,6 +7,10 @@
 //! on the plane `z = 0` (or any other plane used here): sampled values are
 //! then never exactly zero and the examples stay in general position.
 //! Each default grid is small enough for a fast demo.
+//!
+//! `tests/scene_network.rs` runs every scene through the exact network and
+//! checks the promised topology ([`expected`]); `tests/scene_topology_probe.rs`
+//! cross-checks it independently on voxels.
 
 use super::composite::{rotation, Wyvill};
 use super::patch::BicubicPatch;
@@ -371,7 +375,8 @@ pub fn voronoi_lines_5() -> Scene {
 /// chains: 12 box edges and the 2 circles where the cylinder meets top and
 /// bottom (14 chains), with 8 corners. Enclosed volume converges to
 /// `1 - pi 0.25^2 = 0.803650...` as the grid is refined (the planes are
-/// exact in a linear interpolation; only the cylinder is approximated).
+/// exact in a linear interpolation; only the cylinder is approximated):
+/// measured errors 0.0184, 0.0048, 0.0012 at 11^3, 21^3, 41^3 (second order).
 pub fn box_minus_cylinder() -> Scene {
     let h = 0.5;
     build(
