@@ -173,7 +173,7 @@ fn mesh_distance_equals_box_distance() {
                v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n\
                f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
     let mesh = parse_obj(obj).unwrap();
-    assert_eq!(mesh.triangles.len(), 12);
+    assert_eq!(mesh.triangles().len(), 12);
     assert!((mesh.winding_number([0.1, 0.2, 0.0]) - 1.0).abs() < 1e-12);
     assert!(mesh.winding_number([1.1, 0.2, 0.0]).abs() < 1e-12);
     let m = Primitive::Mesh(std::sync::Arc::new(mesh));
@@ -199,4 +199,104 @@ fn mesh_from_obj_file_in_a_scene() {
     assert!(s.functions[0].eval([0.1, 0.1, 0.1]) > 0.0);
     assert!(s.functions[0].eval([1.0, 1.0, 1.0]) < 0.0);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn stl_binary_and_ascii_match_obj() {
+    let obj = "v -0.5 -0.5 -0.5\nv 0.5 -0.5 -0.5\nv 0.5 0.5 -0.5\nv -0.5 0.5 -0.5\n\
+               v -0.5 -0.5 0.5\nv 0.5 -0.5 0.5\nv 0.5 0.5 0.5\nv -0.5 0.5 0.5\n\
+               f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+    let mesh = parse_obj(obj).unwrap();
+    let mut bin = vec![0u8; 80];
+    bin.extend((mesh.triangles().len() as u32).to_le_bytes());
+    let mut ascii = String::from("solid cube\n");
+    for t in mesh.triangles() {
+        bin.extend([0u8; 12]);
+        ascii.push_str("facet normal 0 0 0\nouter loop\n");
+        for &v in t {
+            let p = mesh.vertices()[v as usize];
+            for c in p {
+                bin.extend((c as f32).to_le_bytes());
+            }
+            ascii.push_str(&format!("vertex {} {} {}\n", p[0], p[1], p[2]));
+        }
+        bin.extend([0u8; 2]);
+        ascii.push_str("endloop\nendfacet\n");
+    }
+    ascii.push_str("endsolid cube\n");
+    let b = Primitive::cuboid([0.0; 3], [0.5; 3]);
+    for m in [septa::scene::parse_stl(&bin).unwrap(), septa::scene::parse_stl(ascii.as_bytes()).unwrap()] {
+        assert_eq!(m.triangles().len(), 12);
+        let m = Primitive::Mesh(std::sync::Arc::new(m));
+        for p in [[0.1, 0.2, -0.3], [0.9, -0.7, 0.2], [0.0, 0.0, 0.45]] {
+            assert!((m.eval(p) - b.eval(p)).abs() < 1e-12, "at {p:?}");
+        }
+    }
+    // Through a scene file, by extension.
+    let dir = std::env::temp_dir().join(format!("septa_scene_stl_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("cube.stl"), &bin).unwrap();
+    let text = r#"{"grid": {"resolution": 4, "bounds": [[-1,-1,-1],[1,1,1]]},
+        "functions": [{"type": "mesh", "path": "cube.stl"}]}"#;
+    let s = Scene::from_json(text, "s.json", Some(&dir)).unwrap();
+    assert_eq!(s.functions[0].eval([0.0; 3]), 0.5);
+    std::fs::write(dir.join("bad.stl"), b"solid x\nvertex 1 2\nendsolid\n").unwrap();
+    let text = text.replace("cube.stl", "bad.stl");
+    let e = Scene::from_json(&text, "s.json", Some(&dir)).unwrap_err();
+    assert!(e.message.contains("bad.stl:2:"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A closed latitude-longitude sphere mesh (outward, counter-clockwise).
+fn uv_sphere(r: f64, n: usize) -> septa::scene::TriMesh {
+    let mut v = vec![[0.0, 0.0, r], [0.0, 0.0, -r]];
+    for i in 1..n {
+        let th = std::f64::consts::PI * i as f64 / n as f64;
+        for j in 0..2 * n {
+            let ph = std::f64::consts::PI * j as f64 / n as f64 + 0.1 * i as f64;
+            v.push([r * th.sin() * ph.cos(), r * th.sin() * ph.sin(), r * th.cos()]);
+        }
+    }
+    let id = |i: usize, j: usize| (2 + (i - 1) * 2 * n + j % (2 * n)) as u32;
+    let mut t = vec![];
+    for j in 0..2 * n {
+        t.push([0, id(1, j), id(1, j + 1)]);
+        t.push([1, id(n - 1, j + 1), id(n - 1, j)]);
+        for i in 1..n - 1 {
+            t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    septa::scene::TriMesh::new(v, t).unwrap()
+}
+
+#[test]
+fn mesh_hierarchy_matches_exhaustive_search() {
+    let m = uv_sphere(0.6, 40);
+    assert_eq!(m.triangles().len(), 2 * 2 * 40 * 39);
+    let mut rng = ChaCha8Rng::seed_from_u64(13);
+    let mut near = 0;
+    let prim = Primitive::Mesh(std::sync::Arc::new(m.clone()));
+    for i in 0..2000 {
+        // Half the points within 1% of the surface.
+        let dir = normalize3(random_point(&mut rng, 1.0));
+        let rad = if i % 2 == 0 { 0.6 * rng.gen_range(0.99..1.01) } else { rng.gen_range(0.0..1.5) };
+        let p = dir.map(|x| x * rad);
+        let f = prim.eval(p);
+        assert_eq!(f.abs(), m.closest_exhaustive(p).0, "distance at {p:?}");
+        let exact = m.winding_number_exact(p);
+        let fast = m.winding_number(p);
+        assert_eq!(exact > 0.5, fast > 0.5, "inside test at {p:?}: {exact} vs {fast}");
+        assert!((exact - fast).abs() < 0.05, "{exact} vs {fast}");
+        assert_eq!(f > 0.0, exact > 0.5);
+        if (rad - 0.6).abs() < 0.006 {
+            near += 1;
+        }
+    }
+    assert!(near > 900);
+}
+
+fn normalize3(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    v.map(|x| x / n)
 }

@@ -4,89 +4,82 @@
 //! triangles' signed solid angles, Van Oosterom and Strackee's formula):
 //! inside when it exceeds 1/2. These are *sampled values*, input data for
 //! the exact pipeline, never a topological decision, so floating point is
-//! the right tool here. Cost is linear in the number of triangles per point.
+//! the right tool here. A bounding volume hierarchy (`mesh_bvh.rs`) gives
+//! the exact closest point and the fast winding number in about
+//! logarithmic time per point.
 
 use super::interval::Interval;
+use super::mesh_bvh::{closest_on_triangle, solid_angle, Bvh};
 use super::shapes::lipschitz;
 use super::vec3::*;
 
-/// A triangle mesh held in memory (0-based vertex indices).
-#[derive(Clone, Debug, PartialEq)]
+/// A triangle mesh held in memory (0-based vertex indices), with its
+/// search hierarchy.
+#[derive(Clone, Debug)]
 pub struct TriMesh {
-    /// Vertex positions.
-    pub vertices: Vec<V3>,
-    /// Triangles, counter-clockwise seen from outside.
-    pub triangles: Vec<[u32; 3]>,
+    vertices: Vec<V3>,
+    triangles: Vec<[u32; 3]>,
+    bvh: Bvh,
 }
 
-/// Closest point to `p` on triangle `a b c` (Voronoi regions of the
-/// triangle's vertices, edges and face, in barycentric form).
-fn closest_on_triangle(p: V3, a: V3, b: V3, c: V3) -> V3 {
-    let ab = sub(b, a);
-    let ac = sub(c, a);
-    let ap = sub(p, a);
-    let d1 = dot(ab, ap);
-    let d2 = dot(ac, ap);
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
+impl PartialEq for TriMesh {
+    fn eq(&self, o: &TriMesh) -> bool {
+        self.vertices == o.vertices && self.triangles == o.triangles
     }
-    let bp = sub(p, b);
-    let d3 = dot(ab, bp);
-    let d4 = dot(ac, bp);
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        let v = d1 / (d1 - d3);
-        return add(a, scale(ab, v));
-    }
-    let cp = sub(p, c);
-    let d5 = dot(ab, cp);
-    let d6 = dot(ac, cp);
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        let w = d2 / (d2 - d6);
-        return add(a, scale(ac, w));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return add(b, scale(sub(c, b), w));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    let v = vb * denom;
-    let w = vc * denom;
-    add(a, add(scale(ab, v), scale(ac, w)))
 }
 
 impl TriMesh {
-    fn tri(&self, t: &[u32; 3]) -> [V3; 3] {
-        t.map(|i| self.vertices[i as usize])
+    /// A mesh from vertices and triangles (counter-clockwise seen from
+    /// outside); `None` if an index is out of range or there is no triangle.
+    pub fn new(vertices: Vec<V3>, triangles: Vec<[u32; 3]>) -> Option<TriMesh> {
+        let n = vertices.len();
+        if triangles.is_empty() || triangles.iter().flatten().any(|&i| i as usize >= n) {
+            return None;
+        }
+        let bvh = Bvh::build(&vertices, &triangles);
+        Some(TriMesh { vertices, triangles, bvh })
     }
 
-    /// Generalized winding number of the mesh around `p` (1 inside a
-    /// closed, outward-oriented mesh, 0 outside).
+    /// Vertex positions.
+    pub fn vertices(&self) -> &[V3] {
+        &self.vertices
+    }
+
+    /// Triangles.
+    pub fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
+    /// Fast generalized winding number around `p` (about 1 inside a
+    /// closed, outward-oriented mesh, 0 outside; exact near the surface).
     pub fn winding_number(&self, p: V3) -> f64 {
-        let mut total = 0.0;
-        for t in &self.triangles {
-            let [a, b, c] = self.tri(t).map(|v| sub(v, p));
-            let (la, lb, lc) = (norm(a), norm(b), norm(c));
-            let num = dot(a, cross(b, c));
-            let den = la * lb * lc + dot(a, b) * lc + dot(b, c) * la + dot(c, a) * lb;
-            total += 2.0 * num.atan2(den);
-        }
+        self.bvh.winding(&self.vertices, &self.triangles, p)
+    }
+
+    /// The exact sum of the triangles' solid angles (linear time).
+    pub fn winding_number_exact(&self, p: V3) -> f64 {
+        let total: f64 = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+                solid_angle(p, a, b, c)
+            })
+            .sum();
         total / (4.0 * std::f64::consts::PI)
     }
 
     /// Unsigned distance and closest point.
     fn closest(&self, p: V3) -> (f64, V3) {
+        self.bvh.closest(&self.vertices, &self.triangles, p)
+    }
+
+    /// Distance and closest point by visiting every triangle (linear time;
+    /// the reference for the hierarchy).
+    pub fn closest_exhaustive(&self, p: V3) -> (f64, V3) {
         let mut best = (f64::INFINITY, p);
         for t in &self.triangles {
-            let [a, b, c] = self.tri(t);
+            let [a, b, c] = t.map(|i| self.vertices[i as usize]);
             let q = closest_on_triangle(p, a, b, c);
             let d = norm(sub(p, q));
             if d < best.0 {
@@ -124,10 +117,10 @@ impl TriMesh {
     }
 }
 
-/// Problem found while reading an OBJ file.
+/// Problem found while reading a mesh file.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ObjError {
-    /// 1-based line number.
+pub struct MeshFileError {
+    /// 1-based line number (0 when not line-based).
     pub line: usize,
     /// What is wrong.
     pub message: String,
@@ -136,11 +129,11 @@ pub struct ObjError {
 /// Read the `v` and `f` records of a Wavefront OBJ text (polygons are
 /// fan-triangulated; `f 1/2/3` forms and negative indices are accepted;
 /// other records are ignored).
-pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
+pub fn parse_obj(text: &str) -> Result<TriMesh, MeshFileError> {
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for (n, line) in text.lines().enumerate() {
-        let err = |message: String| ObjError { line: n + 1, message };
+        let err = |message: String| MeshFileError { line: n + 1, message };
         let mut it = line.split_whitespace();
         match it.next() {
             Some("v") => {
@@ -177,7 +170,59 @@ pub fn parse_obj(text: &str) -> Result<TriMesh, ObjError> {
         }
     }
     if triangles.is_empty() {
-        return Err(ObjError { line: 0, message: "no triangles".into() });
+        return Err(MeshFileError { line: 0, message: "no triangles".into() });
     }
-    Ok(TriMesh { vertices, triangles })
+    TriMesh::new(vertices, triangles).ok_or(MeshFileError { line: 0, message: "bad triangle".into() })
+}
+
+/// Read an STL file, binary or ASCII (a triangle soup: the winding number
+/// and the distance need no shared vertices).
+pub fn parse_stl(bytes: &[u8]) -> Result<TriMesh, MeshFileError> {
+    let fail = |line: usize, message: String| MeshFileError { line, message };
+    let binary_len = |n: usize| 84 + 50 * n;
+    let is_binary = bytes.len() >= 84 && {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        binary_len(n) == bytes.len()
+    };
+    let mut vertices = Vec::new();
+    if is_binary {
+        let n = (bytes.len() - 84) / 50;
+        for t in 0..n {
+            let at = 84 + 50 * t + 12;
+            for v in 0..3 {
+                let c = [0, 1, 2].map(|a| {
+                    let i = at + 12 * v + 4 * a;
+                    f32::from_le_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]) as f64
+                });
+                if c.iter().any(|x| !x.is_finite()) {
+                    return Err(fail(0, format!("triangle {t}: non-finite coordinate")));
+                }
+                vertices.push(c);
+            }
+        }
+    } else {
+        let text =
+            std::str::from_utf8(bytes).map_err(|_| fail(0, "neither binary STL (size mismatch) nor text".into()))?;
+        for (n, line) in text.lines().enumerate() {
+            let mut it = line.split_whitespace();
+            if it.next() == Some("vertex") {
+                let c: Vec<f64> = it
+                    .map(|s| s.parse::<f64>())
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| fail(n + 1, format!("bad vertex coordinate: {e}")))?;
+                if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
+                    return Err(fail(n + 1, "a vertex needs 3 finite coordinates".into()));
+                }
+                vertices.push([c[0], c[1], c[2]]);
+            }
+        }
+        if vertices.len() % 3 != 0 {
+            return Err(fail(0, format!("{} vertices is not a multiple of 3", vertices.len())));
+        }
+    }
+    if vertices.is_empty() {
+        return Err(fail(0, "no triangles".into()));
+    }
+    let triangles = (0..vertices.len() as u32 / 3).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    TriMesh::new(vertices, triangles).ok_or(MeshFileError { line: 0, message: "bad triangle".into() })
 }

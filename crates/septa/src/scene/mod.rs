@@ -32,8 +32,11 @@
 pub mod builtin;
 mod composite;
 mod error;
+mod gradbound;
 mod interval;
 mod mesh;
+mod mesh_bvh;
+mod normals;
 mod patch;
 mod primitive;
 mod regions;
@@ -46,7 +49,7 @@ mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
-pub use mesh::{parse_obj, ObjError, TriMesh};
+pub use mesh::{parse_obj, parse_stl, MeshFileError, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};

@@ -213,13 +213,23 @@ impl Primitive {
         if matches!(self, Constant(_)) {
             return raw;
         }
-        let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + raw.mag().min(1e300);
-        let rel = if matches!(self, Mesh(_)) { 1e-10 } else { PAD_REL };
-        raw.pad(rel * m)
+        raw.pad(self.eval_error(lo, hi, raw))
+    }
+
+    /// Bound on the rounding error of [`Primitive::eval`] anywhere in the
+    /// box, given an enclosure `range` of its values there: `256 eps` times
+    /// the magnitudes involved (meshes: `1e-10` times).
+    pub(crate) fn eval_error(&self, lo: V3, hi: V3, range: Interval) -> f64 {
+        if matches!(self, Primitive::Constant(_)) {
+            return 0.0;
+        }
+        let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + range.mag().min(1e300);
+        let rel = if matches!(self, Primitive::Mesh(_)) { 1e-10 } else { PAD_REL };
+        rel * m
     }
 
     /// Largest absolute parameter (positions, radii), for the rounding pad.
-    fn magnitude(&self) -> f64 {
+    pub(crate) fn magnitude(&self) -> f64 {
         use Primitive::*;
         match self {
             Constant(v) => v.abs(),

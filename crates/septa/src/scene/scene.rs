@@ -313,6 +313,9 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         );
     }
     let o = Obj::new(v, &root)?;
+    if o.has("funcFile") {
+        return reference_config(&o, base_dir);
+    }
     let grid = grid(o.get("grid")?, &root.key("grid"))?;
     let mode = match o.map.get("mode").map(|m| m.as_str()) {
         None | Some(Some("ia")) => Mode::Ia,
@@ -385,4 +388,51 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         Some(c) => tuples::<3>(c, &root.key("curves"), &known)?,
     };
     Ok(Scene { grid, mode, names, functions, regions, interest: Interest::new(surfaces.as_deref(), &curves) })
+}
+
+/// A reference implementation config (`{"gridResolution": R, "gridBbox":
+/// [[..],[..]], "funcFile": PATH, ...}`): an IA scene over its grid with
+/// the function file's primitives and no region rule (callers switch the
+/// mode for the reference's `material_interface` runs). Its other keys
+/// (`outputDir`, `useLookup`, ...) are the reference's run options.
+fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> {
+    let root = JsonPath::default();
+    if o.has("tetMeshFile") {
+        return err(
+            &root.key("tetMeshFile"),
+            "a tet mesh config has no box grid; give the tet mesh to the IA / MI pipeline directly",
+        );
+    }
+    let r = o.get("gridResolution")?;
+    let rp = root.key("gridResolution");
+    let n = match r.as_i64() {
+        Some(n) if (1..=1 << 20).contains(&n) => n as usize,
+        _ => return err(&rp, format!("empty grid: resolution {r}")),
+    };
+    let bp = root.key("gridBbox");
+    let b = array(o.get("gridBbox")?, &bp)?;
+    if b.len() != 2 {
+        return err(&bp, "expected [[x0,y0,z0],[x1,y1,z1]]");
+    }
+    let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
+    if (0..3).any(|i| bounds[1][i] <= bounds[0][i]) {
+        return err(&bp, "empty grid: each max must exceed its min");
+    }
+    let file = o.str("funcFile")?;
+    let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
+    let fp = root.key("funcFile");
+    let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+    let functions =
+        load_function_list(&text, &full.display().to_string(), full.parent()).or_else(|e| err(&fp, e.to_string()))?;
+    if functions.is_empty() {
+        return err(&fp, "no functions");
+    }
+    Ok(Scene {
+        grid: GridSpec { resolution: [n; 3], bounds, split: 5 },
+        mode: Mode::Ia,
+        names: (0..functions.len()).map(|i| i.to_string()).collect(),
+        functions,
+        regions: RegionRule::Identity,
+        interest: Interest::all(),
+    })
 }

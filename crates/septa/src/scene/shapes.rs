@@ -199,7 +199,7 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
-    fn perp(&self, p: V3) -> V3 {
+    pub(crate) fn perp(&self, p: V3) -> V3 {
         let v = sub(p, self.point);
         let d = dot(self.axis, v);
         sub(v, scale(self.axis, d))
