@@ -93,7 +93,8 @@ pub struct NetworkOptions {
     pub float: bool,
     /// Block edge in cubes.
     pub block: usize,
-    /// Compute cell volumes (floating point, for invariant checks).
+    /// Compute cell volumes (floating point, for invariant checks); they
+    /// come from cell grouping, so this selects grouping over ray shooting.
     pub volumes: bool,
     /// Identify cells by topological ray shooting (Sec. 7.1) when the grid
     /// allows it (a box, no network vertex at a grid vertex); otherwise, or
@@ -253,7 +254,7 @@ pub fn compute(
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m, options.raytrace.then_some(&ctx));
+    let topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
     let t3 = Instant::now();
     Ok(Network {
         mode: options.mode,
