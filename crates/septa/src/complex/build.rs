@@ -117,7 +117,6 @@ impl Complex {
         }
         self.mode = Some(mode);
         self.num_functions = values.len();
-        self.init_tet(0);
         let preds = Predicates { values, mode, float: options.float };
         if options.lookup && !options.float {
             if let Some(table) = super::lookup::table(mode, values.len()) {
@@ -127,6 +126,7 @@ impl Complex {
                 }
             }
         }
+        self.init_tet(0);
         let first = if mode == Mode::Mi { 1 } else { 0 };
         for f in first..values.len() as u16 {
             self.insert(&preds, f, scratch)?;
