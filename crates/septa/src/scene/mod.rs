@@ -49,7 +49,7 @@ mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
-pub use mesh::{parse_obj, parse_stl, MeshFileError, TriMesh};
+pub use mesh::{read_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
