@@ -242,3 +242,18 @@ fn box_minus_cylinder_volume_converges() {
     assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
     assert!(errors[2] < 2e-3, "{errors:?}");
 }
+
+#[test]
+fn voronoi_lines_5_has_one_cell_per_line() {
+    let s = builtin::voronoi_lines_5();
+    let (net, _) = network(&s);
+    let c: BTreeMap<_, _> = net.counts().into_iter().collect();
+    eprintln!("voronoi-lines-5: {c:?}");
+    assert_eq!(c["cells"], 5);
+    let mut materials: Vec<u64> = net.cells.iter().map(|c| c.label[0]).collect();
+    materials.sort();
+    assert_eq!(materials, vec![0, 1, 2, 3, 4]);
+    assert_eq!(c["components"], 1);
+    // Recorded from the exact run (regression values).
+    assert_eq!((c["patches"], c["chains"], c["corners"]), (16, 17, 19));
+}
