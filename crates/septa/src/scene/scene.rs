@@ -209,6 +209,10 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
         return err(&bp, "empty grid: each max must exceed its min");
     }
+    let vertices: u128 = resolution.iter().map(|&n| n as u128 + 1).product();
+    if vertices > u32::MAX as u128 {
+        return err(&rp, format!("grid too large: {vertices} vertices (at most {})", u32::MAX));
+    }
     let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
     if split != 5.0 && split != 6.0 {
         return err(&path.key("split"), "split must be 5 or 6");
