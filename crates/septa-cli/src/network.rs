@@ -1,4 +1,11 @@
-//! `septa ia` and `septa mi` (in progress).
+//! `septa ia` and `septa mi`: the surface network of functions on a tet grid.
+use std::path::PathBuf;
+use std::time::Instant;
+
+use septa::grid::{BoxGrid, Grid, Split, TetMesh};
+use septa::io::{functions, network_out, npz};
+use septa::network::{self, NetworkOptions};
+
 use crate::CliResult;
 
 /// Which network to compute.
@@ -9,11 +16,159 @@ pub enum Mode {
     Mi,
 }
 
+/// How cells are identified.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum CellMethod {
+    /// Topological ray shooting (Sec. 7.1); falls back to grouping.
+    Raytrace,
+    /// Cell grouping across tet faces.
+    Grouping,
+}
+
 /// Arguments of `septa ia|mi`.
 #[derive(clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// Input: an `.npz` (arrays vertices, tets, values), or a function JSON
+    /// (the reference's format: sphere / plane / zero) sampled on `--grid`.
+    input: PathBuf,
+    /// Output folder (network.json, network.ply, network.obj).
+    #[arg(short, long, default_value = "septa-out")]
+    output: PathBuf,
+    /// Box grid resolution (cubes per axis) for a function JSON input.
+    #[arg(long)]
+    grid: Option<usize>,
+    /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
+    #[arg(long, num_args = 6, allow_negative_numbers = true)]
+    bounds: Option<Vec<f64>>,
+    /// Tets per cube of a built-in grid (5 or 6).
+    #[arg(long, default_value_t = 5)]
+    split: u8,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Do not use look-up tables (incremental construction in every tet).
+    #[arg(long)]
+    no_lookup: bool,
+    /// Cell identification method.
+    #[arg(long, value_enum, default_value = "raytrace")]
+    cells: CellMethod,
+    /// Naive floating-point predicates (for measuring only; may fail).
+    #[arg(long)]
+    float: bool,
+    /// Compute everything, write nothing (for benchmarks).
+    #[arg(long)]
+    no_output: bool,
+    /// Print one JSON summary on stdout.
+    #[arg(long)]
+    json: bool,
+    /// Block edge in cubes.
+    #[arg(long, default_value_t = 16)]
+    block: usize,
+}
 
 /// Runs `septa ia|mi`.
-pub fn run(_args: Args, _mode: Mode) -> CliResult {
-    Err("septa ia/mi: not implemented yet".into())
+pub fn run(args: Args, mode: Mode) -> CliResult {
+    let t0 = Instant::now();
+    let mode = match mode {
+        Mode::Ia => network::Mode::Ia,
+        Mode::Mi => network::Mode::Mi,
+    };
+    let (grid, values, k) = load(&args)?;
+    let t_read = t0.elapsed().as_secs_f64();
+    let mut opts = NetworkOptions::new(mode);
+    opts.float = args.float;
+    opts.block = args.block;
+    opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
+    let mut pool = rayon::ThreadPoolBuilder::new();
+    if let Some(t) = args.threads {
+        pool = pool.num_threads(t.max(1));
+    }
+    let pool = pool.build()?;
+    let net = pool.install(|| network::compute(&grid, &values, k, &opts))?;
+    let mut extra = vec![("read", t_read)];
+    if !args.no_output {
+        let t = Instant::now();
+        network_out::write_all(&net, &args.output, &extra)?;
+        extra.push(("write", t.elapsed().as_secs_f64()));
+    }
+    let cells_method = net.cells_method;
+    if args.json {
+        let mut obj = serde_json::Map::new();
+        for (k, v) in net.counts() {
+            obj.insert(k.into(), v.into());
+        }
+        obj.insert("tets".into(), grid.num_tets().into());
+        obj.insert("cells_method".into(), cells_method.into());
+        let mut secs = serde_json::Map::new();
+        for (k, v) in net.seconds.iter().chain(extra.iter()) {
+            secs.insert((*k).into(), (*v).into());
+        }
+        secs.insert("total".into(), t0.elapsed().as_secs_f64().into());
+        obj.insert("seconds".into(), secs.into());
+        println!("{}", serde_json::Value::Object(obj));
+    } else {
+        let counts: Vec<String> = net
+            .counts()
+            .iter()
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect();
+        println!("{}", counts.join(", "));
+        println!("{:.3} s", t0.elapsed().as_secs_f64());
+    }
+    Ok(())
+}
+
+fn split(args: &Args) -> Result<Split, String> {
+    match args.split {
+        5 => Ok(Split::Five),
+        6 => Ok(Split::Six),
+        s => Err(format!("--split must be 5 or 6, not {s}")),
+    }
+}
+
+/// Reads the grid and values.
+fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Error>> {
+    let ext = args
+        .input
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("");
+    if ext == "npz" {
+        let input = npz::read_grid_input(&args.input)?;
+        // A reference-style box grid is used implicitly when it matches the stored tets.
+        if let (Some(r), Some(bbox)) = (input.grid_res, input.bbox) {
+            if let Ok(g) = BoxGrid::new([r; 3], bbox, Split::Five) {
+                let grid = Grid::Box(g);
+                let same = grid.num_tets() == input.tets.len()
+                    && grid.num_vertices() == input.vertices.len()
+                    && input
+                        .tets
+                        .iter()
+                        .enumerate()
+                        .all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
+                if same {
+                    return Ok((grid, input.values, input.k));
+                }
+            }
+        }
+        let mesh = TetMesh::new(input.vertices, &input.tets)
+            .map_err(|e| format!("{}: {e}", args.input.display()))?;
+        return Ok((Grid::Mesh(mesh), input.values, input.k));
+    }
+    let funcs = functions::read_functions(&args.input)?;
+    let n = args
+        .grid
+        .ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
+    let b = args
+        .bounds
+        .clone()
+        .unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
+    let g = BoxGrid::new(
+        [n; 3],
+        [[b[0], b[1], b[2]], [b[3], b[4], b[5]]],
+        split(args)?,
+    )?;
+    let grid = Grid::Box(g);
+    let values = functions::sample(&funcs, &grid.vertices());
+    Ok((grid, values, funcs.len()))
 }

@@ -28,14 +28,14 @@ mod exact;
 mod expansion;
 mod expansion_det;
 mod filter;
+mod plane;
 mod sign;
 pub mod stats;
 mod validate;
-mod plane;
 
 pub use barycentric::{barycentric_sign_ia, barycentric_sign_mi};
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;
+pub use plane::{fallback_count, filtered_sign, plane_point_sign, Interval, Ring};
 pub use sign::Sign;
 pub use validate::{check_finite, NonFinite};
-pub use plane::{evaluation_count, fallback_count, filtered_sign, plane_point_sign, Interval, Ring};

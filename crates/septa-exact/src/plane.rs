@@ -29,16 +29,11 @@ use crate::{Exact, Sign};
 use std::sync::atomic::{AtomicU64, Ordering};
 
 static FALLBACKS: AtomicU64 = AtomicU64::new(0);
-static EVALUATIONS: AtomicU64 = AtomicU64::new(0);
 
-/// Number of filtered signs that needed the exact fallback since start.
+/// Number of filtered signs that needed the exact fallback since start
+/// (all threads; only the rare fallbacks touch this shared counter).
 pub fn fallback_count() -> u64 {
     FALLBACKS.load(Ordering::Relaxed)
-}
-
-/// Number of filtered signs evaluated since start.
-pub fn evaluation_count() -> u64 {
-    EVALUATIONS.load(Ordering::Relaxed)
 }
 
 /// The arithmetic a generic predicate needs: a commutative ring containing
@@ -141,7 +136,11 @@ const SAFE_LO: f64 = 1e-270;
 fn add_down(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() { f64::NEG_INFINITY } else { next_down(s) };
+        return if s.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            next_down(s)
+        };
     }
     if e < 0.0 {
         next_down(s)
@@ -154,7 +153,11 @@ fn add_down(a: f64, b: f64) -> f64 {
 fn add_up(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() { f64::INFINITY } else { next_up(s) };
+        return if s.is_nan() {
+            f64::INFINITY
+        } else {
+            next_up(s)
+        };
     }
     if e > 0.0 {
         next_up(s)
@@ -177,6 +180,17 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
             return if up { f64::INFINITY } else { f64::NEG_INFINITY };
         }
         return if up { next_up(p) } else { next_down(p) };
+    }
+    // Significant bits of the factors (odd mantissas of m and n bits have a
+    // product of m + n - 1 or m + n bits): above 54 the product is surely
+    // rounded, so widen without the TwoProduct test; at most 53 it is exact.
+    let sig = |x: f64| 53 - ((x.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
+    let bits = sig(a) + sig(b);
+    if bits > 54 {
+        return if up { next_up(p) } else { next_down(p) };
+    }
+    if bits <= 53 {
+        return p;
     }
     let (_, e) = two_prod(a, b);
     if up {
@@ -213,6 +227,29 @@ impl Interval {
         }
     }
 
+    /// `self / o`, or `None` when `o` contains zero. Each bound of a
+    /// correctly rounded quotient is widened by one ulp outward.
+    pub fn div(&self, o: &Interval) -> Option<Interval> {
+        if o.lo <= 0.0 && o.hi >= 0.0 {
+            return None;
+        }
+        let q = [
+            self.lo / o.lo,
+            self.lo / o.hi,
+            self.hi / o.lo,
+            self.hi / o.hi,
+        ];
+        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !lo.is_finite() || !hi.is_finite() {
+            return None;
+        }
+        Some(Interval {
+            lo: next_down(lo),
+            hi: next_up(hi),
+        })
+    }
+
     /// Midpoint (an approximation of the value, for embeddings and pre-sorts).
     #[inline]
     pub fn mid(&self) -> f64 {
@@ -227,34 +264,61 @@ impl Ring for Interval {
     }
     #[inline]
     fn add(&self, o: &Self) -> Self {
-        Interval { lo: add_down(self.lo, o.lo), hi: add_up(self.hi, o.hi) }
+        Interval {
+            lo: add_down(self.lo, o.lo),
+            hi: add_up(self.hi, o.hi),
+        }
     }
     #[inline]
     fn sub(&self, o: &Self) -> Self {
-        Interval { lo: add_down(self.lo, -o.hi), hi: add_up(self.hi, -o.lo) }
+        Interval {
+            lo: add_down(self.lo, -o.hi),
+            hi: add_up(self.hi, -o.lo),
+        }
     }
     #[inline]
     fn mul(&self, o: &Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
         if a >= 0.0 && c >= 0.0 {
-            return Interval { lo: mul_round(a, c, false), hi: mul_round(b, d, true) };
+            return Interval {
+                lo: mul_round(a, c, false),
+                hi: mul_round(b, d, true),
+            };
         }
         if b <= 0.0 && d <= 0.0 {
-            return Interval { lo: mul_round(b, d, false), hi: mul_round(a, c, true) };
+            return Interval {
+                lo: mul_round(b, d, false),
+                hi: mul_round(a, c, true),
+            };
         }
         if a >= 0.0 && d <= 0.0 {
-            return Interval { lo: mul_round(b, c, false), hi: mul_round(a, d, true) };
+            return Interval {
+                lo: mul_round(b, c, false),
+                hi: mul_round(a, d, true),
+            };
         }
         if b <= 0.0 && c >= 0.0 {
-            return Interval { lo: mul_round(a, d, false), hi: mul_round(b, c, true) };
+            return Interval {
+                lo: mul_round(a, d, false),
+                hi: mul_round(b, c, true),
+            };
         }
-        let lo = mul_round(a, d, false).min(mul_round(b, c, false)).min(mul_round(a, c, false)).min(mul_round(b, d, false));
-        let hi = mul_round(a, c, true).max(mul_round(b, d, true)).max(mul_round(a, d, true)).max(mul_round(b, c, true));
+        let lo = mul_round(a, d, false)
+            .min(mul_round(b, c, false))
+            .min(mul_round(a, c, false))
+            .min(mul_round(b, d, false));
+        let hi = mul_round(a, c, true)
+            .max(mul_round(b, d, true))
+            .max(mul_round(a, d, true))
+            .max(mul_round(b, c, true));
         Interval { lo, hi }
     }
     #[inline]
     fn neg(&self) -> Self {
-        Interval { lo: -self.hi, hi: -self.lo }
+        Interval {
+            lo: -self.hi,
+            hi: -self.lo,
+        }
     }
 }
 
@@ -264,7 +328,6 @@ impl Ring for Interval {
 #[inline]
 #[track_caller]
 pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Exact) -> Sign {
-    EVALUATIONS.fetch_add(1, Ordering::Relaxed);
     if let Some(s) = fast().sign() {
         return s;
     }
@@ -281,6 +344,23 @@ pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Ex
 /// Sign of `n . x + d` for a plane `(n, d)` and a point `x` (TopoCut's
 /// `T_pv`, App. B eq. 13), exact.
 pub fn plane_point_sign(plane: &[f64; 4], x: &[f64; 3]) -> Sign {
+    // Static filter: v = fl(fl(fl(fl(a x) + fl(b y)) + fl(c z)) + d). Each of
+    // the 3 products and 3 sums commits a relative error <= u = 2^-53 of its
+    // result, so |v - exact| <= (3u + 3u(1 + u)^3) * S <= 7u * S with
+    // S = |a x| + |b y| + |c z| + |d| (all terms enter each partial sum at
+    // most once; the (1+u)^k growth is absorbed by the spare u). Requires no
+    // underflow: S is large enough or we fall through to the interval path.
+    let t = [plane[0] * x[0], plane[1] * x[1], plane[2] * x[2]];
+    let v = t[0] + t[1] + t[2] + plane[3];
+    let s = t[0].abs() + t[1].abs() + t[2].abs() + plane[3].abs();
+    let bound = 8.0 * f64::EPSILON * 0.5 * s;
+    if s > 1e-250 && s < 1e250 && v.abs() > bound {
+        return if v > 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+    }
     fn f<R: Ring>(p: &[f64; 4], x: &[f64; 3]) -> R {
         let mut acc = R::of(p[3]);
         for k in 0..3 {
@@ -298,9 +378,14 @@ mod tests {
     #[test]
     fn exact_zero_of_small_integers_is_decided_by_the_filter() {
         // plane x = 15 through the point (15, 3, 7): 1*15 + 0*3 + 0*7 - 15
-        let v = Interval::point(1.0).mul(&Interval::point(15.0)).add(&Interval::point(-15.0));
+        let v = Interval::point(1.0)
+            .mul(&Interval::point(15.0))
+            .add(&Interval::point(-15.0));
         assert_eq!(v.sign(), Some(Sign::Zero));
-        assert_eq!(plane_point_sign(&[1.0, 0.0, 0.0, -15.0], &[15.0, 3.0, 7.0]), Sign::Zero);
+        assert_eq!(
+            plane_point_sign(&[1.0, 0.0, 0.0, -15.0], &[15.0, 3.0, 7.0]),
+            Sign::Zero
+        );
     }
 
     #[test]

@@ -27,4 +27,5 @@ pub mod cut;
 pub mod grid;
 pub mod io;
 pub mod network;
+pub mod regions;
 pub mod scene;

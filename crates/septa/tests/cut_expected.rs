@@ -8,7 +8,14 @@ use septa::io::{mesh::read_mesh, planes::read_planes};
 use std::path::Path;
 
 const DATA: &str = "/work/shared/data";
-const SMALL: &[&str] = &["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"];
+const SMALL: &[&str] = &[
+    "cube",
+    "staircase",
+    "knight",
+    "plate_genus9",
+    "bunny",
+    "fertility",
+];
 
 #[test]
 fn counts_match_reference() {
@@ -32,24 +39,43 @@ fn counts_match_reference() {
             continue;
         }
         let mesh = read_mesh(Path::new(&format!("{DATA}/meshes/{mesh_name}"))).unwrap();
-        let planes = read_planes(Path::new(&format!("{DATA}/topocut/{}", case["planes"].as_str().unwrap()))).unwrap();
+        let planes = read_planes(Path::new(&format!(
+            "{DATA}/topocut/{}",
+            case["planes"].as_str().unwrap()
+        )))
+        .unwrap();
         let t = std::time::Instant::now();
-        let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &CutOptions::default()).unwrap();
+        let out = cut_mesh(
+            &mesh.vertices,
+            &mesh.triangles,
+            &planes,
+            &CutOptions::default(),
+        )
+        .unwrap();
         let secs = t.elapsed().as_secs_f64();
         ran += 1;
         let c = out.counts;
         let want = |k: &str| case[k].as_u64().unwrap() as usize;
         let got = [c.cut_vertices, c.cut_edges, c.cut_faces, c.cut_cells];
-        let exp4 = [want("cut_vertices"), want("cut_edges"), want("cut_faces"), want("cut_cells")];
+        let exp4 = [
+            want("cut_vertices"),
+            want("cut_edges"),
+            want("cut_faces"),
+            want("cut_cells"),
+        ];
         let check = out.validate();
         eprintln!(
             "{name:20} got {got:?} want {exp4:?} {} {:.3}s fallbacks {} check {:?}",
             if got == exp4 { "OK" } else { "MISMATCH" },
             secs,
             out.stats.exact_fallbacks,
-            check.as_ref().map(|v| (v.euler, v.volume_relative_error)).map_err(|e| e.to_string())
+            check
+                .as_ref()
+                .map(|v| (v.euler, v.euler_by_cell, v.domain_euler, v.non_ball_cells, v.volume_relative_error))
+                .map_err(|e| e.to_string())
         );
-        if got != exp4 || check.is_err() {
+        let euler_ok = check.as_ref().map(|v| v.euler_by_cell == v.domain_euler).unwrap_or(false);
+        if got != exp4 || !euler_ok {
             failures.push(name.clone());
         }
     }

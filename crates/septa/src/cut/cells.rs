@@ -67,23 +67,36 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 
 /// Joins half-faces into cells.
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
-    // incident (face, traverses min -> max, its own direction label)
-    let mut inc: FxMap<(u32, u32), Vec<(u32, bool, (LineDir, bool))>> = FxMap::default();
+    // incident (edge key, face loop, traverses min -> max, its own direction
+    // label), grouped by sorting (no per-edge allocation)
+    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> =
+        Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
     for (f, fl) in faces.iter().enumerate() {
         let n = fl.verts.len();
         for i in 0..n {
             let (a, b) = (fl.verts[i], fl.verts[(i + 1) % n]);
-            inc.entry((a.min(b), a.max(b))).or_default().push((f as u32, a < b, fl.dirs[i]));
+            let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+            inc.push((key, f as u32, a < b, fl.dirs[i]));
         }
     }
+    inc.sort_unstable_by_key(|x| (x.0, x.1));
     let nf = faces.iter().map(|f| f.face + 1).max().unwrap_or(0) as usize;
     let mut parent: Vec<u32> = (0..2 * nf as u32).collect();
     let fid = |f: u32| faces[f as usize].face;
     let is_plane = |f: u32| matches!(faces[f as usize].support, Support::Plane(_));
     let mut ordered = 0usize;
-    let mut keys: Vec<(u32, (u32, u32))> = Vec::new();
-    let _ = &mut keys;
-    for (_, list) in inc.iter_mut() {
+    let mut nedges = 0usize;
+    let mut list: Vec<(u32, bool, (LineDir, bool))> = Vec::new();
+    let mut g0 = 0;
+    while g0 < inc.len() {
+        let mut g1 = g0 + 1;
+        while g1 < inc.len() && inc[g1].0 == inc[g0].0 {
+            g1 += 1;
+        }
+        list.clear();
+        list.extend(inc[g0..g1].iter().map(|x| (x.1, x.2, x.3)));
+        g0 = g1;
+        nedges += 1;
         let k = list.len();
         if k > 2 {
             ordered += 1;
@@ -92,21 +105,43 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let d: (LineDir, bool) = if fwd0 { h0 } else { (h0.0, !h0.1) };
             let items: Vec<(u32, bool)> = list.iter().map(|x| (x.0, x.1)).collect();
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
+            let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
             let class = |x: (Support, (LineDir, bool))| -> u8 {
-                fn b<R: Ring>(c: &Ctx, d: (LineDir, bool), w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
+                fn b<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    w0: (Support, (LineDir, bool)),
+                    x: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(&dv, &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)))
+                    dot3(
+                        &dv,
+                        &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)),
+                    )
                 }
-                fn a<R: Ring>(c: &Ctx, w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
+                fn a<R: Ring>(
+                    c: &Ctx,
+                    w0: (Support, (LineDir, bool)),
+                    x: (Support, (LineDir, bool)),
+                ) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
-                let sb = filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x));
+                let iw0 = wvec::<Interval>(c, w0.0, w0.1);
+                let iwx = wvec::<Interval>(c, x.0, x.1);
+                let sb = match dot3(&dv_i, &cross3(&iw0, &iwx)).sign() {
+                    Some(s) => s,
+                    None => {
+                        filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x))
+                    }
+                };
                 match sb {
                     Sign::Positive => 1,
                     Sign::Negative => 3,
                     Sign::Zero => {
-                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x)) == Sign::Positive {
+                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x))
+                            == Sign::Positive
+                        {
                             0
                         } else {
                             2
@@ -129,6 +164,10 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 })
                 .collect();
+            let iws: Vec<V3<Interval>> = items
+                .iter()
+                .map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up)))
+                .collect();
             let mut idx: Vec<usize> = (0..k).collect();
             idx.sort_by(|&x, &y| {
                 if cls[x] != cls[y] {
@@ -139,11 +178,22 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 }
                 let wx = (faces[items[x].0 as usize].support, hof(items[x].1));
                 let wy = (faces[items[y].0 as usize].support, hof(items[y].1));
-                fn f<R: Ring>(c: &Ctx, d: (LineDir, bool), wx: (Support, (LineDir, bool)), wy: (Support, (LineDir, bool))) -> R {
+                fn f<R: Ring>(
+                    c: &Ctx,
+                    d: (LineDir, bool),
+                    wx: (Support, (LineDir, bool)),
+                    wy: (Support, (LineDir, bool)),
+                ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
+                    dot3(
+                        &dv,
+                        &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)),
+                    )
                 }
-                match filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy)) {
+                let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
+                match quick.unwrap_or_else(|| {
+                    filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy))
+                }) {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,
@@ -170,16 +220,9 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             };
             let side_a = if upa { 0 } else { 1 }; // + side of A faces the CCW wedge iff A runs along +D
             let side_b = if upb { 1 } else { 0 }; // + side of B faces the CW wedge iff B runs along -D
-            let inside = if k == 2 {
-                true
-            } else {
-                is_plane(fa) || is_plane(fb) || side_a == 1
-            };
-            let (na, nb) = if k == 2 {
-                (2 * fid(fa) + 1, 2 * fid(fb) + 1)
-            } else {
-                (2 * fid(fa) + side_a, 2 * fid(fb) + side_b)
-            };
+            let inside = if k == 2 { true } else { is_plane(fa) || is_plane(fb) || side_a == 1 };
+            let (na, nb) =
+                if k == 2 { (2 * fid(fa) + 1, 2 * fid(fb) + 1) } else { (2 * fid(fa) + side_a, 2 * fid(fb) + side_b) };
             if inside {
                 let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
                 if ra != rb {
@@ -203,5 +246,10 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
         }
     }
     let _ = neg3::<Interval>;
-    Cells { cell_of, count: ids.len(), edges: inc.len(), ordered_edges: ordered }
+    Cells {
+        cell_of,
+        count: ids.len(),
+        edges: nedges,
+        ordered_edges: ordered,
+    }
 }

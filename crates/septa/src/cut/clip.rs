@@ -4,8 +4,9 @@
 //! convex polygons because every cut is a full plane).
 
 use super::geom::{Ctx, Def};
-use super::nodes::Nodes;
+use rayon::prelude::*;
 use septa_exact::Sign;
+use septa_exact::{Interval, Ring};
 use smallvec::SmallVec;
 
 /// The line an edge of a piece lies on.
@@ -13,8 +14,10 @@ use smallvec::SmallVec;
 pub enum EdgeLine {
     /// Part of mesh edge `e`.
     Mesh(u32),
-    /// Part of the intersection with plane `p`.
-    Plane(u32),
+    /// Part of the intersection with plane `p`; the flag is true when the
+    /// piece lies on the positive side of `p` (then the piece runs along
+    /// `n_p x n_t`, see [`super::geom::LineDir::TriPlane`]).
+    Plane(u32, bool),
 }
 
 /// A convex piece of a triangle, counter-clockwise about the outward normal.
@@ -22,10 +25,41 @@ pub enum EdgeLine {
 pub struct Piece {
     /// The triangle.
     pub tri: u32,
-    /// Corner nodes.
-    pub nodes: SmallVec<[u32; 8]>,
+    /// Corners as face triples (merged into cut-vertices later).
+    pub nodes: SmallVec<[Def; 8]>,
     /// Line of the edge from corner `i` to corner `i + 1`.
     pub lines: SmallVec<[EdgeLine; 8]>,
+    /// Interval coordinates of the corners (a filter for side tests), or
+    /// `None` when the filter could not bound them.
+    pub boxes: SmallVec<[Option<[Interval; 3]>; 8]>,
+}
+
+/// Interval coordinates of a cut-vertex.
+fn coords(c: &Ctx, d: Def) -> Option<[Interval; 3]> {
+    let (h, w) = c.hom::<Interval>(d);
+    Some([h[0].div(&w)?, h[1].div(&w)?, h[2].div(&w)?])
+}
+
+/// Side of a corner on plane `q`: interval test on its coordinates, then the
+/// full filtered predicate.
+fn corner_side(c: &Ctx, d: Def, b: &Option<[Interval; 3]>, q: u32) -> Sign {
+    if let Def::V(v) = d {
+        return Sign::from_i8(c.pv_sign(q, v));
+    }
+    if let Some(x) = b {
+        let pl = &c.planes[q as usize];
+        let v = Interval::point(pl[3])
+            .add(&Interval::point(pl[0]).mul(&x[0]))
+            .add(&Interval::point(pl[1]).mul(&x[1]))
+            .add(&Interval::point(pl[2]).mul(&x[2]));
+        if v.lo > 0.0 {
+            return Sign::Positive;
+        }
+        if v.hi < 0.0 {
+            return Sign::Negative;
+        }
+    }
+    c.side(d, q)
 }
 
 /// Output of clipping all triangles.
@@ -34,18 +68,34 @@ pub struct Clipped {
     pub pieces: Vec<Piece>,
     /// Interior cut-vertices of triangles with the planes through them
     /// (including planes containing the triangle), for line point lists.
-    pub interior: Vec<(u32, SmallVec<[u32; 4]>)>,
+    pub interior: Vec<(Def, SmallVec<[u32; 4]>)>,
 }
 
-/// Clips every triangle by the planes crossing it.
-pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
+/// Clips every triangle by the planes crossing it (in parallel; the
+/// result is in triangle order whatever the thread count).
+pub fn clip_all(c: &Ctx) -> Clipped {
+    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> = (0..c.tris.len() as u32)
+        .into_par_iter()
+        .map(|t| clip_tri(c, t))
+        .collect();
+    let mut out = Clipped {
+        pieces: Vec::new(),
+        interior: Vec::new(),
+    };
+    for (p, i) in per {
+        out.pieces.extend(p);
+        out.interior.extend(i);
+    }
+    out
+}
+
+fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
     let np = c.planes.len() as u32;
-    let mut out = Clipped { pieces: Vec::new(), interior: Vec::new() };
     let mut polys: Vec<Piece> = Vec::new();
     let mut next: Vec<Piece> = Vec::new();
     let mut signs: Vec<Sign> = Vec::new();
-    for (t, tri) in c.tris.iter().enumerate() {
-        let t = t as u32;
+    let tri = &c.tris[t as usize];
+    {
         let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
         let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
         for p in 0..np {
@@ -58,20 +108,24 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
         }
         let first = Piece {
             tri: t,
-            nodes: tri.iter().map(|&v| nodes.get(Def::V(v))).collect(),
-            lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
+            nodes: tri.iter().map(|&v| Def::V(v)).collect(),
+            boxes: tri.iter().map(|_| None).collect(),
+            lines: c.tri_edges[t as usize]
+                .iter()
+                .map(|&e| EdgeLine::Mesh(e))
+                .collect(),
         };
         polys.clear();
         polys.push(first);
         // planes through each interior vertex, local to this triangle
-        let mut inner: Vec<(u32, SmallVec<[u32; 4]>)> = Vec::new();
+        let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
         for &q in &crossing {
             next.clear();
             for poly in polys.drain(..) {
                 signs.clear();
-                for &n in &poly.nodes {
-                    let d = nodes.defs[n as usize];
-                    let s = c.side(d, q);
+                for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
+                    let d = n;
+                    let s = corner_side(c, d, bx, q);
                     if s == Sign::Zero {
                         if let Def::TPP(..) = d {
                             if let Some(e) = inner.iter_mut().find(|e| e.0 == n) {
@@ -89,8 +143,18 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                     next.push(poly);
                     continue;
                 }
-                let mut a = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new() };
-                let mut b = Piece { tri: t, nodes: SmallVec::new(), lines: SmallVec::new() };
+                let mut a = Piece {
+                    tri: t,
+                    nodes: SmallVec::new(),
+                    lines: SmallVec::new(),
+                    boxes: SmallVec::new(),
+                };
+                let mut b = Piece {
+                    tri: t,
+                    nodes: SmallVec::new(),
+                    lines: SmallVec::new(),
+                    boxes: SmallVec::new(),
+                };
                 let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let n = poly.nodes.len();
@@ -101,19 +165,21 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                     let zero = si == Sign::Zero;
                     if si != Sign::Negative {
                         a.nodes.push(poly.nodes[i]);
+                        a.boxes.push(poly.boxes[i]);
                         a.lines.push(line);
                         a_on.push(zero);
                     }
                     if si != Sign::Positive {
                         b.nodes.push(poly.nodes[i]);
+                        b.boxes.push(poly.boxes[i]);
                         b.lines.push(line);
                         b_on.push(zero);
                     }
                     if si.as_i8() * sj.as_i8() < 0 {
                         let x = match line {
-                            EdgeLine::Mesh(e) => nodes.get(Def::EP(e, q)),
-                            EdgeLine::Plane(p) => {
-                                let k = nodes.get(Def::TPP(t, p.min(q), p.max(q)));
+                            EdgeLine::Mesh(e) => Def::EP(e, q),
+                            EdgeLine::Plane(p, _) => {
+                                let k = Def::TPP(t, p.min(q), p.max(q));
                                 let mut z: SmallVec<[u32; 4]> = SmallVec::new();
                                 z.push(p);
                                 z.push(q);
@@ -121,15 +187,17 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                                 k
                             }
                         };
+                        let bx = coords(c, x);
                         for (piece, on) in [(&mut a, &mut a_on), (&mut b, &mut b_on)] {
                             piece.nodes.push(x);
+                            piece.boxes.push(bx);
                             piece.lines.push(line);
                             on.push(true);
                         }
                     }
                 }
                 // In a convex piece, an edge with both ends on q lies on q.
-                for (piece, on) in [(&mut a, &a_on), (&mut b, &b_on)] {
+                for (piece, on, pos) in [(&mut a, &a_on, true), (&mut b, &b_on, false)] {
                     let m = piece.nodes.len();
                     for i in 0..m {
                         if on[i] && on[(i + 1) % m] {
@@ -138,10 +206,10 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
                                     let [u, v] = c.edges[e as usize];
                                     c.pv_sign(q, u) == 0 && c.pv_sign(q, v) == 0
                                 }
-                                EdgeLine::Plane(_) => false,
+                                EdgeLine::Plane(..) => false,
                             };
                             if !in_q {
-                                piece.lines[i] = EdgeLine::Plane(q);
+                                piece.lines[i] = EdgeLine::Plane(q, pos);
                             }
                         }
                     }
@@ -151,11 +219,11 @@ pub fn clip_all(c: &Ctx, nodes: &mut Nodes) -> Clipped {
             }
             std::mem::swap(&mut polys, &mut next);
         }
+        let mut interior = Vec::with_capacity(inner.len());
         for (k, mut z) in inner {
             z.extend(coplanar.iter().copied());
-            out.interior.push((k, z));
+            interior.push((k, z));
         }
-        out.pieces.extend(polys.drain(..));
+        (polys, interior)
     }
-    out
 }

@@ -80,7 +80,12 @@ pub fn register(lines: &mut LinePoints, crosses: &[bool], np: usize, node: u32, 
 
 /// Mesh edges cut by planes: for each edge, the ordered distinct points
 /// from `u` to `v`; registers every point that lies on two planes.
-pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &[bool]) -> Vec<Vec<u32>> {
+pub fn mesh_edges(
+    c: &Ctx,
+    nodes: &mut Nodes,
+    lines: &mut LinePoints,
+    crosses: &[bool],
+) -> Vec<Vec<u32>> {
     let np = c.planes.len();
     let mut chains = Vec::with_capacity(c.edges.len());
     let mut pts = Vec::new();
@@ -132,7 +137,12 @@ pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &
 
 /// Plane-pair lines: adds the three-plane points and sorts every line.
 /// Returns, per line, the ordered distinct points.
-pub fn plane_lines(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &[bool]) -> Vec<((u32, u32), Vec<u32>)> {
+pub fn plane_lines(
+    c: &Ctx,
+    nodes: &mut Nodes,
+    lines: &mut LinePoints,
+    crosses: &[bool],
+) -> Vec<((u32, u32), Vec<u32>)> {
     let np = c.planes.len() as u32;
     let mut out = Vec::new();
     for p in 0..np {

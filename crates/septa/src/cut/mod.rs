@@ -30,6 +30,7 @@ use clip::EdgeLine;
 use geom::{Ctx, Def, LineDir};
 use nodes::{FxMap, Nodes};
 use plane_graph::{Boundary, GEdge};
+use rayon::prelude::*;
 use septa_exact::Sign;
 use std::time::Instant;
 
@@ -85,7 +86,9 @@ pub enum CutError {
         b: u32,
     },
     /// An edge with only one triangle.
-    #[error("edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight")]
+    #[error(
+        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
+    )]
     NotWatertight {
         /// Triangle index.
         triangle: usize,
@@ -142,9 +145,8 @@ pub struct CutCounts {
 pub struct CutStats {
     /// Seconds per stage.
     pub seconds: Vec<(String, f64)>,
-    /// Filtered predicate evaluations during this cut.
-    pub predicates: u64,
-    /// Of which needed the exact fallback.
+    /// Filtered predicates that needed the exact fallback during this cut
+    /// (process-wide counter: concurrent cuts in other threads add to it).
     pub exact_fallbacks: u64,
     /// Cut-edges whose face-cycle order was computed (more than two faces).
     pub ordered_edges: usize,
@@ -187,6 +189,8 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// Euler characteristic of the input surface (`V - E + T`).
+    pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
     pub cell_volumes: Vec<f64>,
     /// Timings and predicate statistics.
@@ -202,6 +206,15 @@ pub struct Validation {
     pub volume_relative_error: f64,
     /// Smallest cell volume.
     pub min_cell_volume: f64,
+    /// Euler characteristic of the domain, `chi(mesh) / 2`.
+    pub domain_euler: i64,
+    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
+    /// counted on each cell's own boundary: equals `domain_euler` when
+    /// every cut-face is a disc (holes are joined by one edge each), whatever
+    /// the topology of the cells (a cell around a handle has `chi = 0`).
+    pub euler_by_cell: i64,
+    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
+    pub non_ball_cells: usize,
 }
 
 impl CutCellMesh {
@@ -213,44 +226,114 @@ impl CutCellMesh {
             match f.support {
                 Support::Tri(_) => {
                     if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
-                        return Err(CutError::Inconsistent(format!("boundary face {i} does not bound exactly one cell")));
+                        return Err(CutError::Inconsistent(format!(
+                            "boundary face {i} does not bound exactly one cell"
+                        )));
                     }
                 }
                 Support::Plane(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1] {
-                        return Err(CutError::Inconsistent(format!("plane face {i} does not bound two distinct cells")));
+                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
+                    {
+                        return Err(CutError::Inconsistent(format!(
+                            "plane face {i} does not bound two distinct cells"
+                        )));
                     }
                 }
             }
         }
         let total: f64 = self.cell_volumes.iter().sum();
         let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
-        let min = self.cell_volumes.iter().copied().fold(f64::INFINITY, f64::min);
+        let min = self
+            .cell_volumes
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
         if err > 1e-9 {
-            return Err(CutError::Inconsistent(format!("cell volumes sum to {total}, mesh volume {}", self.mesh_volume)));
+            return Err(CutError::Inconsistent(format!(
+                "cell volumes sum to {total}, mesh volume {}",
+                self.mesh_volume
+            )));
         }
         if min <= 0.0 {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
         }
         let c = &self.counts;
+        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
+        // faces and join edges (one per hole) per cell
+        let mut cv: Vec<(u32, u32)> = Vec::new();
+        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
+        let mut cf = vec![0i64; self.num_cells];
+        for f in &self.faces {
+            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
+                cf[cell as usize] += 1;
+                // a joined hole adds one edge and keeps one face: chi contribution 0
+                cf[cell as usize] -= f.loops.len() as i64 - 1;
+                for l in &f.loops {
+                    for (k, &v) in l.iter().enumerate() {
+                        let w = l[(k + 1) % l.len()];
+                        cv.push((cell, v));
+                        ce.push((cell, v.min(w), v.max(w)));
+                    }
+                }
+            }
+        }
+        cv.sort_unstable();
+        cv.dedup();
+        ce.sort_unstable();
+        ce.dedup();
+        let mut chi2 = cf;
+        for &(cell, _) in &cv {
+            chi2[cell as usize] += 1;
+        }
+        for &(cell, _, _) in &ce {
+            chi2[cell as usize] -= 1;
+        }
+        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
+        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
         Ok(Validation {
-            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - c.cut_cells as i64,
+            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - c.cut_cells as i64,
             volume_relative_error: err,
             min_cell_volume: min,
+            domain_euler: self.mesh_euler / 2,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
+            non_ball_cells: non_ball,
         })
     }
 }
 
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
 /// (`a x + b y + c z + d = 0`).
-pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4]], opts: &CutOptions) -> Result<CutCellMesh, CutError> {
-    let _ = opts.threads;
-    let ev0 = septa_exact::evaluation_count();
+pub fn cut_mesh(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+    opts: &CutOptions,
+) -> Result<CutCellMesh, CutError> {
+    if opts.threads == 0 {
+        return cut_impl(vertices, triangles, planes);
+    }
+    match rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+    {
+        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
+        Err(_) => cut_impl(vertices, triangles, planes),
+    }
+}
+
+fn cut_impl(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+) -> Result<CutCellMesh, CutError> {
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
     let mut clock = Instant::now();
     let mut lap = |name: &str, stats: &mut CutStats| {
-        stats.seconds.push((name.to_string(), clock.elapsed().as_secs_f64()));
+        stats
+            .seconds
+            .push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
@@ -259,12 +342,24 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     let nv = vertices.len();
     let np = planes.len();
     let mut pv = vec![0i8; np * nv];
-    for (p, pl) in planes.iter().enumerate() {
-        for (v, x) in vertices.iter().enumerate() {
-            pv[p * nv + v] = septa_exact::plane_point_sign(pl, x).as_i8();
-        }
+    if nv > 0 {
+        pv.par_chunks_mut(nv)
+            .zip(planes.par_iter())
+            .for_each(|(row, pl)| {
+                for (r, x) in row.iter_mut().zip(vertices) {
+                    *r = septa_exact::plane_point_sign(pl, x).as_i8();
+                }
+            });
     }
-    let c = Ctx { verts: vertices, tris: triangles, planes: &planes, edges, tri_edges, edge_tris, pv };
+    let c = Ctx {
+        verts: vertices,
+        tris: triangles,
+        planes: &planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv,
+    };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {
@@ -276,10 +371,16 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     let mut line_pts = lines::LinePoints::default();
     let chains = lines::mesh_edges(&c, &mut nodes, &mut line_pts, &crosses);
     lap("mesh_edges", &mut stats);
-    let clipped = clip::clip_all(&c, &mut nodes);
-    for (n, z) in &clipped.interior {
-        lines::register(&mut line_pts, &crosses, np, *n, z);
+    let clipped = clip::clip_all(&c);
+    for (d, z) in &clipped.interior {
+        let n = nodes.get(*d);
+        lines::register(&mut line_pts, &crosses, np, n, z);
     }
+    let piece_nodes: Vec<Vec<u32>> = clipped
+        .pieces
+        .iter()
+        .map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect())
+        .collect();
     lap("triangles", &mut stats);
     let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
     lap("plane_lines", &mut stats);
@@ -296,33 +397,53 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     }
     let cid = |n: u32| canon[n as usize];
     // boundary edge maps and per-plane edge lists
-    let mut bnd = Boundary { gamma: FxMap::default(), mesh: FxMap::default() };
+    let mut bnd = Boundary {
+        gamma: FxMap::default(),
+        mesh: FxMap::default(),
+    };
     let mut pedges: Vec<Vec<GEdge>> = vec![Vec::new(); np];
     for (e, chain) in chains.iter().enumerate() {
         let [u, v] = c.edges[e];
-        let inside: Vec<u32> = (0..np as u32).filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0).collect();
+        let inside: Vec<u32> = (0..np as u32)
+            .filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0)
+            .collect();
         for w in chain.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
             for &p in &inside {
-                pedges[p as usize].push(GEdge { a, b, dir: LineDir::Mesh(e as u32), fwd: true });
+                pedges[p as usize].push(GEdge {
+                    a,
+                    b,
+                    dir: LineDir::Mesh(e as u32),
+                    fwd: true,
+                });
             }
         }
     }
     let mut faces: Vec<FaceLoop> = Vec::with_capacity(clipped.pieces.len());
-    for piece in &clipped.pieces {
+    for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
         let t = piece.tri;
-        let n = piece.nodes.len();
-        let mut fl = FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
+        let n = pn.len();
+        let mut fl = FaceLoop {
+            support: Support::Tri(t),
+            verts: Vec::with_capacity(n),
+            dirs: Vec::with_capacity(n),
+            face: 0,
+        };
         for i in 0..n {
-            let (na, nb) = (piece.nodes[i], piece.nodes[(i + 1) % n]);
+            let (na, nb) = (pn[i], pn[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
             fl.verts.push(a);
             match piece.lines[i] {
-                EdgeLine::Mesh(e) => fl.dirs.push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
-                EdgeLine::Plane(p) => {
+                EdgeLine::Mesh(e) => fl
+                    .dirs
+                    .push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
+                EdgeLine::Plane(p, fwd) => {
                     let dir = LineDir::TriPlane(t, p);
-                    let fwd = c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive;
+                    debug_assert_eq!(
+                        fwd,
+                        c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive
+                    );
                     fl.dirs.push((dir, fwd));
                     bnd.gamma.insert((a.min(b), a.max(b)), t);
                     pedges[p as usize].push(GEdge { a, b, dir, fwd });
@@ -334,21 +455,33 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     for ((p, q), pts) in &plines {
         for w in pts.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
-            let ge = GEdge { a, b, dir: LineDir::PlanePlane(*p, *q), fwd: true };
+            let ge = GEdge {
+                a,
+                b,
+                dir: LineDir::PlanePlane(*p, *q),
+                fwd: true,
+            };
             pedges[*p as usize].push(ge);
             pedges[*q as usize].push(ge);
         }
     }
     lap("edges", &mut stats);
-    let mut unclassified = 0u64;
     let mut nholes = 0usize;
     for f in faces.iter_mut().enumerate() {
         f.1.face = f.0 as u32;
     }
     let mut nface = faces.len() as u32;
-    for p in 0..np {
-        let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut unclassified);
-        let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+    let per_plane: Vec<(Vec<plane_graph::PlaneLoop>, u64, usize, usize)> = (0..np)
+        .into_par_iter()
+        .map(|p| {
+            let mut u = 0u64;
+            let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut u);
+            let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+            (loops, u, h, t)
+        })
+        .collect();
+    for (loops, u, h, t) in per_plane {
+        let _ = u; // loops of unbounded, outside regions
         nholes += h;
         stats.hole_containment_tests += t;
         let mut id = vec![u32::MAX; loops.len()];
@@ -360,7 +493,12 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         }
         for l in loops {
             let face = id[l.outer as usize];
-            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs, face });
+            faces.push(FaceLoop {
+                support: Support::Plane(l.plane),
+                verts: l.verts,
+                dirs: l.dirs,
+                face,
+            });
         }
     }
     stats.holes = nholes;
@@ -383,7 +521,14 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
     let nf = nface as usize;
-    out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
+    out.faces = vec![
+        CutFace {
+            support: Support::Plane(0),
+            loops: Vec::new(),
+            cells: [u32::MAX; 2]
+        };
+        nf
+    ];
     for f in faces.iter() {
         let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
         let i = f.face as usize;
@@ -402,6 +547,7 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         cf.loops.push(verts);
     }
     out.mesh_volume = output::mesh_volume(vertices, triangles);
+    out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;
     out.counts = CutCounts {
         cut_vertices: out.vertex_defs.len(),
         cut_edges: cells.edges + nholes,
@@ -409,7 +555,6 @@ pub fn cut_mesh(vertices: &[[f64; 3]], triangles: &[[u32; 3]], planes: &[[f64; 4
         cut_cells: cells.count,
     };
     lap("output", &mut stats);
-    stats.predicates = septa_exact::evaluation_count() - ev0;
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
     out.stats = stats;
     Ok(out)

@@ -30,7 +30,11 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
             cells[f.cells[0] as usize].push(f.loops.clone());
         }
         if f.cells[1] != u32::MAX {
-            let rev: Vec<Vec<u32>> = f.loops.iter().map(|l| l.iter().rev().copied().collect()).collect();
+            let rev: Vec<Vec<u32>> = f
+                .loops
+                .iter()
+                .map(|l| l.iter().rev().copied().collect())
+                .collect();
             cells[f.cells[1] as usize].push(rev);
         }
     }
@@ -43,7 +47,12 @@ pub fn vtu(m: &CutCellMesh) -> String {
     let cells = cell_faces(m);
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>");
-    let _ = writeln!(s, "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", m.vertices.len(), m.num_cells);
+    let _ = writeln!(
+        s,
+        "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        m.vertices.len(),
+        m.num_cells
+    );
     s.push_str("<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
     for v in &m.vertices {
         let _ = writeln!(s, "{:?} {:?} {:?}", v[0], v[1], v[2]);
@@ -85,7 +94,9 @@ pub fn vtu(m: &CutCellMesh) -> String {
     for x in &faces_stream {
         let _ = write!(s, "{x} ");
     }
-    s.push_str("\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n");
+    s.push_str(
+        "\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n",
+    );
     for x in &face_offsets {
         let _ = write!(s, "{x} ");
     }
@@ -132,7 +143,13 @@ pub fn obj(m: &CutCellMesh, explode: f64) -> String {
         let _ = writeln!(s, "g cell_{i}");
         for &v in &used {
             let x = m.vertices[v as usize];
-            let _ = writeln!(s, "v {:?} {:?} {:?}", x[0] + shift[0], x[1] + shift[1], x[2] + shift[2]);
+            let _ = writeln!(
+                s,
+                "v {:?} {:?} {:?}",
+                x[0] + shift[0],
+                x[1] + shift[1],
+                x[2] + shift[2]
+            );
         }
         let local = |v: u32| base + used.binary_search(&v).unwrap();
         for f in c {

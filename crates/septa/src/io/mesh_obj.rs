@@ -6,7 +6,8 @@ use std::path::Path;
 
 /// Parses OBJ text.
 pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
     let mut mesh = TriMesh::default();
     let mut poly: Vec<u32> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
@@ -23,13 +24,23 @@ pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                 poly.clear();
                 for tok in it {
                     let idx = tok.split('/').next().unwrap_or("");
-                    let k: i64 = idx
-                        .parse()
-                        .map_err(|_| ReadError::new(path, line, format!("face index '{tok}' is not an integer")))?;
+                    let k: i64 = idx.parse().map_err(|_| {
+                        ReadError::new(path, line, format!("face index '{tok}' is not an integer"))
+                    })?;
                     let n = mesh.vertices.len() as i64;
-                    let k0 = if k > 0 { k - 1 } else if k < 0 { n + k } else { -1 };
+                    let k0 = if k > 0 {
+                        k - 1
+                    } else if k < 0 {
+                        n + k
+                    } else {
+                        -1
+                    };
                     if k0 < 0 || k0 >= n {
-                        return Err(ReadError::new(path, line, format!("face index {k} out of range (have {n} vertices)")));
+                        return Err(ReadError::new(
+                            path,
+                            line,
+                            format!("face index {k} out of range (have {n} vertices)"),
+                        ));
                     }
                     poly.push(k0 as u32);
                 }

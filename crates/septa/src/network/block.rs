@@ -78,19 +78,20 @@ pub(crate) struct Worker {
     fref: Vec<Option<SRef>>,
     tets: Vec<usize>,
     pairs: Vec<(u32, u32)>,
+    edge_net: Vec<u32>,
     cell_labels: Vec<Label>,
 }
 
 /// Block-local maps, dropped with the block.
 #[derive(Default)]
-struct State {
-    out: BlockOut,
+pub(crate) struct State {
+    pub out: BlockOut,
     vmap: FxHashMap<VKey, u32>,
     contacts: FxHashMap<(FaceKey, Label), u32>,
     tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
-    uf: UnionFind,
-    node_label: Vec<Label>,
-    node_volume: Vec<f64>,
+    pub uf: UnionFind,
+    pub node_label: Vec<Label>,
+    pub node_volume: Vec<f64>,
 }
 
 /// Run-wide inputs.
@@ -115,6 +116,14 @@ impl Worker {
     /// Processes one block.
     pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
         let mut st = State::default();
+        if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
+            if super::boxfast::applies(ctx) {
+                self.run_box(ctx, &mut st, g, *lo, *hi)?;
+                st.out.tets =
+                    (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
+                return Ok(finish(st));
+            }
+        }
         let mut tets = std::mem::take(&mut self.tets);
         ctx.grid.block_tets(block, &mut tets);
         for &t in &tets {
@@ -127,30 +136,25 @@ impl Worker {
 
     /// The per-tet step (active functions, complex, extraction); look-up
     /// tables slot in at the `build` call.
-    fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
+    pub(crate) fn process_tet(
+        &mut self,
+        ctx: &Ctx,
+        st: &mut State,
+        t: usize,
+    ) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
         let k = ctx.k;
         let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
-        self.active.clear();
-        match ctx.mode {
-            Mode::Ia => {
-                for f in 0..k {
-                    let r = row(f);
-                    if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
-                        if r.iter().all(|&x| x == 0.0) {
-                            return Err(NetworkError::VanishesOnTet { tet: t, function: f });
-                        }
-                        self.active.push(f as u16);
-                    }
-                }
-            }
-            Mode::Mi => mi_active(&tet, ctx, &mut self.active),
-        }
+        active_functions(ctx, t, &tet, &mut self.active)?;
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),
             Mode::Mi => self.active.len() < 2,
         };
-        let volume = if ctx.volumes { ctx.grid.tet_volume(t) } else { 0.0 };
+        let volume = if ctx.volumes {
+            ctx.grid.tet_volume(t)
+        } else {
+            0.0
+        };
         if empty {
             let label: Label = match ctx.mode {
                 Mode::Ia => ia_base_label(&tet, ctx),
@@ -171,7 +175,10 @@ impl Worker {
         }
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
-            .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
+            .map_err(|e| NetworkError::Tet {
+                tet: t,
+                message: e.to_string(),
+            })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
         // Degenerate tet faces: the network contains the whole face.
@@ -224,7 +231,11 @@ impl Worker {
                 Plane::TetFace(i) => {
                     let i = i as usize;
                     if let Some(z) = deg[i] {
-                        let verts = face.vertices.iter().map(|&v| vertex_id(self, c, ctx, st, &tet, v)).collect();
+                        let verts = face
+                            .vertices
+                            .iter()
+                            .map(|&v| vertex_id(self, c, ctx, st, &tet, v))
+                            .collect();
                         let h = st.out.halves.len() as u32;
                         st.out.halves.push(HalfPoly {
                             face: face_key(&tet, i),
@@ -256,7 +267,9 @@ impl Worker {
                     }
                     st.out.poly_start.push(st.out.poly_verts.len() as u32);
                     st.out.poly_label.push(label);
-                    st.out.poly_cells.push([base + face.cells[0], base + face.cells[1]]);
+                    st.out
+                        .poly_cells
+                        .push([base + face.cells[0], base + face.cells[1]]);
                     self.fref[fi] = Some(SRef::Side(p, 0));
                 }
             }
@@ -269,13 +282,31 @@ impl Worker {
             let label = self.cell_labels[cell as usize].clone();
             contact(st, face_key(&tet, i as usize), &label, base + cell);
         }
-        // Shell connectivity: around every edge of every cell between network
-        // points, the two faces of the cell there bound the same wedge.
+        // Shell connectivity (Sec. 7): around an edge of the network, the two
+        // faces of a cell there bound the same wedge, so their sides facing the
+        // cell belong to one shell. Inside a tet this is a direct union; a wedge
+        // leaving through a tet face continues in the neighbour tet, matched by
+        // a (tet face, region label, edge) node. Such nodes are only needed
+        // where a chain may run: edges on a tet face that carry 2+ network
+        // faces of this tet (a surface crossing a tet face transversally has
+        // faces on both sides, so both tets see the same count), and network
+        // segments of tet edges (degenerate input).
+        self.edge_net.clear();
+        self.edge_net.resize(c.edges().len(), 0);
+        for (fi, face) in c.faces().iter().enumerate() {
+            if self.fref[fi].is_some() {
+                for &e in &face.edges {
+                    self.edge_net[e as usize] += 1;
+                }
+            }
+        }
         for (ci, cell) in c.cells().iter().enumerate() {
             let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
             for &fi in &cell.faces {
                 for &e in &c.faces()[fi as usize].edges {
-                    ef.push((e, fi));
+                    if self.edge_net[e as usize] > 0 || on_tet_edge(c, e) {
+                        ef.push((e, fi));
+                    }
                 }
             }
             ef.sort_unstable();
@@ -288,7 +319,17 @@ impl Worker {
                 let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
                 j += 2;
                 let [u, w] = c.edges()[e as usize].vertices;
-                if !on_network(ctx.mode, c, &self.vals, u) || !on_network(ctx.mode, c, &self.vals, w) {
+                let (n1, n2) = (
+                    self.fref[f1 as usize].is_some(),
+                    self.fref[f2 as usize].is_some(),
+                );
+                let tet_edge = on_tet_edge(c, e);
+                let needed = if tet_edge {
+                    segment_on_network(ctx.mode, c, &self.vals, u, w)
+                } else {
+                    (n1 && n2) || self.edge_net[e as usize] >= 2
+                };
+                if !needed {
                     continue;
                 }
                 let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
@@ -318,11 +359,18 @@ impl Worker {
             Some(SRef::Side(p, _)) => SRef::Side(p, if face.cells[0] == cell { 0 } else { 1 }),
             Some(r) => r,
             None => {
-                let Plane::TetFace(i) = face.plane else { unreachable!() };
+                let Plane::TetFace(i) = face.plane else {
+                    unreachable!()
+                };
                 let fk = face_key(tet, i as usize);
                 let a = vertex_id(self, c, ctx, st, tet, u);
                 let b = vertex_id(self, c, ctx, st, tet, w);
-                let key = (fk, self.cell_labels[cell as usize].clone(), a.min(b), a.max(b));
+                let key = (
+                    fk,
+                    self.cell_labels[cell as usize].clone(),
+                    a.min(b),
+                    a.max(b),
+                );
                 if let Some(t) = st.tmap.remove(&key) {
                     SRef::T(t)
                 } else {
@@ -336,36 +384,53 @@ impl Worker {
     }
 }
 
-/// Whether a complex vertex lies on the network (some function vanishes
-/// there, IA; two or more functions tie for the maximum, MI).
-fn on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> bool {
+/// Whether complex edge `e` lies on a tet edge.
+fn on_tet_edge(c: &Complex, e: u32) -> bool {
+    c.edges()[e as usize].planes.iter().all(|p| !p.is_network())
+}
+
+/// The functions vanishing (IA) or tied for the maximum (MI) at a vertex.
+fn zero_set(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> SmallVec<[u16; 8]> {
     let vert = &c.vertices()[v as usize];
+    if vert.dim() > 0 {
+        return vert.functions().iter().copied().collect();
+    }
+    let corner = vert.simplex().trailing_zeros() as usize;
     match mode {
-        Mode::Ia => {
-            if vert.dim() > 0 {
-                return true;
-            }
-            let corner = vert.simplex().trailing_zeros() as usize;
-            vals.iter().any(|r| r[corner] == 0.0)
-        }
+        Mode::Ia => (0..vals.len() as u16)
+            .filter(|&f| vals[f as usize][corner] == 0.0)
+            .collect(),
         Mode::Mi => {
-            if vert.dim() > 0 {
-                return true;
-            }
-            let corner = vert.simplex().trailing_zeros() as usize;
-            let m = vals.iter().map(|r| r[corner]).fold(f64::NEG_INFINITY, f64::max);
-            vals.iter().filter(|r| r[corner] == m).count() >= 2
+            let m = vals
+                .iter()
+                .map(|r| r[corner])
+                .fold(f64::NEG_INFINITY, f64::max);
+            (0..vals.len() as u16)
+                .filter(|&f| vals[f as usize][corner] == m)
+                .collect()
         }
     }
 }
 
-/// Block id of complex vertex `v`, creating its key and position on first use.
-fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32; 4], v: u32) -> u32 {
-    if w.vid[v as usize] != NONE {
-        return w.vid[v as usize];
+/// Whether the tet-edge segment `u w` lies on the network: one function
+/// vanishes at both ends (IA; it is linear along the edge), or two functions
+/// are tied for the maximum at both ends (MI).
+fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32) -> bool {
+    let (a, b) = (zero_set(mode, c, vals, u), zero_set(mode, c, vals, w));
+    let common = a.iter().filter(|f| b.contains(f)).count();
+    match mode {
+        Mode::Ia => common >= 1,
+        Mode::Mi => common >= 2,
     }
+}
+
+/// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
+pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
     let vert = c.vertices()[v as usize];
-    let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
+    let mut key = VKey {
+        grid: [u32::MAX; 4],
+        funcs: [u16::MAX; 4],
+    };
     let mut n = 0;
     for i in 0..4 {
         if vert.simplex() >> i & 1 == 1 {
@@ -374,30 +439,90 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
         }
     }
     key.grid[..n].sort_unstable();
-    if !(ctx.mode == Mode::Mi && vert.dim() == 0) {
+    if !(mode == Mode::Mi && vert.dim() == 0) {
         for (j, &f) in vert.functions().iter().enumerate() {
-            key.funcs[j] = w.active[f as usize];
+            key.funcs[j] = active[f as usize];
         }
         key.funcs.sort_unstable();
     }
+    key
+}
+
+/// Block id of complex vertex `v`, creating its key and position on first use.
+fn vertex_id(
+    w: &mut Worker,
+    c: &Complex,
+    ctx: &Ctx,
+    st: &mut State,
+    tet: &[u32; 4],
+    v: u32,
+) -> u32 {
+    if w.vid[v as usize] != NONE {
+        return w.vid[v as usize];
+    }
+    let key = vertex_key(ctx.mode, c, v, tet, &w.active);
     let next = st.out.keys.len() as u32;
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
         st.out.keys.push(key);
         let corners = tet.map(|g| ctx.grid.vertex(g));
-        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
+        st.out
+            .points
+            .push(c.vertex_position(v as usize, &corners, &w.vals));
     }
     w.vid[v as usize] = id;
     id
 }
 
+pub(crate) fn contact_pub(st: &mut State, face: FaceKey, label: &Label, node: u32) {
+    contact(st, face, label, node)
+}
+
+pub(crate) fn face_key_pub(tet: &[u32; 4], i: usize) -> FaceKey {
+    face_key(tet, i)
+}
+
 fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
-    match st.contacts.remove(&(face, label.clone())) {
-        Some(other) => st.uf.union(other, node),
-        None => {
-            st.contacts.insert((face, label.clone()), node);
+    use std::collections::hash_map::Entry;
+    match st.contacts.entry((face, label.clone())) {
+        Entry::Occupied(o) => {
+            let other = o.remove();
+            st.uf.union(other, node)
+        }
+        Entry::Vacant(v) => {
+            v.insert(node);
         }
     }
+}
+
+/// The active functions of tet `t` (ascending): IA, those with a sign change
+/// or a zero at its vertices; MI, those not strictly dominated at all 4.
+pub(crate) fn active_functions(
+    ctx: &Ctx,
+    t: usize,
+    tet: &[u32; 4],
+    out: &mut Vec<u16>,
+) -> Result<(), NetworkError> {
+    out.clear();
+    let k = ctx.k;
+    match ctx.mode {
+        Mode::Ia => {
+            for f in 0..k {
+                let r = tet.map(|v| ctx.values[v as usize * k + f]);
+                if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
+                    if r.iter().all(|&x| x == 0.0) {
+                        return Err(NetworkError::VanishesOnTet {
+                            tet: t,
+                            function: f,
+                        });
+                    }
+                    out.push(f as u16);
+                }
+            }
+        }
+        Mode::Mi => mi_active(tet, ctx, out),
+    }
+    Ok(())
 }
 
 /// IA sign bits at tet vertex 0 (every inactive function has one sign on the tet).
@@ -433,13 +558,22 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
 /// Whether tet face `corners` lies in the network: IA, the smallest active
 /// function vanishing at its 3 corners; MI, two active functions tied for
 /// the maximum at all 3 corners (returns the first of them).
-fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
+fn degenerate_face(
+    mode: Mode,
+    vals: &[[f64; 4]],
+    active: &[u16],
+    corners: [usize; 3],
+) -> Option<u16> {
     match mode {
-        Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
+        Mode::Ia => vals
+            .iter()
+            .position(|r| corners.iter().all(|&i| r[i] == 0.0))
+            .map(|f| active[f]),
         Mode::Mi => {
             let max = corners.map(|i| vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max));
-            let tied: SmallVec<[usize; 4]> =
-                (0..vals.len()).filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j])).collect();
+            let tied: SmallVec<[usize; 4]> = (0..vals.len())
+                .filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j]))
+                .collect();
             (tied.len() >= 2).then(|| active[tied[0]])
         }
     }
@@ -447,7 +581,12 @@ fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usiz
 
 /// Volume of a convex cell (floating point; output and invariant checks only):
 /// sum of cones from its first vertex over its faces.
-fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4], vals: &[[f64; 4]]) -> f64 {
+fn cell_volume(
+    c: &Complex,
+    cell: &crate::complex::Cell,
+    corners: &[[f64; 3]; 4],
+    vals: &[[f64; 4]],
+) -> f64 {
     let pos = |v: u32| c.vertex_position(v as usize, corners, vals);
     let apex = pos(c.faces()[cell.faces[0] as usize].vertices[0]);
     let mut vol = 0.0;
@@ -481,8 +620,11 @@ fn finish(mut st: State) -> BlockOut {
     for h in &mut out.halves {
         h.cell = comp[h.cell as usize];
     }
-    let mut contacts: Vec<(FaceKey, Label, u32)> =
-        st.contacts.into_iter().map(|((f, l), n)| (f, l, comp[n as usize])).collect();
+    let mut contacts: Vec<(FaceKey, Label, u32)> = st
+        .contacts
+        .into_iter()
+        .map(|((f, l), n)| (f, l, comp[n as usize]))
+        .collect();
     contacts.sort_unstable();
     out.contacts = contacts;
     let mut open: Vec<(OpenT, u32)> = st

@@ -9,7 +9,9 @@
 //! shells by wedges around edges, so block summaries merge in any order.
 
 mod block;
+mod boxfast;
 mod merge;
+mod raytrace;
 mod topology;
 pub mod uf;
 
@@ -91,14 +93,25 @@ pub struct NetworkOptions {
     pub float: bool,
     /// Block edge in cubes.
     pub block: usize,
-    /// Compute cell volumes (floating point, for invariant checks).
+    /// Compute cell volumes (floating point, for invariant checks); they
+    /// come from cell grouping, so this selects grouping over ray shooting.
     pub volumes: bool,
+    /// Identify cells by topological ray shooting (Sec. 7.1) when the grid
+    /// allows it (a box, no network vertex at a grid vertex); otherwise, or
+    /// when false, by cell grouping.
+    pub raytrace: bool,
 }
 
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions { mode, float: false, block: 16, volumes: false }
+        NetworkOptions {
+            mode,
+            float: false,
+            block: 16,
+            volumes: false,
+            raytrace: true,
+        }
     }
 }
 
@@ -160,6 +173,8 @@ pub struct Network {
     pub components: usize,
     /// Tets with a part of the network.
     pub active_tets: usize,
+    /// How cells were identified: "raytrace" or "grouping".
+    pub cells_method: &'static str,
     /// Seconds per stage.
     pub seconds: Vec<(&'static str, f64)>,
 }
@@ -194,7 +209,12 @@ impl Network {
 
 /// Computes the IA or MI network of `k` functions given by their values at
 /// the grid vertices (`values[v * k + f]`), on the current rayon pool.
-pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) -> Result<Network, NetworkError> {
+pub fn compute(
+    grid: &Grid,
+    values: &[f64],
+    k: usize,
+    options: &NetworkOptions,
+) -> Result<Network, NetworkError> {
     let t0 = Instant::now();
     let n = grid.num_vertices();
     if k == 0 {
@@ -204,10 +224,19 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         return Err(NetworkError::TooManyFunctions(k));
     }
     if values.len() != n * k {
-        return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
+        return Err(NetworkError::ValueCount {
+            expected: n * k,
+            vertices: n,
+            functions: k,
+            got: values.len(),
+        });
     }
     if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
+        return Err(NetworkError::NonFinite {
+            vertex: i / k,
+            function: i % k,
+            value: values[i],
+        });
     }
     let ctx = block::Ctx {
         grid,
@@ -218,12 +247,14 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         volumes: options.volumes,
     };
     let blocks = grid.blocks(options.block);
-    let outs: Vec<block::BlockOut> =
-        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
+    let outs: Vec<block::BlockOut> = blocks
+        .par_iter()
+        .map_init(block::Worker::default, |w, b| w.run(&ctx, b))
+        .collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m);
+    let topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
     let t3 = Instant::now();
     Ok(Network {
         mode: options.mode,
@@ -243,6 +274,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         cells: topo.cells,
         components: topo.components,
         active_tets: m.active_tets,
+        cells_method: topo.cells_method,
         seconds: vec![
             ("tets", (t1 - t0).as_secs_f64()),
             ("merge", (t2 - t1).as_secs_f64()),

@@ -17,9 +17,10 @@ pub(crate) struct Topology {
     pub shells: Vec<Vec<u32>>,
     pub cells: Vec<CellInfo>,
     pub face_cells: Vec<[u32; 2]>,
+    pub cells_method: &'static str,
 }
 
-pub(crate) fn topology(m: &mut Merged) -> Topology {
+pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topology {
     let nf = m.face_label.len();
     let nv = m.points.len();
     // Edges: (a, b, face) sorted; a run of equal (a, b) is one edge.
@@ -53,17 +54,19 @@ pub(crate) fn topology(m: &mut Merged) -> Topology {
         i = j;
     }
     let (face_patch, np) = patch_uf.components();
-    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
+    let mut patches: Vec<Patch> = (0..np)
+        .map(|_| Patch {
+            label: [0, 0],
+            faces: 0,
+        })
+        .collect();
     for f in 0..nf {
         let p = &mut patches[face_patch[f] as usize];
         p.label = m.face_label[f];
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);
-    let components = {
-        let (_, n) = vert_uf.components();
-        n
-    };
+    let (vertex_comp, components) = vert_uf.components();
     // Shells: components of face sides joined around edges (block unions),
     // and every side of a half-patch together.
     let mut shell_uf = UnionFind::new(m.shell_nodes);
@@ -98,10 +101,45 @@ pub(crate) fn topology(m: &mut Merged) -> Topology {
         shells[s as usize].push(hp as u32);
         shell_of_hp[hp] = s;
     }
-    // Cells: region groups.
+    // Cells: by ray shooting where it applies, else by region groups.
+    let rays = ray.and_then(|ctx| {
+        super::raytrace::ray_cells(
+            ctx,
+            &super::raytrace::RayInput {
+                keys: &m.keys,
+                face_start: &m.face_start,
+                face_verts: &m.face_verts,
+                face_patch: &face_patch,
+                shell_of_hp: &shell_of_hp,
+                num_shells: shells.len(),
+                vertex_comp: &vertex_comp,
+                num_comps: components,
+            },
+        )
+    });
+    if let Some((shell_cell, ncells)) = rays {
+        return ray_topology(
+            m,
+            edges,
+            face_patch,
+            patches,
+            chains,
+            corners,
+            components,
+            shells,
+            shell_of_hp,
+            shell_cell,
+            ncells,
+        );
+    }
     let (region_cell, ncells) = m.region_uf.components();
-    let mut cells: Vec<CellInfo> =
-        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
+    let mut cells: Vec<CellInfo> = (0..ncells)
+        .map(|_| CellInfo {
+            shells: Vec::new(),
+            label: Default::default(),
+            volume: 0.0,
+        })
+        .collect();
     for (r, &c) in region_cell.iter().enumerate() {
         let cell = &mut cells[c as usize];
         if cell.label.is_empty() {
@@ -109,8 +147,19 @@ pub(crate) fn topology(m: &mut Merged) -> Topology {
         }
         cell.volume += m.region_volume[r];
     }
-    let face_cells: Vec<[u32; 2]> =
-        m.face_nodes.iter().map(|n| n.map(|x| if x == NONE { NONE } else { region_cell[x as usize] })).collect();
+    let face_cells: Vec<[u32; 2]> = m
+        .face_nodes
+        .iter()
+        .map(|n| {
+            n.map(|x| {
+                if x == NONE {
+                    NONE
+                } else {
+                    region_cell[x as usize]
+                }
+            })
+        })
+        .collect();
     let mut shell_cell = vec![NONE; shells.len()];
     for f in 0..nf {
         for s in 0..2 {
@@ -126,7 +175,71 @@ pub(crate) fn topology(m: &mut Merged) -> Topology {
             cells[c as usize].shells.push(s as u32);
         }
     }
-    Topology { edges, face_patch, patches, chains, corners, components, shells, cells, face_cells }
+    Topology {
+        edges,
+        face_patch,
+        patches,
+        chains,
+        corners,
+        components,
+        shells,
+        cells,
+        face_cells,
+        cells_method: "grouping",
+    }
+}
+
+/// Assembles cells from the ray-shooting partition of shells (the cell
+/// containing no shell, if any, is the outer one with no network).
+#[allow(clippy::too_many_arguments)]
+fn ray_topology(
+    m: &Merged,
+    edges: Vec<[u32; 2]>,
+    face_patch: Vec<u32>,
+    patches: Vec<Patch>,
+    chains: Vec<Vec<u32>>,
+    corners: Vec<u32>,
+    components: usize,
+    shells: Vec<Vec<u32>>,
+    shell_of_hp: Vec<u32>,
+    shell_cell: Vec<u32>,
+    ncells: usize,
+) -> Topology {
+    let mut cells: Vec<CellInfo> = (0..ncells)
+        .map(|_| CellInfo {
+            shells: Vec::new(),
+            label: Default::default(),
+            volume: 0.0,
+        })
+        .collect();
+    for (s, &c) in shell_cell.iter().enumerate() {
+        cells[c as usize].shells.push(s as u32);
+    }
+    let nf = m.face_label.len();
+    let mut face_cells = vec![[NONE; 2]; nf];
+    for f in 0..nf {
+        for s in 0..2 {
+            let sh = shell_of_hp[2 * face_patch[f] as usize + s];
+            let c = shell_cell[sh as usize];
+            face_cells[f][s] = c;
+            let node = m.face_nodes[f][s];
+            if cells[c as usize].label.is_empty() && node != NONE {
+                cells[c as usize].label = m.region_label[node as usize].clone();
+            }
+        }
+    }
+    Topology {
+        edges,
+        face_patch,
+        patches,
+        chains,
+        corners,
+        components,
+        shells,
+        cells,
+        face_cells,
+        cells_method: "raytrace",
+    }
 }
 
 /// Orders chain edges into curves between corners (vertices where the
@@ -151,7 +264,9 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
         adj[fill[b as usize] as usize] = (a, e as u32);
         fill[b as usize] += 1;
     }
-    let corners: Vec<u32> = (0..nv as u32).filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2).collect();
+    let corners: Vec<u32> = (0..nv as u32)
+        .filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2)
+        .collect();
     let mut used = vec![false; chain_edges.len()];
     let mut out = Vec::new();
     let walk = |from: u32, e0: u32, used: &mut Vec<bool>| -> Vec<u32> {

@@ -1,0 +1,279 @@
+//! Writing a [`Network`]: `network.json` (the full structure), binary PLY
+//! (per-face patch, label and colour) and OBJ (a group per patch, chains as
+//! polylines). Every file is written to a temporary file in the same folder
+//! and renamed, so a reader never sees a half-written file.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::complex::NONE;
+use crate::network::{Mode, Network};
+
+/// Writes `path` atomically: `write` fills a temporary sibling file, which
+/// is then renamed over `path`. On error the temporary file is removed.
+pub fn write_atomic(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    let result = (|| {
+        let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
+        write(&mut w)?;
+        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+fn list<W: Write, T: std::fmt::Display>(
+    w: &mut W,
+    xs: impl IntoIterator<Item = T>,
+) -> std::io::Result<()> {
+    w.write_all(b"[")?;
+    for (i, x) in xs.into_iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        write!(w, "{x}")?;
+    }
+    w.write_all(b"]")
+}
+
+fn id(x: u32) -> i64 {
+    if x == NONE {
+        -1
+    } else {
+        x as i64
+    }
+}
+
+/// The cell label as JSON: IA a list of booleans (function positive), MI `[material]`.
+fn cell_label(net: &Network, c: usize) -> String {
+    let l = &net.cells[c].label;
+    match net.mode {
+        Mode::Ia => {
+            let bits: Vec<&str> = (0..net.functions)
+                .map(|f| {
+                    if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) {
+                        "true"
+                    } else {
+                        "false"
+                    }
+                })
+                .collect();
+            format!("[{}]", bits.join(","))
+        }
+        Mode::Mi => format!("[{}]", l.first().copied().unwrap_or(0)),
+    }
+}
+
+/// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
+/// Everything but `"seconds"` (written last) depends only on the input.
+pub fn write_json(
+    net: &Network,
+    path: &Path,
+    extra_seconds: &[(&str, f64)],
+) -> std::io::Result<()> {
+    write_atomic(path, |w| {
+        let mode = match net.mode {
+            Mode::Ia => "ia",
+            Mode::Mi => "mi",
+        };
+        write!(
+            w,
+            "{{\"mode\":\"{mode}\",\"functions\":{},\n\"points\":[",
+            net.functions
+        )?;
+        for (i, p) in net.points.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            write!(w, "[{},{},{}]", p[0], p[1], p[2])?;
+        }
+        w.write_all(b"],\n\"faces\":[")?;
+        for f in 0..net.num_faces() {
+            if f > 0 {
+                w.write_all(b",")?;
+            }
+            list(w, net.face(f).iter())?;
+        }
+        w.write_all(b"],\n\"face_label\":[")?;
+        for (f, l) in net.face_label.iter().enumerate() {
+            if f > 0 {
+                w.write_all(b",")?;
+            }
+            write!(w, "[{},{}]", l[0], l[1])?;
+        }
+        w.write_all(b"],\n\"face_patch\":")?;
+        list(w, net.face_patch.iter())?;
+        w.write_all(b",\n\"face_cells\":[")?;
+        for (f, c) in net.face_cells.iter().enumerate() {
+            if f > 0 {
+                w.write_all(b",")?;
+            }
+            write!(w, "[{},{}]", id(c[0]), id(c[1]))?;
+        }
+        w.write_all(b"],\n\"patches\":[")?;
+        for (i, p) in net.patches.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            write!(
+                w,
+                "{{\"label\":[{},{}],\"faces\":{}}}",
+                p.label[0], p.label[1], p.faces
+            )?;
+        }
+        w.write_all(b"],\n\"chains\":[")?;
+        for (i, c) in net.chains.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            list(w, c.iter())?;
+        }
+        w.write_all(b"],\n\"corners\":")?;
+        list(w, net.corners.iter())?;
+        w.write_all(b",\n\"shells\":[")?;
+        for (i, s) in net.shells.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            list(w, s.iter())?;
+        }
+        w.write_all(b"],\n\"cells\":[")?;
+        for c in 0..net.cells.len() {
+            if c > 0 {
+                w.write_all(b",")?;
+            }
+            w.write_all(b"{\"shells\":")?;
+            list(w, net.cells[c].shells.iter())?;
+            write!(w, ",\"label\":{}}}", cell_label(net, c))?;
+        }
+        w.write_all(b"],\n\"counts\":{")?;
+        for (i, (k, v)) in net.counts().iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            write!(w, "\"{k}\":{v}")?;
+        }
+        w.write_all(b"},\n\"seconds\":{")?;
+        for (i, (k, v)) in net.seconds.iter().chain(extra_seconds.iter()).enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            write!(w, "\"{k}\":{v}")?;
+        }
+        w.write_all(b"}}\n")
+    })
+}
+
+/// A colour per patch (golden-ratio hue walk).
+pub fn patch_colour(p: u32) -> [u8; 3] {
+    let h = (p as f64 * 0.618_033_988_749_895).fract() * 6.0;
+    let x = 1.0 - (h % 2.0 - 1.0).abs();
+    let (r, g, b) = match h as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    let s = |v: f64| (55.0 + 200.0 * v) as u8;
+    [s(r), s(g), s(b)]
+}
+
+/// Writes a binary little-endian PLY: vertices (double x, y, z) and
+/// polygons with `patch`, `label0`, `label1` and face colour.
+pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
+    write_atomic(path, |w| {
+        write!(
+            w,
+            "ply\nformat binary_little_endian 1.0\ncomment septa surface network\n\
+             element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
+             element face {}\nproperty list uchar int vertex_indices\nproperty int patch\n\
+             property int label0\nproperty int label1\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
+            net.points.len(),
+            net.num_faces()
+        )?;
+        for p in &net.points {
+            for x in p {
+                w.write_all(&x.to_le_bytes())?;
+            }
+        }
+        for f in 0..net.num_faces() {
+            let vs = net.face(f);
+            if vs.len() > 255 {
+                return Err(std::io::Error::other(format!(
+                    "face {f} has {} vertices; PLY lists hold 255",
+                    vs.len()
+                )));
+            }
+            w.write_all(&[vs.len() as u8])?;
+            for &v in vs {
+                w.write_all(&(v as i32).to_le_bytes())?;
+            }
+            let p = net.face_patch[f];
+            w.write_all(&(p as i32).to_le_bytes())?;
+            w.write_all(&(net.face_label[f][0] as i32).to_le_bytes())?;
+            w.write_all(&(net.face_label[f][1] as i32).to_le_bytes())?;
+            w.write_all(&patch_colour(p))?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes an OBJ: a group `patch_<p>` per patch and an `l` polyline per chain.
+pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
+    write_atomic(path, |w| {
+        writeln!(
+            w,
+            "# septa surface network: {} patches, {} chains",
+            net.patches.len(),
+            net.chains.len()
+        )?;
+        for p in &net.points {
+            writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
+        }
+        let mut by_patch: Vec<Vec<u32>> = vec![Vec::new(); net.patches.len()];
+        for (f, &p) in net.face_patch.iter().enumerate() {
+            by_patch[p as usize].push(f as u32);
+        }
+        for (p, faces) in by_patch.iter().enumerate() {
+            writeln!(w, "g patch_{p}")?;
+            for &f in faces {
+                w.write_all(b"f")?;
+                for &v in net.face(f as usize) {
+                    write!(w, " {}", v + 1)?;
+                }
+                w.write_all(b"\n")?;
+            }
+        }
+        for (c, chain) in net.chains.iter().enumerate() {
+            writeln!(w, "g chain_{c}")?;
+            w.write_all(b"l")?;
+            for &v in chain {
+                write!(w, " {}", v + 1)?;
+            }
+            w.write_all(b"\n")?;
+        }
+        Ok(())
+    })
+}
+
+/// Writes `network.json`, `network.ply` and `network.obj` into `dir` (created if needed).
+pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    write_ply(net, &dir.join("network.ply"))?;
+    write_obj(net, &dir.join("network.obj"))?;
+    write_json(net, &dir.join("network.json"), extra_seconds)
+}

@@ -1,0 +1,320 @@
+//! Cells by topological ray shooting (Du et al. Sec. 7.1, Appendix A).
+//!
+//! From each connected component of the network one ray leaves its
+//! edge-point with the smallest ordering vector `{v, u, i}` and travels along
+//! grid edges in steepest descent of the vertex order (lexicographic in x,
+//! y, z, which is the vertex id order of a box grid) until it meets another
+//! edge-point or the sink (vertex 0). The shells at both ends of a ray bound
+//! the same region; regions are the connected components of the graph of
+//! shells and rays. Every step is combinatorial: points along a grid edge
+//! come in order from the per-tet complex.
+//!
+//! Preconditions, checked: a box grid (convex boundary, no cavities or
+//! handles) and no network vertex at a grid vertex. Otherwise `None`, and the
+//! caller falls back to cell grouping.
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use super::block::{active_functions, vertex_key, Ctx};
+use super::uf::UnionFind;
+use super::VKey;
+use crate::complex::{Complex, Mode, NONE};
+use crate::grid::{BoxGrid, Grid};
+
+/// The network as topology sees it.
+pub(crate) struct RayInput<'a> {
+    pub keys: &'a [VKey],
+    pub face_start: &'a [u32],
+    pub face_verts: &'a [u32],
+    pub face_patch: &'a [u32],
+    pub shell_of_hp: &'a [u32],
+    pub num_shells: usize,
+    /// Connected component of each vertex.
+    pub vertex_comp: &'a [u32],
+    pub num_comps: usize,
+}
+
+/// A per-tet complex built on demand along a ray.
+struct TetView {
+    tet: [u32; 4],
+    active: Vec<u16>,
+    complex: Complex,
+}
+
+/// Cell of each shell and the number of cells, or `None` when the
+/// preconditions do not hold.
+pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> {
+    let Grid::Box(g) = ctx.grid else { return None };
+    if inp.keys.iter().any(|k| k.grid[1] == u32::MAX) {
+        return None; // a network vertex at a grid vertex
+    }
+    // Vertex -> faces.
+    let nv = inp.keys.len();
+    let mut start = vec![0u32; nv + 1];
+    for &v in inp.face_verts {
+        start[v as usize + 1] += 1;
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut vf = vec![0u32; inp.face_verts.len()];
+    for f in 0..inp.face_patch.len() {
+        for j in inp.face_start[f]..inp.face_start[f + 1] {
+            let v = inp.face_verts[j as usize] as usize;
+            vf[fill[v] as usize] = f as u32;
+            fill[v] += 1;
+        }
+    }
+    let vmap: FxHashMap<VKey, u32> = inp
+        .keys
+        .iter()
+        .enumerate()
+        .map(|(i, k)| (*k, i as u32))
+        .collect();
+    // Smallest grid edge (v, u) carrying an edge-point, per component.
+    let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); inp.num_comps];
+    for (v, k) in inp.keys.iter().enumerate() {
+        if k.grid[2] == u32::MAX {
+            let c = inp.vertex_comp[v] as usize;
+            best[c] = best[c].min((k.grid[0], k.grid[1]));
+        }
+    }
+    let outer = inp.num_shells as u32;
+    let mut uf = UnionFind::new(inp.num_shells + 1);
+    for (c, &(v, u)) in best.iter().enumerate() {
+        if v == u32::MAX {
+            return None; // a component touching no grid edge (cannot happen on a proper network)
+        }
+        let view = tet_view(ctx, g, v, u)?;
+        let pts = edge_points(ctx, &view, v, u);
+        // The component's point closest to v on this edge.
+        let j = pts.iter().position(|&(_, key)| {
+            vmap.get(&key)
+                .is_some_and(|&id| inp.vertex_comp[id as usize] == c as u32)
+        })?;
+        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j + 1, true)?;
+        let end_shell = if j > 0 {
+            facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, false)?
+        } else {
+            walk(ctx, g, inp, &vmap, &start, &vf, v)?
+        };
+        uf.union(start_shell, end_shell);
+    }
+    let _ = outer;
+    let (comp, n) = uf.components();
+    Some((comp[..inp.num_shells].to_vec(), n))
+}
+
+/// Steepest descent from grid vertex `from` to the first edge-point (its
+/// shell facing the ray) or the sink (the outer node).
+#[allow(clippy::too_many_arguments)]
+fn walk(
+    ctx: &Ctx,
+    g: &BoxGrid,
+    inp: &RayInput,
+    vmap: &FxHashMap<VKey, u32>,
+    start: &[u32],
+    vf: &[u32],
+    from: u32,
+) -> Option<u32> {
+    let mut cur = from;
+    loop {
+        if cur == 0 {
+            return Some(inp.num_shells as u32);
+        }
+        let w = lowest_neighbour(g, cur);
+        if edge_may_cross(ctx, w, cur) {
+            let view = tet_view(ctx, g, w, cur)?;
+            let pts = edge_points(ctx, &view, w, cur);
+            if let Some(last) = pts.len().checked_sub(1) {
+                // The point closest to `cur`; the ray arrives from `cur`'s side.
+                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, last + 1, false);
+            }
+        }
+        cur = w;
+    }
+}
+
+/// Whether any network point can lie on the grid edge `a b` (IA: a sign
+/// change or zero; MI: the unique strict maximum differs or is tied).
+fn edge_may_cross(ctx: &Ctx, a: u32, b: u32) -> bool {
+    let k = ctx.k;
+    let ra = &ctx.values[a as usize * k..(a as usize + 1) * k];
+    let rb = &ctx.values[b as usize * k..(b as usize + 1) * k];
+    match ctx.mode {
+        Mode::Ia => ra
+            .iter()
+            .zip(rb)
+            .any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
+        Mode::Mi => {
+            let arg = |r: &[f64]| {
+                let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let mut it = (0..k).filter(|&f| r[f] == m);
+                let first = it.next();
+                if it.next().is_some() {
+                    None
+                } else {
+                    first
+                }
+            };
+            match (arg(ra), arg(rb)) {
+                (Some(x), Some(y)) => x != y,
+                _ => true,
+            }
+        }
+    }
+}
+
+/// The grid vertex adjacent to `v` (along a tet edge) with the smallest id.
+fn lowest_neighbour(g: &BoxGrid, v: u32) -> u32 {
+    let mut best = u32::MAX;
+    for_tets_at(g, v, |tet| {
+        for &x in &tet {
+            if x != v {
+                best = best.min(x);
+            }
+        }
+        false
+    });
+    best
+}
+
+/// Calls `f` on every tet containing grid vertex `v` until it returns true.
+fn for_tets_at(g: &BoxGrid, v: u32, mut f: impl FnMut([u32; 4]) -> bool) {
+    let ijk = g.vertex_ijk(v);
+    let per = g.split.tets_per_cube();
+    for di in 0..2 {
+        for dj in 0..2 {
+            for dk in 0..2 {
+                let d = [di, dj, dk];
+                if (0..3).any(|a| ijk[a] < d[a] || ijk[a] - d[a] >= g.res[a]) {
+                    continue;
+                }
+                let cube = g.cube_index([ijk[0] - di, ijk[1] - dj, ijk[2] - dk]);
+                for t in cube * per..(cube + 1) * per {
+                    let tet = g.tet(t);
+                    if tet.contains(&v) && f(tet) {
+                        return;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The complex of a tet containing grid edge `a b`.
+fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
+    let mut found = None;
+    for_tets_at(g, a, |tet| {
+        if tet.contains(&b) {
+            found = Some(tet);
+            true
+        } else {
+            false
+        }
+    });
+    let tet = found?;
+    let mut active = Vec::new();
+    active_functions(ctx, 0, &tet, &mut active).ok()?;
+    let k = ctx.k;
+    let vals: Vec<[f64; 4]> = active
+        .iter()
+        .map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize]))
+        .collect();
+    let mut complex = Complex::new();
+    let empty = match ctx.mode {
+        Mode::Ia => active.is_empty(),
+        Mode::Mi => active.len() < 2,
+    };
+    if !empty {
+        complex.build(ctx.mode, &vals, &ctx.options).ok()?;
+    }
+    Some(TetView {
+        tet,
+        active,
+        complex,
+    })
+}
+
+/// Edge-points strictly inside grid edge `a b`, ordered from `a` to `b`:
+/// (complex vertex, key).
+fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32) -> SmallVec<[(u32, VKey); 8]> {
+    let mut out = SmallVec::new();
+    if view.complex.vertices().is_empty() {
+        return out;
+    }
+    let la = view.tet.iter().position(|&x| x == a).unwrap() as u8;
+    let lb = view.tet.iter().position(|&x| x == b).unwrap() as u8;
+    let list = view.complex.tet_edge_points(la, lb);
+    for &cv in list.iter().skip(1).take(list.len().saturating_sub(2)) {
+        out.push((
+            cv,
+            vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active),
+        ));
+    }
+    out
+}
+
+/// The shell on the side of the network, at the `j`-th point of the list
+/// `[a, points.., b]` along grid edge `a b`, that faces the segment towards
+/// `a` (`towards_a`) or towards `b`.
+#[allow(clippy::too_many_arguments)]
+fn facing_shell(
+    ctx: &Ctx,
+    inp: &RayInput,
+    view: &TetView,
+    vmap: &FxHashMap<VKey, u32>,
+    start: &[u32],
+    vf: &[u32],
+    a: u32,
+    b: u32,
+    j: usize,
+    towards_a: bool,
+) -> Option<u32> {
+    let c = &view.complex;
+    let la = view.tet.iter().position(|&x| x == a)? as u8;
+    let lb = view.tet.iter().position(|&x| x == b)? as u8;
+    let list = c.tet_edge_points(la, lb);
+    let p = list[j];
+    let q = if towards_a {
+        list[j - 1]
+    } else {
+        *list.get(j + 1)?
+    };
+    let edge = c
+        .edges()
+        .iter()
+        .position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
+    let cell = c.cells().iter().position(|cl| {
+        cl.faces
+            .iter()
+            .any(|&f| c.faces()[f as usize].edges.contains(&edge))
+    })? as u32;
+    let gp = *vmap.get(&vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
+    for &fi in &c.cells()[cell as usize].faces {
+        let face = &c.faces()[fi as usize];
+        if !face.plane.is_network() || !face.vertices.contains(&p) {
+            continue;
+        }
+        let mut keys: SmallVec<[u32; 8]> = SmallVec::new();
+        for &v in &face.vertices {
+            keys.push(*vmap.get(&vertex_key(ctx.mode, c, v, &view.tet, &view.active))?);
+        }
+        keys.sort_unstable();
+        for &gf in &vf[start[gp as usize] as usize..start[gp as usize + 1] as usize] {
+            let mut vs: SmallVec<[u32; 8]> = inp.face_verts
+                [inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize]
+                .into();
+            vs.sort_unstable();
+            if vs == keys {
+                let side = if face.cells[0] == cell { 0 } else { 1 };
+                let hp = 2 * inp.face_patch[gf as usize] as usize + side;
+                let s = inp.shell_of_hp[hp];
+                return (s != NONE).then_some(s);
+            }
+        }
+    }
+    None
+}
