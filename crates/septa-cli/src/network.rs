@@ -107,11 +107,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         obj.insert("seconds".into(), secs.into());
         println!("{}", serde_json::Value::Object(obj));
     } else {
-        let counts: Vec<String> = net
-            .counts()
-            .iter()
-            .map(|(k, v)| format!("{k} {v}"))
-            .collect();
+        let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
         println!("{:.3} s", t0.elapsed().as_secs_f64());
     }
@@ -128,11 +124,7 @@ fn split(args: &Args) -> Result<Split, String> {
 
 /// Reads the grid and values.
 fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Error>> {
-    let ext = args
-        .input
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("");
+    let ext = args.input.extension().and_then(|e| e.to_str()).unwrap_or("");
     if ext == "npz" {
         let input = npz::read_grid_input(&args.input)?;
         // A reference-style box grid is used implicitly when it matches the stored tets.
@@ -141,33 +133,19 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
                 let grid = Grid::Box(g);
                 let same = grid.num_tets() == input.tets.len()
                     && grid.num_vertices() == input.vertices.len()
-                    && input
-                        .tets
-                        .iter()
-                        .enumerate()
-                        .all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
+                    && input.tets.iter().enumerate().all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
                 if same {
                     return Ok((grid, input.values, input.k));
                 }
             }
         }
-        let mesh = TetMesh::new(input.vertices, &input.tets)
-            .map_err(|e| format!("{}: {e}", args.input.display()))?;
+        let mesh = TetMesh::new(input.vertices, &input.tets).map_err(|e| format!("{}: {e}", args.input.display()))?;
         return Ok((Grid::Mesh(mesh), input.values, input.k));
     }
     let funcs = functions::read_functions(&args.input)?;
-    let n = args
-        .grid
-        .ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
-    let b = args
-        .bounds
-        .clone()
-        .unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
-    let g = BoxGrid::new(
-        [n; 3],
-        [[b[0], b[1], b[2]], [b[3], b[4], b[5]]],
-        split(args)?,
-    )?;
+    let n = args.grid.ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
+    let b = args.bounds.clone().unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
+    let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
     let grid = Grid::Box(g);
     let values = functions::sample(&funcs, &grid.vertices());
     Ok((grid, values, funcs.len()))
