@@ -7,7 +7,7 @@
 //! Inputs must be finite (see [`crate::check_finite`]); a NaN or infinity
 //! yields an unspecified sign, never a panic.
 
-use crate::filter::{self, fix, Outcome};
+use crate::filter::{self, flat, Outcome};
 use crate::{bignum, expansion_det, stats, Sign};
 
 /// Sign of `det(m)` for an `N x N` matrix of input values, `N` in `1..=4`
@@ -27,17 +27,17 @@ pub fn det_sign<const N: usize>(m: &[[f64; N]; N]) -> Sign {
             Sign::of_f64(m[0][0])
         }
         2 => {
-            let m2: [[f64; 2]; 2] = fix(m);
-            match filter::ia2(&m2) {
+            let m2: &[f64; 4] = flat(m);
+            match filter::ia2(m2) {
                 Some(s) => {
                     stats::count_filter();
                     s
                 }
-                None => finish_ia(filter::ia2_tie(&m2), m),
+                None => finish_ia(filter::ia2_tie(m2), m),
             }
         }
-        3 => finish_ia(filter::ia3(&fix(m)), m),
-        4 => finish_ia(filter::ia4(&fix(m)), m),
+        3 => finish_ia(filter::ia3(flat(m)), m),
+        4 => finish_ia(filter::ia4(flat(m)), m),
         _ => {
             stats::count_bignum();
             bignum::det_sign(m)
@@ -47,12 +47,12 @@ pub fn det_sign<const N: usize>(m: &[[f64; N]; N]) -> Sign {
 
 #[inline(always)]
 fn finish_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Decided(s) => {
+    match o.sign() {
+        Some(s) => {
             stats::count_filter();
             s
         }
-        _ => slow_ia(o, m),
+        None => slow_ia(o, m),
     }
 }
 
@@ -60,11 +60,10 @@ fn finish_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
 #[inline(never)]
 fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
     match o {
-        Outcome::Decided(s) => s,
         Outcome::Expansion => {
             stats::count_expansion();
             if N == 2 {
-                expansion_det::ia2_tie_sign(&fix(m))
+                expansion_det::ia2_tie_sign(flat(m))
             } else {
                 expansion_det::det_sign_ia(m)
             }
@@ -72,6 +71,11 @@ fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
         Outcome::Bignum => {
             stats::count_bignum();
             bignum::det_sign(m)
+        }
+        decided => {
+            // A zero proven on the tie path of N = 2.
+            stats::count_filter();
+            decided.sign().unwrap_or(Sign::Zero)
         }
     }
 }
@@ -105,17 +109,17 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
                 Sign::Zero
             };
         }
-        2 => filter::mi2(&fix(a), &fix(b)),
-        3 => filter::mi3(&fix(a), &fix(b)),
-        4 => filter::mi4(&fix(a), &fix(b)),
+        2 => filter::mi2(flat(a), flat(b)),
+        3 => filter::mi3(flat(a), flat(b)),
+        4 => filter::mi4(flat(a), flat(b)),
         _ => Outcome::Bignum,
     };
-    match o {
-        Outcome::Decided(s) => {
+    match o.sign() {
+        Some(s) => {
             stats::count_filter();
             s
         }
-        _ => slow_mi(o, a, b),
+        None => slow_mi(o, a, b),
     }
 }
 
@@ -123,7 +127,6 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
 #[inline(never)]
 fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
     match o {
-        Outcome::Decided(s) => s,
         Outcome::Expansion => {
             stats::count_expansion();
             expansion_det::det_sign_mi(a, b)
@@ -132,6 +135,7 @@ fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> 
             stats::count_bignum();
             bignum::det_sign_diff(a, b)
         }
+        decided => decided.sign().unwrap_or(Sign::Zero),
     }
 }
 

@@ -126,9 +126,9 @@ pub(crate) fn det_sign_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) 
 /// IA, N = 2, when `fl(ad) == fl(bc)`: `ad - bc` equals the difference of
 /// the exact product tails.
 #[inline]
-pub(crate) fn ia2_tie_sign(m: &[[f64; 2]; 2]) -> Sign {
-    let (p, ep) = two_product(m[0][0], m[1][1]);
-    let (q, eq) = two_product(m[0][1], m[1][0]);
+pub(crate) fn ia2_tie_sign(m: &[f64; 4]) -> Sign {
+    let (p, ep) = two_product(m[0], m[3]);
+    let (q, eq) = two_product(m[1], m[2]);
     debug_assert_eq!(p, q);
     // Rounding preserves the sign of a difference (and its zero).
     Sign::of_f64(ep - eq)

@@ -85,53 +85,98 @@ pub(crate) const fn window(n: usize) -> (f64, f64) {
     }
 }
 
-/// What the filter concluded.
+/// What the filter concluded. The three signs share [`Sign`]'s values so
+/// the hot path builds and reads it without branches.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(i8)]
 pub(crate) enum Outcome {
-    /// The sign is proven.
-    Decided(Sign),
+    /// Proven negative.
+    Negative = -1,
+    /// Proven zero.
+    Zero = 0,
+    /// Proven positive.
+    Positive = 1,
     /// Undecided, inputs inside the window: the expansion tier is exact.
-    Expansion,
+    Expansion = 2,
     /// Inputs outside the window: only the bignum tier is exact.
-    Bignum,
+    Bignum = 3,
 }
 
-/// True if every nonzero `|x|` lies in the window for size `N`.
-#[inline(always)]
-pub(crate) fn in_window<const N: usize>(m: &[[f64; N]; N]) -> bool {
-    let (lo, hi) = window(N);
-    let mut ok = true;
-    for row in m {
-        for &x in row {
-            let a = x.abs();
-            ok &= (a <= hi) & ((a >= lo) | (a == 0.0));
+impl Outcome {
+    /// The proven sign, if any.
+    #[inline(always)]
+    pub(crate) fn sign(self) -> Option<Sign> {
+        match self {
+            Outcome::Negative => Some(Sign::Negative),
+            Outcome::Zero => Some(Sign::Zero),
+            Outcome::Positive => Some(Sign::Positive),
+            _ => None,
         }
     }
-    ok
-}
 
-#[inline(always)]
-fn decide(d: f64, bound: f64, perm: f64) -> Option<Sign> {
-    if d > bound {
-        Some(Sign::Positive)
-    } else if -d > bound {
-        Some(Sign::Negative)
-    } else if perm == 0.0 {
-        Some(Sign::Zero)
-    } else {
-        None
+    #[inline(always)]
+    fn from_code(c: i8) -> Outcome {
+        match c {
+            -1 => Outcome::Negative,
+            0 => Outcome::Zero,
+            1 => Outcome::Positive,
+            2 => Outcome::Expansion,
+            _ => Outcome::Bignum,
+        }
     }
 }
 
-/// `(det, permanent)` of a 3x3 matrix, both by first-row Laplace expansion.
+/// True if every nonzero `|x|` lies in the window for size `n`.
+///
+/// Written as integer flags OR-ed together (integer OR reassociates freely,
+/// so the reduction is a shallow tree of packed compares, not a serial chain
+/// of floating-point min/max).
 #[inline(always)]
-fn det_perm3(m: &[[f64; 3]; 3]) -> (f64, f64) {
-    let [[a0, a1, a2], [b0, b1, b2], [c0, c1, c2]] = *m;
+pub(crate) fn in_window(x: &[f64], n: usize) -> bool {
+    let (lo, hi) = window(n);
+    let mut bad = 0u32;
+    for &v in x {
+        let a = v.abs();
+        bad |= ((a > hi) as u32) | (((a < lo) & (a != 0.0)) as u32);
+    }
+    bad == 0
+}
+
+/// The entries of an `N x N` matrix as a flat `K`-array reference
+/// (`K == N * N`); the length check folds away after monomorphisation.
+#[inline(always)]
+pub(crate) fn flat<const N: usize, const K: usize>(m: &[[f64; N]; N]) -> &[f64; K] {
+    <&[f64; K]>::try_from(m.as_flattened()).expect("K == N * N")
+}
+
+/// Branch-free verdict: `|d| > bound` proves `sign(d)`; a zero permanent
+/// proves zero; `ok` says whether the exponent window (and thereby the
+/// error bound) holds.
+#[inline(always)]
+fn decide(d: f64, bound: f64, perm: f64, ok: bool) -> Outcome {
+    let pos = d > bound;
+    let neg = -d > bound;
+    let decided = pos | neg | (perm == 0.0);
+    let code = if !ok {
+        3
+    } else if !decided {
+        2
+    } else {
+        pos as i8 - neg as i8
+    };
+    Outcome::from_code(code)
+}
+
+/// `(det, permanent)` of a 3x3 matrix (row-major), both by first-row
+/// Laplace expansion.
+#[inline(always)]
+fn det_perm3(m: &[f64; 9]) -> (f64, f64) {
+    let [a0, a1, a2, b0, b1, b2, c0, c1, c2] = *m;
     let m0 = b1 * c2 - b2 * c1;
     let m1 = b0 * c2 - b2 * c0;
     let m2 = b0 * c1 - b1 * c0;
     let d = (a0 * m0 - a1 * m1) + a2 * m2;
-    let [[a0, a1, a2], [b0, b1, b2], [c0, c1, c2]] = m.map(|r| r.map(f64::abs));
+    let [a0, a1, a2, b0, b1, b2, c0, c1, c2] = m.map(f64::abs);
     let p0 = b1 * c2 + b2 * c1;
     let p1 = b0 * c2 + b2 * c0;
     let p2 = b0 * c1 + b1 * c0;
@@ -139,27 +184,32 @@ fn det_perm3(m: &[[f64; 3]; 3]) -> (f64, f64) {
     (d, p)
 }
 
-/// `(det, permanent)` of a 4x4 matrix by Laplace expansion along rows 0,1.
+/// `(det, permanent)` of a 4x4 matrix (row-major) by Laplace expansion
+/// along rows 0,1.
 #[inline(always)]
-fn det_perm4(m: &[[f64; 4]; 4]) -> (f64, f64) {
+fn det_perm4(m: &[f64; 16]) -> (f64, f64) {
     #[inline(always)]
-    fn pairs(r: [f64; 4], s: [f64; 4], sub: bool) -> [f64; 6] {
+    fn pairs(m: &[f64; 16], r: usize, sub: bool) -> [f64; 6] {
         let f = |i: usize, j: usize| {
+            let (x, y) = (
+                m[4 * r + i] * m[4 * r + 4 + j],
+                m[4 * r + j] * m[4 * r + 4 + i],
+            );
             if sub {
-                r[i] * s[j] - r[j] * s[i]
+                x - y
             } else {
-                r[i] * s[j] + r[j] * s[i]
+                x + y
             }
         };
         [f(0, 1), f(0, 2), f(0, 3), f(1, 2), f(1, 3), f(2, 3)]
     }
-    let s = pairs(m[0], m[1], true);
-    let c = pairs(m[2], m[3], true);
+    let s = pairs(m, 0, true);
+    let c = pairs(m, 2, true);
     let d =
         ((s[0] * c[5] - s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] - s[4] * c[1]);
-    let a = m.map(|r| r.map(f64::abs));
-    let s = pairs(a[0], a[1], false);
-    let c = pairs(a[2], a[3], false);
+    let a = m.map(f64::abs);
+    let s = pairs(&a, 0, false);
+    let c = pairs(&a, 2, false);
     let p =
         ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
     (d, p)
@@ -167,9 +217,9 @@ fn det_perm4(m: &[[f64; 4]; 4]) -> (f64, f64) {
 
 /// IA, N = 2: monotone comparison of the two rounded products.
 #[inline(always)]
-pub(crate) fn ia2(m: &[[f64; 2]; 2]) -> Option<Sign> {
-    let p = m[0][0] * m[1][1];
-    let q = m[0][1] * m[1][0];
+pub(crate) fn ia2(m: &[f64; 4]) -> Option<Sign> {
+    let p = m[0] * m[3];
+    let q = m[1] * m[2];
     if p > q {
         Some(Sign::Positive)
     } else if p < q {
@@ -182,12 +232,12 @@ pub(crate) fn ia2(m: &[[f64; 2]; 2]) -> Option<Sign> {
 /// IA, N = 2, after `fl(ad) == fl(bc)`: exact zero products, or (inside the
 /// window) the sign of the difference of the exact product tails.
 #[cold]
-pub(crate) fn ia2_tie(m: &[[f64; 2]; 2]) -> Outcome {
-    let [[a, b], [c, d]] = *m;
+pub(crate) fn ia2_tie(m: &[f64; 4]) -> Outcome {
+    let [a, b, c, d] = *m;
     if (a == 0.0 || d == 0.0) && (b == 0.0 || c == 0.0) {
-        return Outcome::Decided(Sign::Zero);
+        return Outcome::Zero;
     }
-    if in_window(m) {
+    if in_window(m, 2) {
         Outcome::Expansion
     } else {
         Outcome::Bignum
@@ -196,26 +246,16 @@ pub(crate) fn ia2_tie(m: &[[f64; 2]; 2]) -> Outcome {
 
 /// IA, N = 3.
 #[inline]
-pub(crate) fn ia3(m: &[[f64; 3]; 3]) -> Outcome {
+pub(crate) fn ia3(m: &[f64; 9]) -> Outcome {
     let (d, p) = det_perm3(m);
-    let ok = in_window(m);
-    match decide(d, C_IA3 * p, p) {
-        Some(s) if ok => Outcome::Decided(s),
-        _ if ok => Outcome::Expansion,
-        _ => Outcome::Bignum,
-    }
+    decide(d, C_IA3 * p, p, in_window(m, 3))
 }
 
 /// IA, N = 4.
 #[inline]
-pub(crate) fn ia4(m: &[[f64; 4]; 4]) -> Outcome {
+pub(crate) fn ia4(m: &[f64; 16]) -> Outcome {
     let (d, p) = det_perm4(m);
-    let ok = in_window(m);
-    match decide(d, C_IA4 * p, p) {
-        Some(s) if ok => Outcome::Decided(s),
-        _ if ok => Outcome::Expansion,
-        _ => Outcome::Bignum,
-    }
+    decide(d, C_IA4 * p, p, in_window(m, 4))
 }
 
 /// MI tail shared by all sizes: the computed differences `x` passed the
@@ -223,60 +263,52 @@ pub(crate) fn ia4(m: &[[f64; 4]; 4]) -> Outcome {
 /// the filter (their differences are multiples of the same unit) and the
 /// expansion tier.
 #[inline(always)]
-fn mi_outcome<const N: usize>(
-    decided: Option<Sign>,
-    x_ok: bool,
-    a: &[[f64; N]; N],
-    b: &[[f64; N]; N],
-) -> Outcome {
-    if x_ok {
-        if let Some(s) = decided {
-            return Outcome::Decided(s);
-        }
+fn mi_outcome(d: f64, bound: f64, p: f64, x_ok: bool, a: &[f64], b: &[f64], n: usize) -> Outcome {
+    match decide(d, bound, p, x_ok) {
+        o @ (Outcome::Negative | Outcome::Zero | Outcome::Positive) => o,
+        _ => mi_slow(decide(d, bound, p, true), a, b, n),
     }
-    mi_slow(decided, a, b)
 }
 
 #[cold]
-fn mi_slow<const N: usize>(decided: Option<Sign>, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Outcome {
-    if in_window(a) && in_window(b) {
-        match decided {
-            Some(s) => Outcome::Decided(s),
-            None => Outcome::Expansion,
-        }
+#[inline(never)]
+fn mi_slow(decided: Outcome, a: &[f64], b: &[f64], n: usize) -> Outcome {
+    if in_window(a, n) && in_window(b, n) {
+        decided
     } else {
         Outcome::Bignum
     }
 }
 
 #[inline(always)]
-fn diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> [[f64; N]; N] {
-    std::array::from_fn(|i| std::array::from_fn(|j| a[i][j] - b[i][j]))
+fn diff<const K: usize>(a: &[f64; K], b: &[f64; K]) -> [f64; K] {
+    std::array::from_fn(|i| a[i] - b[i])
 }
 
 /// MI, N = 2.
 #[inline]
-pub(crate) fn mi2(a: &[[f64; 2]; 2], b: &[[f64; 2]; 2]) -> Outcome {
+pub(crate) fn mi2(a: &[f64; 4], b: &[f64; 4]) -> Outcome {
     let x = diff(a, b);
-    let d = x[0][0] * x[1][1] - x[0][1] * x[1][0];
-    let p = (x[0][0] * x[1][1]).abs() + (x[0][1] * x[1][0]).abs();
-    mi_outcome(decide(d, C_MI2 * p, p), in_window(&x), a, b)
+    let (l, r) = (x[0] * x[3], x[1] * x[2]);
+    let d = l - r;
+    let p = l.abs() + r.abs();
+    mi_outcome(d, C_MI2 * p, p, in_window(&x, 2), a, b, 2)
 }
 
 /// MI, N = 3.
 #[inline]
-pub(crate) fn mi3(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> Outcome {
+pub(crate) fn mi3(a: &[f64; 9], b: &[f64; 9]) -> Outcome {
     let x = diff(a, b);
     let (d, p) = det_perm3(&x);
-    mi_outcome(decide(d, C_MI3 * p, p), in_window(&x), a, b)
+    mi_outcome(d, C_MI3 * p, p, in_window(&x, 3), a, b, 3)
 }
 
 /// MI, N = 4.
 #[inline]
-pub(crate) fn mi4(a: &[[f64; 4]; 4], b: &[[f64; 4]; 4]) -> Outcome {
+pub(crate) fn mi4(a: &[f64; 16], b: &[f64; 16]) -> Outcome {
     let x = diff(a, b);
     let (d, p) = det_perm4(&x);
-    mi_outcome(decide(d, C_MI4 * p, p), in_window(&x), a, b)
+    mi_outcome(d, C_MI4 * p, p, in_window(&x, 4), a, b, 4)
 }
 
 /// The naive floating-point determinant (no filter), for the `--float`
@@ -287,23 +319,13 @@ pub(crate) fn det_f64<const N: usize>(m: &[[f64; N]; N]) -> f64 {
         0 => 1.0,
         1 => m[0][0],
         2 => m[0][0] * m[1][1] - m[0][1] * m[1][0],
-        3 => det_perm3(&fix(m)).0,
-        4 => det_perm4(&fix(m)).0,
-        _ => {
-            // Laplace along the first row (not used by Septa; N <= 4 there).
-            let mut acc = 0.0;
-            for c in 0..N {
-                let minor: Vec<Vec<f64>> = (1..N)
-                    .map(|i| (0..N).filter(|&j| j != c).map(|j| m[i][j]).collect())
-                    .collect();
-                let t = m[0][c] * det_f64_dyn(&minor);
-                acc += if c % 2 == 0 { t } else { -t };
-            }
-            acc
-        }
+        3 => det_perm3(flat(m)).0,
+        4 => det_perm4(flat(m)).0,
+        _ => det_f64_dyn(&m.iter().map(|r| r.to_vec()).collect::<Vec<_>>()),
     }
 }
 
+/// Laplace along the first row (not used by Septa, where N <= 4).
 fn det_f64_dyn(m: &[Vec<f64>]) -> f64 {
     let n = m.len();
     if n == 0 {
@@ -325,12 +347,4 @@ fn det_f64_dyn(m: &[Vec<f64>]) -> f64 {
         acc += if c % 2 == 0 { t } else { -t };
     }
     acc
-}
-
-/// Re-types an `N x N` matrix as `K x K` once `N == K` is known (the copy
-/// vanishes after monomorphisation).
-#[inline(always)]
-pub(crate) fn fix<const N: usize, const K: usize>(m: &[[f64; N]; N]) -> [[f64; K]; K] {
-    debug_assert_eq!(N, K);
-    std::array::from_fn(|i| std::array::from_fn(|j| m[i][j]))
 }
