@@ -38,6 +38,17 @@ fn near<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
     m
 }
 
+/// Exactly singular small-integer matrices (two equal rows, rows scaled
+/// by different powers of two): the exact tiers must decide these.
+fn singular<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
+    let mut m: [[f64; N]; N] =
+        std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-9i32..=9) as f64));
+    if N > 1 {
+        m[N - 1] = m[0].map(|x| x * 0.5);
+    }
+    m
+}
+
 /// Mean ns per call of `f` over the pool, best of several rounds.
 fn time<T>(pool: &[T], mut f: impl FnMut(&T) -> Sign) -> f64 {
     let reps = 200;
@@ -109,4 +120,7 @@ fn main() {
     bench::<2>("near", near::<2>);
     bench::<3>("near", near::<3>);
     bench::<4>("near", near::<4>);
+    bench::<2>("sing", singular::<2>);
+    bench::<3>("sing", singular::<3>);
+    bench::<4>("sing", singular::<4>);
 }

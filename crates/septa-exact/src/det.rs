@@ -59,23 +59,24 @@ fn finish_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
 #[cold]
 #[inline(never)]
 fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Expansion => {
-            stats::count_expansion();
-            if N == 2 {
-                expansion_det::ia2_tie_sign(flat(m))
-            } else {
-                expansion_det::det_sign_ia(m)
-            }
-        }
-        Outcome::Bignum => {
-            stats::count_bignum();
-            bignum::det_sign(m)
-        }
+    let exact = match o {
+        Outcome::Expansion if N == 2 => Some(expansion_det::ia2_tie_sign(flat(m))),
+        Outcome::Expansion => expansion_det::det_sign_ia(m),
+        Outcome::Bignum => None,
         decided => {
             // A zero proven on the tie path of N = 2.
             stats::count_filter();
-            decided.sign().unwrap_or(Sign::Zero)
+            return decided.sign().unwrap_or(Sign::Zero);
+        }
+    };
+    match exact {
+        Some(s) => {
+            stats::count_expansion();
+            s
+        }
+        None => {
+            stats::count_bignum();
+            bignum::det_sign(m)
         }
     }
 }
@@ -126,16 +127,20 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
 #[cold]
 #[inline(never)]
 fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Expansion => {
+    let exact = match o {
+        Outcome::Expansion => expansion_det::det_sign_mi(a, b),
+        Outcome::Bignum => None,
+        decided => return decided.sign().unwrap_or(Sign::Zero),
+    };
+    match exact {
+        Some(s) => {
             stats::count_expansion();
-            expansion_det::det_sign_mi(a, b)
+            s
         }
-        Outcome::Bignum => {
+        None => {
             stats::count_bignum();
             bignum::det_sign_diff(a, b)
         }
-        decided => decided.sign().unwrap_or(Sign::Zero),
     }
 }
 
