@@ -38,6 +38,23 @@ fn near<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
     m
 }
 
+/// Like `near` but nudged by 2^-70 only: below the filter's resolution,
+/// so the expansion tier decides most of these.
+fn tiny<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
+    let mut m = random::<N>(r);
+    if N > 1 {
+        let c: [f64; N] = std::array::from_fn(|_| unit(r));
+        for j in 0..N {
+            let mut s = unit(r) * 2f64.powi(-70);
+            for i in 0..N - 1 {
+                s += c[i] * m[i][j];
+            }
+            m[N - 1][j] = s;
+        }
+    }
+    m
+}
+
 /// Exactly singular small-integer matrices (two equal rows, rows scaled
 /// by different powers of two): the exact tiers must decide these.
 fn singular<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
@@ -120,6 +137,9 @@ fn main() {
     bench::<2>("near", near::<2>);
     bench::<3>("near", near::<3>);
     bench::<4>("near", near::<4>);
+    bench::<2>("tiny", tiny::<2>);
+    bench::<3>("tiny", tiny::<3>);
+    bench::<4>("tiny", tiny::<4>);
     bench::<2>("sing", singular::<2>);
     bench::<3>("sing", singular::<3>);
     bench::<4>("sing", singular::<4>);

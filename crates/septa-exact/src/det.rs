@@ -5,7 +5,9 @@
 //! Each call bumps exactly one per-thread counter in [`crate::stats`].
 //!
 //! Inputs must be finite (see [`crate::check_finite`]); a NaN or infinity
-//! yields an unspecified sign, never a panic.
+//! is a precondition violation: an unspecified sign in release builds, a
+//! debug assertion in [`Exact::from_f64`](crate::Exact::from_f64) in debug
+//! builds if it reaches the bignum tier.
 
 use crate::filter::{self, flat, Outcome};
 use crate::{bignum, expansion_det, stats, Sign};

@@ -271,21 +271,58 @@ impl<const CAP: usize> Arena<CAP> {
         })
     }
 
+    /// Moves the top run `t` down to where `over` begins (discarding
+    /// `over` and anything between).
+    #[inline]
+    pub(crate) fn lower(&mut self, t: Ex, over: Ex) -> Ex {
+        let to = over.start;
+        debug_assert!(t.end() == self.top && to <= t.start);
+        self.buf.copy_within(t.start..t.end(), to);
+        self.top = to + t.len;
+        Ex {
+            start: to,
+            len: t.len,
+        }
+    }
+
     /// Appends `e * f`: one scaled copy of `e` per component of `f`, folded
     /// into a running sum that stays at the top of the arena.
     pub(crate) fn product(&mut self, e: Ex, f: Ex) -> Option<Ex> {
+        // Make `f` the shorter factor: fewer scaled copies to merge.
+        let (e, f) = if f.len > e.len { (f, e) } else { (e, f) };
+        let start = self.top;
+        if f.len == 0 {
+            return Some(Ex { start, len: 0 });
+        }
+        self.room(2 * e.len)?;
+        if e.len == 1 {
+            // The common case of two single components: one Two-Product.
+            let (x, y) = two_product(self.buf[e.start], self.buf[f.start]);
+            for c in [y, x] {
+                if c != 0.0 {
+                    self.buf[self.top] = c;
+                    self.top += 1;
+                }
+            }
+            return Some(Ex {
+                start,
+                len: self.top - start,
+            });
+        }
+        let (lo, hi) = self.buf.split_at_mut(start);
+        self.top += scale(&lo[e.start..e.end()], lo[f.start], hi);
         let mut acc = Ex {
-            start: self.top,
-            len: 0,
+            start,
+            len: self.top - start,
         };
-        for k in 0..f.len {
+        for k in 1..f.len {
             let b = self.buf[f.start + k];
             self.room(2 * e.len)?;
-            let start = self.top;
-            let (lo, hi) = self.buf.split_at_mut(start);
+            let t = self.top;
+            let (lo, hi) = self.buf.split_at_mut(t);
             let len = scale(&lo[e.start..e.end()], b, hi);
             self.top += len;
-            acc = self.fold(acc, Ex { start, len }, 1.0)?;
+            acc = self.fold(acc, Ex { start: t, len }, 1.0)?;
         }
         Some(acc)
     }

@@ -15,13 +15,13 @@ use crate::Sign;
 /// Arena size per N, ample for IA (worst case about 500 doubles at N = 4)
 /// and for all but pathological MI data.
 const CAP2: usize = 64;
-const CAP3: usize = 512;
-const CAP4: usize = 2048;
+const CAP3: usize = 256;
+const CAP4: usize = 512;
+/// Second attempt for long MI expansions before resorting to bignums.
+const CAP_BIG: usize = 4096;
 
-/// Column pairs `(i, j)`, `i < j`, of the two-row Laplace expansion, and the
-/// signs of `s_ij * c_(complement)`.
+/// Column pairs `(i, j)`, `i < j`, indexing the 2x2 minors of rows 2,3.
 const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-const SIGNS: [f64; 6] = [1.0, -1.0, 1.0, 1.0, -1.0, 1.0];
 
 /// `x[i0] x[i3] - x[i1] x[i2]` for entries `x` already in the arena.
 #[inline]
@@ -52,16 +52,33 @@ fn det<const C: usize>(ar: &mut Arena<C>, e: &[Ex], n: usize) -> Option<Sign> {
             Some(ar.sign(acc))
         }
         4 => {
-            let mut s = [Ex::default(); 6];
+            // Cofactors along row 0; 3x3 minors of rows 1..3 along row 1,
+            // from the 2x2 minors of rows 2,3 (as in Shewchuk's exact
+            // insphere): scaling by single entries needs no merging.
             let mut c = [Ex::default(); 6];
             for (k, &(i, j)) in PAIRS.iter().enumerate() {
-                s[k] = minor(ar, e[i], e[4 + j], e[j], e[4 + i])?;
                 c[k] = minor(ar, e[8 + i], e[12 + j], e[8 + j], e[12 + i])?;
             }
+            let pair = |i: usize, j: usize| c[PAIRS.iter().position(|&p| p == (i, j)).unwrap_or(0)];
             let mut acc = ar.push(0.0)?;
-            for k in 0..6 {
-                let t = ar.product(s[k], c[5 - k])?;
-                acc = ar.fold(acc, t, SIGNS[k])?;
+            for k in 0..4 {
+                let [p, q, r] = match k {
+                    0 => [1, 2, 3],
+                    1 => [0, 2, 3],
+                    2 => [0, 1, 3],
+                    _ => [0, 1, 2],
+                };
+                let m0 = ar.product(e[4 + p], pair(q, r))?;
+                let mut m = m0;
+                for (col, cof, s) in [(q, pair(p, r), -1.0), (r, pair(p, q), 1.0)] {
+                    let t = ar.product(e[4 + col], cof)?;
+                    m = ar.fold(m, t, s)?;
+                }
+                let t = ar.product(e[k], m)?;
+                // t sits above m; fold needs acc directly below t, so move
+                // t down over m first.
+                let t = ar.lower(t, m);
+                acc = ar.fold(acc, t, if k % 2 == 0 { 1.0 } else { -1.0 })?;
             }
             Some(ar.sign(acc))
         }
@@ -69,6 +86,7 @@ fn det<const C: usize>(ar: &mut Arena<C>, e: &[Ex], n: usize) -> Option<Sign> {
     }
 }
 
+#[inline(never)]
 fn ia_in<const C: usize, const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
     let mut ar = Arena::<C>::new();
     let mut e = [Ex::default(); 16];
@@ -78,6 +96,7 @@ fn ia_in<const C: usize, const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
     det(&mut ar, &e[..N * N], N)
 }
 
+#[inline(never)]
 fn mi_in<const C: usize, const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Option<Sign> {
     let mut ar = Arena::<C>::new();
     let mut e = [Ex::default(); 16];
@@ -92,8 +111,8 @@ fn mi_in<const C: usize, const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -
 pub(crate) fn det_sign_ia<const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
     match N {
         1 | 2 => ia_in::<CAP2, N>(m),
-        3 => ia_in::<CAP3, N>(m),
-        4 => ia_in::<CAP4, N>(m),
+        3 => ia_in::<CAP3, N>(m).or_else(|| ia_in::<CAP_BIG, N>(m)),
+        4 => ia_in::<CAP4, N>(m).or_else(|| ia_in::<CAP_BIG, N>(m)),
         _ => None,
     }
 }
@@ -103,8 +122,8 @@ pub(crate) fn det_sign_ia<const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
 pub(crate) fn det_sign_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Option<Sign> {
     match N {
         1 | 2 => mi_in::<CAP2, N>(a, b),
-        3 => mi_in::<CAP3, N>(a, b),
-        4 => mi_in::<CAP4, N>(a, b),
+        3 => mi_in::<CAP3, N>(a, b).or_else(|| mi_in::<CAP_BIG, N>(a, b)),
+        4 => mi_in::<CAP4, N>(a, b).or_else(|| mi_in::<CAP_BIG, N>(a, b)),
         _ => None,
     }
 }
@@ -119,3 +138,7 @@ pub(crate) fn ia2_tie_sign(m: &[f64; 4]) -> Sign {
     // Rounding preserves the sign of a difference (and its zero).
     Sign::of_f64(ep - eq)
 }
+
+#[cfg(test)]
+#[path = "expansion_det_tests.rs"]
+mod tests;

@@ -67,6 +67,17 @@ const C_MI2: f64 = 3.0 * U + 32.0 * U * U;
 const C_MI3: f64 = 7.0 * U + 128.0 * U * U;
 const C_MI4: f64 = 11.0 * U + 512.0 * U * U;
 
+/// `(name, N, m', mP, c)` for every bounded filter: checked in exact
+/// rational arithmetic by the tests in `filter_tests.rs`.
+#[cfg(test)]
+pub(crate) const BOUNDS: [(&str, usize, u32, u32, f64); 5] = [
+    ("IA3", 3, 4, 5, C_IA3),
+    ("IA4", 4, 7, 8, C_IA4),
+    ("MI2", 2, 3, 4, C_MI2),
+    ("MI3", 3, 7, 8, C_MI3),
+    ("MI4", 4, 11, 12, C_MI4),
+];
+
 /// Exponent window `[2^-W, 2^W]` per size (see the module doc).
 pub(crate) const fn window(n: usize) -> (f64, f64) {
     match n {
@@ -348,3 +359,7 @@ fn det_f64_dyn(m: &[Vec<f64>]) -> f64 {
     }
     acc
 }
+
+#[cfg(test)]
+#[path = "filter_tests.rs"]
+mod tests;
