@@ -1,7 +1,9 @@
 //! Exact signs of small determinants (N = 1..=4) of `f64` data, in three
-//! tiers: a floating-point filter with a proven bound (`filter.rs`), an
-//! allocation-free expansion tier (`expansion_det.rs`) inside an exponent
-//! window, and a bignum tier ([`Exact`](crate::Exact)) for everything else.
+//! tiers: a floating-point filter with a proven bound (`filter.rs`); an
+//! allocation-free exact tier, first `i128` arithmetic for low-precision rows
+//! (`integer_det.rs`, any magnitude), then expansions (`expansion_det.rs`)
+//! inside an exponent window; and a bignum tier ([`Exact`](crate::Exact))
+//! for everything else.
 //! Each call bumps exactly one per-thread counter in [`crate::stats`].
 //!
 //! Inputs must be finite (see [`crate::check_finite`]); a NaN or infinity
@@ -10,7 +12,7 @@
 //! builds if it reaches the bignum tier.
 
 use crate::filter::{self, flat, Outcome};
-use crate::{bignum, expansion_det, stats, Sign};
+use crate::{bignum, expansion_det, integer_det, stats, Sign};
 
 /// Sign of `det(m)` for an `N x N` matrix of input values, `N` in `1..=4`
 /// (larger `N` works too, on the slow exact tier only).
@@ -63,8 +65,8 @@ fn finish_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
 fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
     let exact = match o {
         Outcome::Expansion if N == 2 => Some(expansion_det::ia2_tie_sign(flat(m))),
-        Outcome::Expansion => expansion_det::det_sign_ia(m),
-        Outcome::Bignum => None,
+        Outcome::Expansion => integer_det::det_sign_ia(m).or_else(|| expansion_det::det_sign_ia(m)),
+        Outcome::Bignum => integer_det::det_sign_ia(m),
         decided => {
             // A zero proven on the tie path of N = 2.
             stats::count_filter();
@@ -130,8 +132,10 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
 #[inline(never)]
 fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
     let exact = match o {
-        Outcome::Expansion => expansion_det::det_sign_mi(a, b),
-        Outcome::Bignum => None,
+        Outcome::Expansion => {
+            integer_det::det_sign_mi(a, b).or_else(|| expansion_det::det_sign_mi(a, b))
+        }
+        Outcome::Bignum => integer_det::det_sign_mi(a, b),
         decided => return decided.sign().unwrap_or(Sign::Zero),
     };
     match exact {

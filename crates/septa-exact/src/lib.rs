@@ -7,8 +7,10 @@
 //!
 //! 1. a floating-point **filter** with a proven error bound (derivation in
 //!    the `filter` module source, after Shewchuk 1997);
-//! 2. an allocation-free exact tier on floating-point **expansions** for
-//!    inputs within an exponent window (`expansion` module source);
+//! 2. an allocation-free exact tier: `i128` arithmetic when each row has
+//!    few significant bits (exactly degenerate data: small integers, grid
+//!    values), else floating-point **expansions** for inputs within an
+//!    exponent window (`expansion` module source);
 //! 3. exact dyadic **bignums** ([`Exact`]) for everything else (values
 //!    spanning `1e-300 .. 1e300`, subnormals).
 //!
@@ -28,6 +30,7 @@ mod exact;
 mod expansion;
 mod expansion_det;
 mod filter;
+mod integer_det;
 mod sign;
 pub mod stats;
 mod validate;

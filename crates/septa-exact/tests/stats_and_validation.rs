@@ -80,23 +80,21 @@ fn each_tier_is_counted() {
             bignum: 0
         }
     );
-    // Expansion: exactly singular with a nonzero permanent.
-    assert_eq!(
-        det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]),
-        Sign::Zero
-    );
+    // Exact tier (i128 shortcut): exactly singular with a nonzero permanent.
+    assert_eq!(det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]), Sign::Zero);
     assert_eq!(stats::snapshot().expansion, 1);
-    // Bignum: a subnormal entry is outside every exponent window.
+    // Exact tier (expansions): full-precision rows, exactly singular.
+    let (x, y) = (0.1, 0.7);
+    assert_eq!(det_sign(&[[x, y, 1.0], [x, y, 1.0], [0.3, 0.2, 0.9]]), Sign::Zero);
+    assert_eq!(stats::snapshot().expansion, 2);
+    // Subnormal entries in narrow rows: still the i128 shortcut.
     let tiny = f64::from_bits(3);
     assert_eq!(det_sign(&[[tiny, 0.0], [0.0, tiny]]), Sign::Positive);
-    assert_eq!(
-        stats::snapshot(),
-        stats::Stats {
-            filter: 2,
-            expansion: 1,
-            bignum: 1
-        }
-    );
+    assert_eq!(stats::snapshot().expansion, 3);
+    // Bignum: rows spanning 1e-300 .. 1, outside the exponent window.
+    let m = [[1e-300, 1.0, 0.0], [0.0, 1.0, 1e-300], [1.0, 0.0, 1.0]];
+    assert_eq!(det_sign(&m), Sign::Positive);
+    assert_eq!(stats::snapshot(), stats::Stats { filter: 2, expansion: 3, bignum: 1 });
 }
 
 #[test]
