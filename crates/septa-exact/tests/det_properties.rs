@@ -84,6 +84,12 @@ fn near_degenerate_ia<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
         let k = r.gen_range(0..N);
         let p = perturbation(r);
         near_dependent(r, &mut m, k, p);
+        if r.gen_bool(0.3) {
+            // A column scaled far down: rows then span more than 62 bits,
+            // so the integer shortcut declines and expansions decide.
+            let (c, f) = (r.gen_range(0..N), pow2(-r.gen_range(20..=120)));
+            m.iter_mut().for_each(|row| row[c] *= f);
+        }
         check_ia(&m, &mut t);
     }
     t
@@ -98,7 +104,13 @@ fn near_degenerate_mi<const N: usize>(r: &mut ChaCha8Rng) -> Tally {
         let k = r.gen_range(0..N);
         let p = perturbation(r);
         near_dependent(r, &mut x, k, p);
-        let b: [[f64; N]; N] = mat(r, |r| unit(r) * 8.0);
+        let mut b: [[f64; N]; N] = mat(r, |r| unit(r) * 8.0);
+        if r.gen_bool(0.3) {
+            // As for IA: wide rows push the exact tier onto expansions.
+            let (c, f) = (r.gen_range(0..N), pow2(-r.gen_range(20..=120)));
+            x.iter_mut().for_each(|row| row[c] *= f);
+            b.iter_mut().for_each(|row| row[c] *= f);
+        }
         let a: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| b[i][j] + x[i][j]));
         if i % 2 == 0 {
             check_mi(&a, &b, &mut t);

@@ -81,11 +81,17 @@ fn each_tier_is_counted() {
         }
     );
     // Exact tier (i128 shortcut): exactly singular with a nonzero permanent.
-    assert_eq!(det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]), Sign::Zero);
+    assert_eq!(
+        det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]),
+        Sign::Zero
+    );
     assert_eq!(stats::snapshot().expansion, 1);
     // Exact tier (expansions): full-precision rows, exactly singular.
     let (x, y) = (0.1, 0.7);
-    assert_eq!(det_sign(&[[x, y, 1.0], [x, y, 1.0], [0.3, 0.2, 0.9]]), Sign::Zero);
+    assert_eq!(
+        det_sign(&[[x, y, 1.0], [x, y, 1.0], [0.3, 0.2, 0.9]]),
+        Sign::Zero
+    );
     assert_eq!(stats::snapshot().expansion, 2);
     // Subnormal entries in narrow rows: still the i128 shortcut.
     let tiny = f64::from_bits(3);
@@ -94,7 +100,14 @@ fn each_tier_is_counted() {
     // Bignum: rows spanning 1e-300 .. 1, outside the exponent window.
     let m = [[1e-300, 1.0, 0.0], [0.0, 1.0, 1e-300], [1.0, 0.0, 1.0]];
     assert_eq!(det_sign(&m), Sign::Positive);
-    assert_eq!(stats::snapshot(), stats::Stats { filter: 2, expansion: 3, bignum: 1 });
+    assert_eq!(
+        stats::snapshot(),
+        stats::Stats {
+            filter: 2,
+            expansion: 3,
+            bignum: 1
+        }
+    );
 }
 
 #[test]
