@@ -8,18 +8,19 @@
 //! component `c[n-1]` (the rest sum to less than that component in
 //! magnitude), and the empty expansion is zero.
 //!
-//! ## Why expansions and not fixed-width integers
+//! ## Why expansions as well as fixed-width integers
 //!
-//! Fixed-width integers would have to hold every input scaled to a common
-//! unit, so their width grows with the *exponent range* of the data: a
-//! 4x4 determinant whose entries span `2^-180 .. 2^180` would need products
-//! of ~1650 bits. Expansions only store the significant bits that are
-//! actually present (a handful of doubles for typical data, whatever the
-//! exponents), need no scaling step, and reuse the hardware's floating-point
-//! unit. They are exact only while no intermediate underflows or overflows,
-//! which the caller guarantees with an exponent window on the inputs (see
-//! `window` in `filter.rs`); outside it the bignum tier ([`crate::Exact`])
-//! takes over.
+//! Fixed-width integers must hold every entry of a row scaled to a common
+//! unit, so their width grows with the *exponent range* within a row: a
+//! 4x4 determinant whose rows mix `2^-180` and `2^180` would need products
+//! of ~1650 bits. The integer tier (`integer_det.rs`) therefore only takes
+//! rows spanning at most 62 bits, where it is fastest. Expansions store only
+//! the significant bits actually present (a handful of doubles whatever the
+//! exponents), need no scaling, and run on the floating-point unit, so they
+//! cover the wide rows. They are exact only while no intermediate underflows
+//! or overflows, which the caller guarantees with an exponent window on the
+//! inputs (see `window` in `filter.rs`); outside it the bignum tier
+//! ([`crate::Exact`]) takes over.
 //!
 //! ## Exactness argument under the window
 //!

@@ -7,14 +7,21 @@
 //!
 //! 1. a floating-point **filter** with a proven error bound (derivation in
 //!    the `filter` module source, after Shewchuk 1997);
-//! 2. an allocation-free exact tier: `i128` arithmetic when each row has
-//!    few significant bits (exactly degenerate data: small integers, grid
-//!    values), else floating-point **expansions** for inputs within an
+//! 2. an allocation-free exact tier: fixed-width **integers** (`i128`, or a
+//!    256-bit accumulator) when each row, scaled by a power of two, has at
+//!    most 62 significant bits (exactly degenerate data such as small
+//!    integers, and most near-degenerate data at any magnitude), else
+//!    floating-point **expansions** (Shewchuk 1997) for inputs within an
 //!    exponent window (`expansion` module source);
 //! 3. exact dyadic **bignums** ([`Exact`]) for everything else (values
 //!    spanning `1e-300 .. 1e300`, subnormals).
 //!
 //! [`stats`] counts, per thread, which tier decided each call.
+//!
+//! The barycentric predicate of Du et al. 2022 (Sec. 5.2, eq. 5-6) is
+//! [`barycentric_sign_ia`] / [`barycentric_sign_mi`]; the `*_f64_naive`
+//! functions are the unfiltered floating-point baseline (not exact), kept
+//! for the paper's robustness comparison.
 //!
 //! What is exact: the returned [`Sign`]. What is not promised: any
 //! floating-point value this crate may compute along the way.
@@ -35,7 +42,10 @@ mod sign;
 pub mod stats;
 mod validate;
 
-pub use barycentric::{barycentric_sign_ia, barycentric_sign_mi};
+pub use barycentric::{
+    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi,
+    barycentric_sign_mi_f64_naive,
+};
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;
 pub use sign::Sign;

@@ -9,7 +9,10 @@ use num_rational::BigRational;
 use num_traits::{One, Zero};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa_exact::{barycentric_sign_ia, barycentric_sign_mi, Sign};
+use septa_exact::{
+    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi,
+    barycentric_sign_mi_f64_naive, Sign,
+};
 
 const CASES: usize = 5_000;
 
@@ -97,9 +100,10 @@ fn rows<const N: usize>(r: &mut ChaCha8Rng, scale: f64) -> [[f64; N]; N] {
     g
 }
 
-fn run_ia<const N: usize>(seed: u64) -> usize {
+/// Runs the IA check; returns (zero results, naive-baseline mismatches).
+fn run_ia<const N: usize>(seed: u64) -> (usize, usize) {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut zeros = 0;
+    let (mut zeros, mut naive) = (0, 0);
     for i in 0..CASES {
         let g: [[f64; N]; N] = rows(&mut r, if i % 5 == 0 { 1e-200 } else { 1.0 });
         let want = expected(
@@ -109,13 +113,15 @@ fn run_ia<const N: usize>(seed: u64) -> usize {
         );
         assert_eq!(barycentric_sign_ia(&g), want, "IA d={} g={g:?}", N - 1);
         zeros += want.is_zero() as usize;
+        naive += (barycentric_sign_ia_f64_naive(&g) != want) as usize;
     }
-    zeros
+    (zeros, naive)
 }
 
-fn run_mi<const N: usize>(seed: u64) -> usize {
+/// Runs the MI check; returns (zero results, naive-baseline mismatches).
+fn run_mi<const N: usize>(seed: u64) -> (usize, usize) {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut zeros = 0;
+    let (mut zeros, mut naive) = (0, 0);
     for _ in 0..CASES {
         let x: [[f64; N]; N] = rows(&mut r, 1.0);
         let h: [[f64; N]; N] = mat(&mut r, |r| unit(r) * 4.0);
@@ -132,8 +138,9 @@ fn run_mi<const N: usize>(seed: u64) -> usize {
             N - 1
         );
         zeros += want.is_zero() as usize;
+        naive += (barycentric_sign_mi_f64_naive(&f, &h) != want) as usize;
     }
-    zeros
+    (zeros, naive)
 }
 
 #[test]
@@ -144,8 +151,17 @@ fn ia_matches_direct_evaluation_for_d_0_to_3() {
         run_ia::<3>(3),
         run_ia::<4>(4),
     ];
-    eprintln!("IA zero results per d: {z:?}");
-    assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
+    eprintln!("IA (zero results, naive mismatches) per d: {z:?}");
+    assert!(
+        z[1..].iter().all(|&(z, _)| z > 0),
+        "degenerate cases must occur"
+    );
+    // The naive baseline is exact at d = 0 and must fail sometimes above.
+    assert_eq!(z[0].1, 0);
+    assert!(
+        z[1..].iter().all(|&(_, n)| n > 0),
+        "the naive baseline should be fooled"
+    );
 }
 
 #[test]
@@ -156,6 +172,13 @@ fn mi_matches_direct_evaluation_for_d_0_to_3() {
         run_mi::<3>(7),
         run_mi::<4>(8),
     ];
-    eprintln!("MI zero results per d: {z:?}");
-    assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
+    eprintln!("MI (zero results, naive mismatches) per d: {z:?}");
+    assert!(
+        z[1..].iter().all(|&(z, _)| z > 0),
+        "degenerate cases must occur"
+    );
+    assert!(
+        z[1..].iter().all(|&(_, n)| n > 0),
+        "the naive baseline should be fooled"
+    );
 }
