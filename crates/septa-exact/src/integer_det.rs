@@ -115,10 +115,10 @@ impl I256 {
     fn add(self, o: I256) -> I256 {
         let mut r = [0u64; 4];
         let mut carry = false;
-        for i in 0..4 {
-            let (s1, c1) = self.0[i].overflowing_add(o.0[i]);
+        for ((ri, &x), &y) in r.iter_mut().zip(&self.0).zip(&o.0) {
+            let (s1, c1) = x.overflowing_add(y);
             let (s2, c2) = s1.overflowing_add(carry as u64);
-            r[i] = s2;
+            *ri = s2;
             carry = c1 | c2;
         }
         I256(r)
@@ -135,9 +135,9 @@ impl I256 {
         let m = s.unsigned_abs() as u128;
         let mut r = [0u64; 4];
         let mut carry = 0u128;
-        for i in 0..4 {
-            let t = mag.0[i] as u128 * m + carry;
-            r[i] = t as u64;
+        for (ri, &limb) in r.iter_mut().zip(&mag.0) {
+            let t = limb as u128 * m + carry;
+            *ri = t as u64;
             carry = t >> 64;
         }
         let r = I256(r);

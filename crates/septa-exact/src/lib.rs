@@ -28,6 +28,10 @@
 //!
 //! Inputs must be finite; [`check_finite`] rejects NaN and infinities with a
 //! typed error before any predicate runs.
+//!
+//! The proofs assume the default IEEE-754 environment of Rust programs:
+//! round-to-nearest-even and gradual underflow (no flush-to-zero or
+//! denormals-are-zero modes, which some foreign libraries switch on).
 #![warn(missing_docs)]
 
 mod barycentric;

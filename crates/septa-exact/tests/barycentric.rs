@@ -1,6 +1,7 @@
 //! The barycentric predicate (Du et al. 2022, eq. 5-6) against a direct
 //! evaluation: solve eq. 4 for the barycentric coordinates of `v` in exact
 //! rationals and evaluate `g_{d+1}(v)` (eq. 3), for d = 0..3.
+#![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 
 mod common;
 

@@ -1,6 +1,7 @@
 //! `det_sign` / `det_sign_diff` against an independent big-rational
 //! reference (num-rational), for N = 1..=4, both forms, on random,
 //! near-degenerate, exactly degenerate and extreme-magnitude inputs.
+#![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 
 mod common;
 

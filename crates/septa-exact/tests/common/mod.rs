@@ -1,5 +1,6 @@
 //! Shared helpers for the property tests: an independent big-rational
 //! reference and seeded generators of matrices.
+#![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 #![allow(dead_code)]
 
 use num_bigint::BigInt;
