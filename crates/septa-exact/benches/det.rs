@@ -2,7 +2,8 @@
 //! against the naive floating-point sign measured in the same run, on
 //! random and on near-degenerate matrices, with the filter hit rate.
 //!
-//! Run: `cargo bench -p septa-exact` (plain `std::time`, no harness).
+//! Run: `cargo bench -p septa-exact` (plain `std::time`, no harness);
+//! `cargo bench -p septa-exact -- "near N=3"` runs the matching lines only.
 #![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 
 use rand::{Rng, SeedableRng};
@@ -89,6 +90,13 @@ fn time<T>(pool: &[T], mut f: impl FnMut(&T) -> Sign) -> f64 {
 }
 
 fn bench<const N: usize>(label: &str, gen: fn(&mut ChaCha8Rng) -> [[f64; N]; N]) {
+    // Optional filter: `cargo bench -p septa-exact -- near` or `-- "tiny N=4"`.
+    let name = format!("{label} N={N}");
+    if let Some(f) = std::env::args().skip(1).find(|a| !a.starts_with('-')) {
+        if !name.contains(&f) {
+            return;
+        }
+    }
     let mut r = ChaCha8Rng::seed_from_u64(N as u64);
     let ia: Vec<[[f64; N]; N]> = (0..POOL).map(|_| gen(&mut r)).collect();
     // MI: b random, a = b + x with x from the generator (differences round).

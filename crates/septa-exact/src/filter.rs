@@ -45,18 +45,44 @@
 //! `fl(ad) > fl(bc)` implies `ad > bc` for *any* finite inputs (overflow and
 //! underflow included); only `fl(ad) == fl(bc)` goes on.
 //!
-//! ## Validity: no underflow, no overflow
+//! ## Validity without a window: underflow as an absolute error (hot path)
 //!
-//! The model above fails when a product underflows. Each filter therefore
-//! also checks the *exponent window* of the entries: every nonzero `|x|` in
-//! `[2^-W, 2^W]`, `W = 400, 250, 180` for `N = 2, 3, 4`. Then every entry is
-//! an integer multiple of `2^(-W-52)`, every nonzero intermediate of degree
-//! `k` is a multiple of, hence at least, `2^(-k(W+52)) >= 2^-960` (no product
-//! underflows, `B` is a normal number) and at most `N! 2^(N(W+1)) < 2^990`
-//! (nothing overflows). Inside the window a computed permanent `P^ == 0`
-//! means every monomial is exactly zero, so the determinant is exactly zero:
-//! zero rows and columns, common on degenerate grids, are decided here.
-//! Outside the window the bignum tier decides.
+//! With gradual underflow every product obeys
+//! `fl(xy) = xy(1 + d) + e`, `|e| <= eta = 2^-1075`, and sums stay exact in
+//! the subnormal range (Higham, Thm. 2.3). Each `e` reaches the result
+//! multiplied only by the factors still to come on its path:
+//! * N = 3: an `e` inside minor `k` is multiplied by the row-0 entry
+//!   `x_0k`; one at the top product by 1. So the extra error is
+//!   `F <= eta (1+u)^5 (2 S + 3)`, `S = |x_00| + |x_01| + |x_02|`.
+//! * N = 4: an `e` inside `s_k` (`c_k`) is multiplied by the other computed
+//!   minor, which is at most its computed permanent; so
+//!   `F <= eta (1+u)^6 (2 S + 6)`, `S = sum_k (ps_k + pc_k)`.
+//! * N = 2 (MI): `F <= 2 eta (1+u)`.
+//!
+//! The permanent tree has the same structure, so `P^ >= (1-u)^mP P - F`
+//! too. Requiring `P^ >= 2^-700` (then `B` is a normal number) and
+//! `S <= 2^300` bounds `r = F / P^ <= 2^-73`, and it suffices that
+//! `c_hot (1-u) / (1+u) >= gamma_{m'} (1 + r) / (1-u)^mP + r`, met by
+//! `c_hot = c (1 + 2^-16)` (checked with `r = 2^-72` in exact rationals by
+//! `filter_tests.rs`). Overflow needs no check: if `P^` is finite, every node
+//! of the permanent tree is, and by monotone rounding every node of the
+//! determinant tree is bounded by its permanent counterpart; if `P^` is
+//! infinite, `B` is and nothing is decided. This hot criterion costs a few
+//! additions and two comparisons, instead of a scan of all entries.
+//!
+//! ## Validity with an exponent window (cold path: zeros, tiny scales)
+//!
+//! When the hot criterion fails, the filter is retried under the *exponent
+//! window*: every nonzero `|x|` in `[2^-W, 2^W]`, `W = 400, 250, 180` for
+//! `N = 2, 3, 4`. Then every entry is an integer multiple of `2^(-W-52)`,
+//! every nonzero intermediate of degree `k` is a multiple of, hence at
+//! least, `2^(-k(W+52)) >= 2^-960` (no product underflows, `B` is normal)
+//! and at most `N! 2^(N(W+1)) < 2^990` (nothing overflows), so the plain
+//! bound `c` applies. Inside the window a computed permanent `P^ == 0` means
+//! every monomial is exactly zero, so the determinant is exactly zero: zero
+//! rows and columns, common on degenerate grids, are decided here. The same
+//! window makes the expansion tier exact; outside it the integer or bignum
+//! tier decides.
 
 use crate::Sign;
 
@@ -67,16 +93,29 @@ const C_MI2: f64 = 3.0 * U + 32.0 * U * U;
 const C_MI3: f64 = 7.0 * U + 128.0 * U * U;
 const C_MI4: f64 = 11.0 * U + 512.0 * U * U;
 
-/// `(name, N, m', mP, c)` for every bounded filter: checked in exact
-/// rational arithmetic by the tests in `filter_tests.rs`.
+/// Hot-path constants `c (1 + 2^-16)` (see "Validity without a window").
+const HOT: f64 = 1.0 + 1.0 / (1u64 << 16) as f64;
+const H_IA3: f64 = C_IA3 * HOT;
+const H_IA4: f64 = C_IA4 * HOT;
+const H_MI2: f64 = C_MI2 * HOT;
+const H_MI3: f64 = C_MI3 * HOT;
+const H_MI4: f64 = C_MI4 * HOT;
+/// Smallest permanent and largest magnification sum for the hot path.
+const P_MIN: f64 = f64::from_bits((1023 - 700) << 52);
+const S_MAX: f64 = f64::from_bits((1023 + 300) << 52);
+
+/// `(name, N, m', mP, c, c_hot)` for every bounded filter: checked in
+/// exact rational arithmetic by the tests in `filter_tests.rs`.
 #[cfg(test)]
-pub(crate) const BOUNDS: [(&str, usize, u32, u32, f64); 5] = [
-    ("IA3", 3, 4, 5, C_IA3),
-    ("IA4", 4, 7, 8, C_IA4),
-    ("MI2", 2, 3, 4, C_MI2),
-    ("MI3", 3, 7, 8, C_MI3),
-    ("MI4", 4, 11, 12, C_MI4),
+pub(crate) const BOUNDS: [(&str, usize, u32, u32, f64, f64); 5] = [
+    ("IA3", 3, 4, 5, C_IA3, H_IA3),
+    ("IA4", 4, 7, 8, C_IA4, H_IA4),
+    ("MI2", 2, 3, 4, C_MI2, H_MI2),
+    ("MI3", 3, 7, 8, C_MI3, H_MI3),
+    ("MI4", 4, 11, 12, C_MI4, H_MI4),
 ];
+#[cfg(test)]
+pub(crate) const HOT_LIMITS: (f64, f64) = (P_MIN, S_MAX);
 
 /// Exponent window `[2^-W, 2^W]` per size (see the module doc).
 pub(crate) const fn window(n: usize) -> (f64, f64) {
@@ -178,10 +217,10 @@ fn decide(d: f64, bound: f64, perm: f64, ok: bool) -> Outcome {
     Outcome::from_code(code)
 }
 
-/// `(det, permanent)` of a 3x3 matrix (row-major), both by first-row
-/// Laplace expansion.
+/// `(det, permanent, S)` of a 3x3 matrix (row-major), both by first-row
+/// Laplace expansion; `S` is the row-0 magnification sum of the hot path.
 #[inline(always)]
-fn det_perm3(m: &[f64; 9]) -> (f64, f64) {
+fn det_perm3(m: &[f64; 9]) -> (f64, f64, f64) {
     let [a0, a1, a2, b0, b1, b2, c0, c1, c2] = *m;
     let m0 = b1 * c2 - b2 * c1;
     let m1 = b0 * c2 - b2 * c0;
@@ -192,13 +231,13 @@ fn det_perm3(m: &[f64; 9]) -> (f64, f64) {
     let p1 = b0 * c2 + b2 * c0;
     let p2 = b0 * c1 + b1 * c0;
     let p = (a0 * p0 + a1 * p1) + a2 * p2;
-    (d, p)
+    (d, p, (a0 + a1) + a2)
 }
 
-/// `(det, permanent)` of a 4x4 matrix (row-major) by Laplace expansion
-/// along rows 0,1.
+/// `(det, permanent, S)` of a 4x4 matrix (row-major) by Laplace expansion
+/// along rows 0,1; `S` sums the 2x2 minor permanents (hot path).
 #[inline(always)]
-fn det_perm4(m: &[f64; 16]) -> (f64, f64) {
+fn det_perm4(m: &[f64; 16]) -> (f64, f64, f64) {
     #[inline(always)]
     fn pairs(m: &[f64; 16], r: usize, sub: bool) -> [f64; 6] {
         let f = |i: usize, j: usize| {
@@ -223,7 +262,23 @@ fn det_perm4(m: &[f64; 16]) -> (f64, f64) {
     let c = pairs(&a, 2, false);
     let p =
         ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
-    (d, p)
+    let mag = ((s[0] + s[1]) + (s[2] + s[3]))
+        + ((s[4] + s[5]) + ((c[0] + c[1]) + (c[2] + c[3])) + (c[4] + c[5]));
+    (d, p, mag)
+}
+
+/// Hot path: the sign if `|d| > c_hot p` and the magnitudes allow the
+/// absolute underflow term to be absorbed (module doc), else `None`.
+#[inline(always)]
+fn hot(d: f64, p: f64, s: f64, c_hot: f64) -> Option<Sign> {
+    let bound = c_hot * p;
+    let pos = d > bound;
+    let neg = -d > bound;
+    if (pos | neg) & (p >= P_MIN) & (s <= S_MAX) {
+        Some(Sign::from_i8(pos as i8 - neg as i8))
+    } else {
+        None
+    }
 }
 
 /// IA, N = 2: monotone comparison of the two rounded products.
@@ -255,39 +310,46 @@ pub(crate) fn ia2_tie(m: &[f64; 4]) -> Outcome {
     }
 }
 
+/// IA cold path: the windowed filter, then the tier to use.
+#[cold]
+#[inline(never)]
+fn cold_ia(d: f64, p: f64, c: f64, m: &[f64], n: usize) -> Outcome {
+    decide(d, c * p, p, in_window(m, n))
+}
+
+#[inline(always)]
+fn from_hot(s: Option<Sign>) -> Option<Outcome> {
+    s.map(|s| Outcome::from_code(s.as_i8()))
+}
+
 /// IA, N = 3.
 #[inline]
 pub(crate) fn ia3(m: &[f64; 9]) -> Outcome {
-    let (d, p) = det_perm3(m);
-    decide(d, C_IA3 * p, p, in_window(m, 3))
+    let (d, p, s) = det_perm3(m);
+    from_hot(hot(d, p, s, H_IA3)).unwrap_or_else(|| cold_ia(d, p, C_IA3, m, 3))
 }
 
 /// IA, N = 4.
 #[inline]
 pub(crate) fn ia4(m: &[f64; 16]) -> Outcome {
-    let (d, p) = det_perm4(m);
-    decide(d, C_IA4 * p, p, in_window(m, 4))
+    let (d, p, s) = det_perm4(m);
+    from_hot(hot(d, p, s, H_IA4)).unwrap_or_else(|| cold_ia(d, p, C_IA4, m, 4))
 }
 
-/// MI tail shared by all sizes: the computed differences `x` passed the
-/// window check or not; if not, the window on `a` and `b` also validates
-/// the filter (their differences are multiples of the same unit) and the
-/// expansion tier.
-#[inline(always)]
-fn mi_outcome(d: f64, bound: f64, p: f64, x_ok: bool, a: &[f64], b: &[f64], n: usize) -> Outcome {
-    match decide(d, bound, p, x_ok) {
-        o @ (Outcome::Negative | Outcome::Zero | Outcome::Positive) => o,
-        _ => mi_slow(decide(d, bound, p, true), a, b, n),
-    }
-}
-
+/// MI cold path. The windowed filter is valid if the computed differences
+/// `x` lie in the window, or if `a` and `b` do (their differences are then
+/// multiples of the same unit); the expansion tier needs the latter.
 #[cold]
 #[inline(never)]
-fn mi_slow(decided: Outcome, a: &[f64], b: &[f64], n: usize) -> Outcome {
-    if in_window(a, n) && in_window(b, n) {
-        decided
-    } else {
-        Outcome::Bignum
+fn cold_mi(d: f64, p: f64, c: f64, x: &[f64], a: &[f64], b: &[f64], n: usize) -> Outcome {
+    let ab = in_window(a, n) && in_window(b, n);
+    if !(ab || in_window(x, n)) {
+        return Outcome::Bignum;
+    }
+    match decide(d, c * p, p, true) {
+        o @ (Outcome::Negative | Outcome::Zero | Outcome::Positive) => o,
+        _ if ab => Outcome::Expansion,
+        _ => Outcome::Bignum,
     }
 }
 
@@ -303,23 +365,24 @@ pub(crate) fn mi2(a: &[f64; 4], b: &[f64; 4]) -> Outcome {
     let (l, r) = (x[0] * x[3], x[1] * x[2]);
     let d = l - r;
     let p = l.abs() + r.abs();
-    mi_outcome(d, C_MI2 * p, p, in_window(&x, 2), a, b, 2)
+    // No magnification at N = 2: S = 0.
+    from_hot(hot(d, p, 0.0, H_MI2)).unwrap_or_else(|| cold_mi(d, p, C_MI2, &x, a, b, 2))
 }
 
 /// MI, N = 3.
 #[inline]
 pub(crate) fn mi3(a: &[f64; 9], b: &[f64; 9]) -> Outcome {
     let x = diff(a, b);
-    let (d, p) = det_perm3(&x);
-    mi_outcome(d, C_MI3 * p, p, in_window(&x, 3), a, b, 3)
+    let (d, p, s) = det_perm3(&x);
+    from_hot(hot(d, p, s, H_MI3)).unwrap_or_else(|| cold_mi(d, p, C_MI3, &x, a, b, 3))
 }
 
 /// MI, N = 4.
 #[inline]
 pub(crate) fn mi4(a: &[f64; 16], b: &[f64; 16]) -> Outcome {
     let x = diff(a, b);
-    let (d, p) = det_perm4(&x);
-    mi_outcome(d, C_MI4 * p, p, in_window(&x, 4), a, b, 4)
+    let (d, p, s) = det_perm4(&x);
+    from_hot(hot(d, p, s, H_MI4)).unwrap_or_else(|| cold_mi(d, p, C_MI4, &x, a, b, 4))
 }
 
 /// The naive floating-point determinant (no filter), for the `--float`

@@ -14,7 +14,7 @@ fn error_constants_dominate_the_derived_bound() {
     // c >= (1 + u) gamma_{m'} / (1 - u)^(mP + 1), gamma_k = k u / (1 - k u).
     let u = q(U);
     let one = BigRational::one();
-    for (name, _n, mp, mperm, c) in BOUNDS {
+    for (name, _n, mp, mperm, c, _) in BOUNDS {
         let k = BigRational::from_integer(BigInt::from(mp));
         let gamma = &k * &u / (&one - &k * &u);
         let need = (&one + &u) * gamma / Pow::pow(&one - &u, mperm + 1);
@@ -27,6 +27,29 @@ fn error_constants_dominate_the_derived_bound() {
             q(c) <= need * q(1.01),
             "{name}: constant far above the bound"
         );
+    }
+}
+
+#[test]
+fn hot_constants_absorb_the_underflow_term() {
+    // c_hot (1-u)/(1+u) >= gamma_{m'} (1 + r)/(1-u)^mP + r for r = 2^-70,
+    // a safe cap on F / P^ given P^ >= P_MIN and S <= S_MAX.
+    let (p_min, s_max) = HOT_LIMITS;
+    let eta = q(2f64.powi(-1075 + 53) * 2f64.powi(-53)); // 2^-1075
+    let f_cap = eta * (q(2.0) * q(s_max) * q(1.0001) + q(6.0)) * q(1.0001);
+    let r = q(2f64.powi(-70));
+    assert!(
+        f_cap / q(p_min) <= r.clone(),
+        "r = F / P^ must stay below 2^-70"
+    );
+    let u = q(U);
+    let one = BigRational::one();
+    for (name, _n, mp, mperm, _, c_hot) in BOUNDS {
+        let k = BigRational::from_integer(BigInt::from(mp));
+        let gamma = &k * &u / (&one - &k * &u);
+        let lhs = q(c_hot) * (&one - &u) / (&one + &u);
+        let rhs = gamma * (&one + &r) / Pow::pow(&one - &u, mperm) + &r;
+        assert!(lhs >= rhs, "{name}: hot constant too small");
     }
 }
 
