@@ -143,6 +143,8 @@ pub struct Tally {
     pub cases: usize,
     pub zero: usize,
     pub naive_wrong: usize,
+    /// Decided by the filter (set by tests that track it via `stats`).
+    pub filter: u64,
 }
 
 /// Checks `det_sign` against the reference; returns the reference sign.
