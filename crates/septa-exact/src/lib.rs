@@ -6,15 +6,16 @@
 //! numbers, in three tiers:
 //!
 //! 1. a floating-point **filter** with a proven error bound (derivation in
-//!    the `filter` module source, after Shewchuk 1997);
+//!    the `filter` module source, after Shewchuk 1997), valid for all finite
+//!    inputs: underflow is bounded as an absolute error, overflow detected;
 //! 2. an allocation-free exact tier: fixed-width **integers** (`i128`, or a
 //!    256-bit accumulator) when each row, scaled by a power of two, has at
 //!    most 62 significant bits (exactly degenerate data such as small
 //!    integers, and most near-degenerate data at any magnitude), else
 //!    floating-point **expansions** (Shewchuk 1997) for inputs within an
 //!    exponent window (`expansion` module source);
-//! 3. exact dyadic **bignums** ([`Exact`]) for everything else (values
-//!    spanning `1e-300 .. 1e300`, subnormals).
+//! 3. exact dyadic **bignums** ([`Exact`]) for everything else (rows whose
+//!    values span `1e-300 .. 1e300`, full-precision subnormals).
 //!
 //! [`stats`] counts, per thread, which tier decided each call.
 //!
