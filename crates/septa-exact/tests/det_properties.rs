@@ -365,7 +365,7 @@ fn underflow_edge<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
     near_dependent(r, &mut m, k, p);
     let (big, tiny) = match N {
         3 => (r.gen_range(200..=300), r.gen_range(-560..=-470)),
-        4 => (r.gen_range(100..=160), r.gen_range(-540..=-480)),
+        4 => (r.gen_range(100..=145), r.gen_range(-530..=-470)),
         _ => (r.gen_range(0..=300), r.gen_range(-560..=-470)),
     };
     let n_big = if N == 4 { 2 } else { 1 };
