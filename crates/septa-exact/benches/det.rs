@@ -127,8 +127,8 @@ fn bench<const N: usize>(label: &str, gen: fn(&mut ChaCha8Rng) -> [[f64; N]; N])
     let t_mi = time(&mi, |(a, b)| det_sign_diff(a, b));
     let t_mi0 = time(&mi, |(a, b)| det_sign_diff_f64_naive(a, b));
     println!(
-        "{label:<6} N={N}  IA {t_ia:6.2} ns vs naive {t_ia0:6.2} ns (x{:5.2}) filter {:7.3}% [exp {} big {}]   \
-         MI {t_mi:6.2} ns vs naive {t_mi0:6.2} ns (x{:5.2}) filter {:7.3}% [exp {} big {}]",
+        "{label:<6} N={N}  IA {t_ia:6.2} ns vs naive {t_ia0:6.2} ns (x{:5.2}) filter {:7.3}% [exact {} bignum {}]   \
+         MI {t_mi:6.2} ns vs naive {t_mi0:6.2} ns (x{:5.2}) filter {:7.3}% [exact {} bignum {}]",
         t_ia / t_ia0,
         100.0 * s_ia.filter_rate(),
         s_ia.expansion,
