@@ -48,8 +48,9 @@
 //! ## Validity without a window: underflow as an absolute error (hot path)
 //!
 //! With gradual underflow every product obeys
-//! `fl(xy) = xy(1 + d) + e`, `|e| <= eta = 2^-1075`, and sums stay exact in
-//! the subnormal range (Higham, Thm. 2.3). Each `e` reaches the result
+//! `fl(xy) = xy(1 + d) + e`, `|e| <= eta = 2^-1075`, while sums keep the
+//! plain model (a sum that lands in the subnormal range is exact): Higham,
+//! *Accuracy and Stability*, Sec. 2.1, model with underflow. Each `e` reaches the result
 //! multiplied only by the factors still to come on its path:
 //! * N = 3: an `e` inside minor `k` is multiplied by the row-0 entry
 //!   `x_0k`; one at the top product by 1. So the extra error is
