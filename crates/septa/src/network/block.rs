@@ -92,6 +92,8 @@ pub(crate) struct State {
     pub uf: UnionFind,
     pub node_label: Vec<Label>,
     pub node_volume: Vec<f64>,
+    /// Whether regions are joined across tet faces (cell grouping).
+    pub grouping: bool,
 }
 
 /// Run-wide inputs.
@@ -102,6 +104,9 @@ pub(crate) struct Ctx<'a> {
     pub mode: Mode,
     pub options: Options,
     pub volumes: bool,
+    /// Join regions across tet faces (cell grouping); off when ray shooting
+    /// is sure to apply.
+    pub grouping: bool,
 }
 
 const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
@@ -115,7 +120,10 @@ fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
 impl Worker {
     /// Processes one block.
     pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
-        let mut st = State::default();
+        let mut st = State {
+            grouping: ctx.grouping,
+            ..State::default()
+        };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
             if super::boxfast::applies(ctx) {
                 self.run_box(ctx, &mut st, g, *lo, *hi)?;
@@ -484,6 +492,9 @@ pub(crate) fn face_key_pub(tet: &[u32; 4], i: usize) -> FaceKey {
 
 fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
     use std::collections::hash_map::Entry;
+    if !st.grouping {
+        return;
+    }
     match st.contacts.entry((face, label.clone())) {
         Entry::Occupied(o) => {
             let other = o.remove();

@@ -145,6 +145,9 @@ impl Worker {
                 }
             }
         }
+        if !st.grouping {
+            return Ok(());
+        }
         // Join empty cubes to empty neighbours by index, the rest by contacts.
         let odd = [[0, 0, 1], [0, 1, 0], [1, 0, 0]]
             .into_iter()

@@ -206,6 +206,21 @@ impl Network {
     }
 }
 
+/// Whether ray shooting is sure to apply: a box grid and no network vertex
+/// at a grid vertex (IA: no value is exactly 0; MI: no tie for the maximum).
+fn ray_applies(grid: &Grid, values: &[f64], k: usize, mode: Mode) -> bool {
+    if !matches!(grid, Grid::Box(_)) {
+        return false;
+    }
+    match mode {
+        Mode::Ia => values.iter().all(|&x| x != 0.0),
+        Mode::Mi => values.chunks_exact(k).all(|r| {
+            let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            r.iter().filter(|&&x| x == m).count() == 1
+        }),
+    }
+}
+
 /// Computes the IA or MI network of `k` functions given by their values at
 /// the grid vertices (`values[v * k + f]`), on the current rayon pool.
 pub fn compute(
@@ -244,6 +259,9 @@ pub fn compute(
         mode: options.mode,
         options: Options::with_float(options.float),
         volumes: options.volumes,
+        grouping: !(options.raytrace
+            && !options.volumes
+            && ray_applies(grid, values, k, options.mode)),
     };
     let blocks = grid.blocks(options.block);
     let outs: Vec<block::BlockOut> = blocks
@@ -255,6 +273,12 @@ pub fn compute(
     let t2 = Instant::now();
     let topo = topology::topology(&mut m, options.raytrace.then_some(&ctx));
     let t3 = Instant::now();
+    if !ctx.grouping && topo.cells_method != "raytrace" {
+        // Cannot happen when the preconditions hold; never answer without cells.
+        let mut o = options.clone();
+        o.raytrace = false;
+        return compute(grid, values, k, &o);
+    }
     Ok(Network {
         mode: options.mode,
         functions: k,
