@@ -488,3 +488,29 @@ fn nested_spheres_off_grid_raytrace() {
     );
     assert_eq!(cell_partition(&ray), cell_partition(&grouping));
 }
+
+#[test]
+fn paper_pattern_from_bench_entry_point() {
+    // The 4-sphere IA pattern with a different jitter has the reference's
+    // combinatorics (ia4_R20: 32 patches, 24 chains, 8 corners, 16 cells).
+    let f = septa::network::bench::paper_spheres(Mode::Ia, 4, 7);
+    let run = septa::network::bench::run_on_box(
+        &f,
+        20,
+        [[-1.0; 3], [1.0; 3]],
+        &NetworkOptions::new(Mode::Ia),
+    )
+    .unwrap();
+    expect(
+        &run.network,
+        &[
+            ("patches", 32),
+            ("chains", 24),
+            ("corners", 8),
+            ("shells", 16),
+            ("cells", 16),
+            ("components", 1),
+        ],
+        "paper 4",
+    );
+}

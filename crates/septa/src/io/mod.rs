@@ -1,5 +1,6 @@
 //! Readers and writers.
 
 pub mod functions;
+pub mod msh;
 pub mod network_out;
 pub mod npz;

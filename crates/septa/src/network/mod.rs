@@ -8,6 +8,7 @@
 //! Regions are joined across tet faces by (face, region label) keys, and
 //! shells by wedges around edges, so block summaries merge in any order.
 
+pub mod bench;
 mod block;
 mod boxfast;
 mod merge;
