@@ -270,10 +270,82 @@ pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
     })
 }
 
-/// Writes `network.json`, `network.ply` and `network.obj` into `dir` (created if needed).
+/// Writes a VTK XML unstructured grid (`.vtu`, raw appended binary) of the
+/// polygons with cell data `patch`, `label` (2 components) and `cells`
+/// (the cells on the positive and negative side, -1 outside the grid).
+pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
+    write_atomic(path, |w| {
+        let nf = net.num_faces();
+        let np = net.points.len();
+        // Appended arrays, in order, each preceded by its UInt64 byte count.
+        let sizes = [
+            (np * 3 * 8, "Float64", "Points", 3),
+            (net.face_verts.len() * 4, "Int32", "connectivity", 1),
+            (nf * 4, "Int32", "offsets", 1),
+            (nf, "UInt8", "types", 1),
+            (nf * 4, "Int32", "patch", 1),
+            (nf * 2 * 4, "Int32", "label", 2),
+            (nf * 2 * 4, "Int32", "cells", 2),
+        ];
+        let mut offsets = Vec::new();
+        let mut off = 0usize;
+        for (n, ..) in &sizes {
+            offsets.push(off);
+            off += 8 + n;
+        }
+        let da = |i: usize| {
+            let (_, ty, name, comps) = sizes[i];
+            format!("<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>\n", offsets[i])
+        };
+        write!(
+            w,
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+             <UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nf}\">\n<Points>\n{}</Points>\n\
+             <Cells>\n{}{}{}</Cells>\n<CellData Scalars=\"patch\">\n{}{}{}</CellData>\n</Piece>\n</UnstructuredGrid>\n\
+             <AppendedData encoding=\"raw\">\n_",
+            da(0), da(1), da(2), da(3), da(4), da(5), da(6)
+        )?;
+        let head =
+            |w: &mut BufWriter<File>, i: usize| w.write_all(&(sizes[i].0 as u64).to_le_bytes());
+        head(w, 0)?;
+        for p in &net.points {
+            for x in p {
+                w.write_all(&x.to_le_bytes())?;
+            }
+        }
+        head(w, 1)?;
+        for &v in &net.face_verts {
+            w.write_all(&(v as i32).to_le_bytes())?;
+        }
+        head(w, 2)?;
+        for f in 0..nf {
+            w.write_all(&(net.face_start[f + 1] as i32).to_le_bytes())?;
+        }
+        head(w, 3)?;
+        w.write_all(&vec![7u8; nf])?; // VTK_POLYGON
+        head(w, 4)?;
+        for &p in &net.face_patch {
+            w.write_all(&(p as i32).to_le_bytes())?;
+        }
+        head(w, 5)?;
+        for l in &net.face_label {
+            w.write_all(&(l[0] as i32).to_le_bytes())?;
+            w.write_all(&(l[1] as i32).to_le_bytes())?;
+        }
+        head(w, 6)?;
+        for c in &net.face_cells {
+            w.write_all(&(id(c[0]) as i32).to_le_bytes())?;
+            w.write_all(&(id(c[1]) as i32).to_le_bytes())?;
+        }
+        w.write_all(b"\n</AppendedData>\n</VTKFile>\n")
+    })
+}
+
+/// Writes `network.json`, `network.ply`, `network.obj` and `network.vtu` into `dir` (created if needed).
 pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     write_ply(net, &dir.join("network.ply"))?;
     write_obj(net, &dir.join("network.obj"))?;
+    write_vtu(net, &dir.join("network.vtu"))?;
     write_json(net, &dir.join("network.json"), extra_seconds)
 }
