@@ -514,3 +514,62 @@ fn paper_pattern_from_bench_entry_point() {
         "paper 4",
     );
 }
+
+#[test]
+fn three_coordinate_planes_through_grid_nodes() {
+    // Octants: 8 cells, 12 quarter-plane patches, 6 half-axis chains, and
+    // 7 corners (the centre, where 6 chains meet, and 6 on the boundary).
+    for split in [Split::Five, Split::Six] {
+        let grid = box4(split);
+        let f = [
+            plane([1.0, 0.0, 0.0]),
+            plane([0.0, 1.0, 0.0]),
+            plane([0.0, 0.0, 1.0]),
+        ];
+        let values = sample(&f, &grid.vertices());
+        let net = run(&grid, &values, 3, Mode::Ia, 2);
+        expect(
+            &net,
+            &[
+                ("cells", 8),
+                ("patches", 12),
+                ("chains", 6),
+                ("corners", 7),
+                ("shells", 8),
+                ("components", 1),
+            ],
+            &format!("{split:?}"),
+        );
+        check_invariants(&net, &grid, "octants");
+        // The same planes off the grid nodes: the generic case, by ray shooting.
+        let f = [
+            Primitive::Plane {
+                point: [0.013, 0.0, 0.0],
+                normal: [1.0, 0.0, 0.0],
+            },
+            Primitive::Plane {
+                point: [0.0, 0.021, 0.0],
+                normal: [0.0, 1.0, 0.0],
+            },
+            Primitive::Plane {
+                point: [0.0, 0.0, -0.017],
+                normal: [0.0, 0.0, 1.0],
+            },
+        ];
+        let values = sample(&f, &grid.vertices());
+        let net = compute(&grid, &values, 3, &NetworkOptions::new(Mode::Ia)).unwrap();
+        assert_eq!(net.cells_method, "raytrace");
+        expect(
+            &net,
+            &[
+                ("cells", 8),
+                ("patches", 12),
+                ("chains", 6),
+                ("corners", 7),
+                ("shells", 8),
+                ("components", 1),
+            ],
+            "off-grid octants",
+        );
+    }
+}
