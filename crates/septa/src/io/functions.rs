@@ -47,8 +47,11 @@ fn vec3(v: &serde_json::Value) -> Option<[f64; 3]> {
     Some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?])
 }
 
+/// Vertex positions and tets (0-based vertex indices, as read).
+pub type MeshData = (Vec<[f64; 3]>, Vec<[i64; 4]>);
+
 /// Reads a tet-mesh JSON `[[[x,y,z], ...], [[v0,v1,v2,v3], ...]]` (0-based).
-pub fn read_tet_mesh_json(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>), RefError> {
+pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
     let v = read_json(path)?;
     let bad = |message: String| RefError::Format {
         path: path.display().to_string(),

@@ -5,6 +5,8 @@
 use std::collections::HashMap;
 use std::path::Path;
 
+use super::functions::MeshData;
+
 /// Why a `.msh` file could not be read; names the line.
 #[derive(Debug, thiserror::Error)]
 pub enum MshError {
@@ -63,7 +65,7 @@ impl<'a> Lines<'a> {
 }
 
 /// Reads the vertices and tets of a Gmsh `.msh` (2.2 or 4.1, ASCII).
-pub fn read_msh(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>), MshError> {
+pub fn read_msh(path: &Path) -> Result<MeshData, MshError> {
     let p = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| MshError::Io {
         path: p.clone(),
@@ -73,7 +75,7 @@ pub fn read_msh(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>), MshError>
 }
 
 /// Parses `.msh` text; `path` names the source in errors.
-pub fn parse_msh(text: &str, path: &str) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>), MshError> {
+pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
     let mut ls = Lines {
         it: text.lines().enumerate(),
         line: 0,
@@ -84,14 +86,9 @@ pub fn parse_msh(text: &str, path: &str) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>
     let mut tag_to_id: HashMap<i64, i64> = HashMap::new();
     let mut tets = Vec::new();
     let mut pending_tets: Vec<([i64; 4], usize)> = Vec::new();
-    loop {
-        let l = match ls.it.next() {
-            Some((i, l)) => {
-                ls.line = i + 1;
-                l.trim()
-            }
-            None => break,
-        };
+    while let Some((i, l)) = ls.it.next() {
+        ls.line = i + 1;
+        let l = l.trim();
         match l {
             "$MeshFormat" => {
                 let f: Vec<String> = ls.next()?.split_whitespace().map(String::from).collect();
