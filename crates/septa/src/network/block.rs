@@ -52,6 +52,9 @@ pub(crate) type OpenT = (FaceKey, Label, VKey, VKey);
 #[derive(Debug, Default)]
 pub(crate) struct BlockOut {
     pub keys: Vec<VKey>,
+    /// Per key: whether its grid element may be shared with another block
+    /// (lies on the block's boundary); the others need no global lookup.
+    pub shared: Vec<bool>,
     pub points: Vec<[f64; 3]>,
     pub poly_start: Vec<u32>,
     pub poly_verts: Vec<u32>,
@@ -94,6 +97,8 @@ pub(crate) struct State {
     pub node_volume: Vec<f64>,
     /// Whether regions are joined across tet faces (cell grouping).
     pub grouping: bool,
+    /// The cube range of a box block (`None`: a range of mesh tets).
+    pub block_box: Option<([usize; 3], [usize; 3])>,
 }
 
 /// Run-wide inputs.
@@ -122,6 +127,10 @@ impl Worker {
     pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
         let mut st = State {
             grouping: ctx.grouping,
+            block_box: match block {
+                Block::Cubes { lo, hi } => Some((*lo, *hi)),
+                Block::Tets(_) => None,
+            },
             ..State::default()
         };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
@@ -456,6 +465,18 @@ pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active
     key
 }
 
+/// Whether the grid element of `key` lies on the boundary of the box block
+/// `lo..hi` (all its grid vertices on one side plane), so that another block
+/// may produce the same vertex. Mesh blocks: always (conservative).
+fn on_block_boundary(ctx: &Ctx, block: Option<([usize; 3], [usize; 3])>, key: &VKey) -> bool {
+    let (Grid::Box(g), Some((lo, hi))) = (ctx.grid, block) else {
+        return true;
+    };
+    let verts = key.grid.iter().take_while(|&&v| v != u32::MAX);
+    let ijk: SmallVec<[[usize; 3]; 4]> = verts.map(|&v| g.vertex_ijk(v)).collect();
+    (0..3).any(|a| ijk.iter().all(|p| p[a] == lo[a]) || ijk.iter().all(|p| p[a] == hi[a]))
+}
+
 /// Block id of complex vertex `v`, creating its key and position on first use.
 fn vertex_id(
     w: &mut Worker,
@@ -473,6 +494,9 @@ fn vertex_id(
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
         st.out.keys.push(key);
+        st.out
+            .shared
+            .push(on_block_boundary(ctx, st.block_box, &key));
         let corners = tet.map(|g| ctx.grid.vertex(g));
         st.out
             .points

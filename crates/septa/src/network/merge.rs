@@ -56,7 +56,12 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
             if remap[v as usize] == NONE {
                 let key = b.keys[v as usize];
                 let next = m.keys.len() as u32;
-                let id = *vmap.entry(key).or_insert(next);
+                // A vertex inside its block is unique: no global lookup.
+                let id = if b.shared[v as usize] {
+                    *vmap.entry(key).or_insert(next)
+                } else {
+                    next
+                };
                 if id == next {
                     m.keys.push(key);
                     m.points.push(b.points[v as usize]);
