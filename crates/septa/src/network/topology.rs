@@ -24,12 +24,13 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     let nf = m.face_label.len();
     let nv = m.points.len();
     // Edges: (a, b, face) sorted; a run of equal (a, b) is one edge.
-    let mut ef: Vec<(u32, u32, u32)> = Vec::with_capacity(m.face_verts.len());
+    // Edges: (a << 32 | b, face) sorted; a run of equal keys is one edge.
+    let mut ef: Vec<(u64, u32)> = Vec::with_capacity(m.face_verts.len());
     for f in 0..nf {
         let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
         for j in 0..vs.len() {
             let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
-            ef.push((a.min(b), a.max(b), f as u32));
+            ef.push(((a.min(b) as u64) << 32 | a.max(b) as u64, f as u32));
         }
     }
     ef.sort_unstable();
@@ -40,14 +41,14 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     let mut i = 0;
     while i < ef.len() {
         let mut j = i;
-        while j < ef.len() && ef[j].0 == ef[i].0 && ef[j].1 == ef[i].1 {
+        while j < ef.len() && ef[j].0 == ef[i].0 {
             j += 1;
         }
-        let (a, b) = (ef[i].0, ef[i].1);
+        let (a, b) = ((ef[i].0 >> 32) as u32, ef[i].0 as u32);
         edges.push([a, b]);
         vert_uf.union(a, b);
         match j - i {
-            2 => patch_uf.union(ef[i].2, ef[i + 1].2),
+            2 => patch_uf.union(ef[i].1, ef[i + 1].1),
             1 => {}
             _ => chain_edges.push([a, b]),
         }
