@@ -430,14 +430,7 @@ fn raytrace_equals_grouping() {
         let mut o = NetworkOptions::new(mode);
         o.block = 4; // the same blocks as `run`, hence the same shell numbering
         let ray = compute(&grid, &values, k, &o).unwrap();
-        // Ray shooting needs every network vertex off the grid vertices.
-        let at_grid_vertex = ray.keys.iter().any(|k| k.grid[1] == u32::MAX);
-        let want = if at_grid_vertex {
-            "grouping"
-        } else {
-            "raytrace"
-        };
-        assert_eq!(ray.cells_method, want, "{name}");
+        assert_eq!(ray.cells_method, "raytrace", "{name}");
         assert_eq!(grouping.cells_method, "grouping", "{name}");
         assert_eq!(
             ray.cells.len(),
@@ -449,13 +442,46 @@ fn raytrace_equals_grouping() {
             panic!("{name}: cell {i}: ray {:?} vs grouping {:?}", a[i], b[i]);
         }
     }
-    // Preconditions broken: a network vertex at a grid vertex, and a tet mesh.
-    let grid = box4(Split::Five);
-    let f = [sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)];
-    let values = sample(&f, &grid.vertices());
-    let net = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Ia)).unwrap();
+    // Network vertices at grid vertices: ray shooting or its fallback, same cells.
+    for split in [Split::Five, Split::Six] {
+        let grid = box4(split);
+        for f in [
+            vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)],
+            vec![
+                plane([1.0, 0.0, 0.0]),
+                plane([0.0, 1.0, 0.0]),
+                plane([0.0, 0.0, 1.0]),
+            ],
+            vec![
+                sphere([0.0; 3], 0.5),
+                sphere([0.0; 3], 0.75),
+                sphere([0.5, 0.5, 0.0], 0.25),
+            ],
+        ] {
+            let values = sample(&f, &grid.vertices());
+            let grouping = run(&grid, &values, f.len(), Mode::Ia, 1);
+            let mut o = NetworkOptions::new(Mode::Ia);
+            o.block = 4;
+            let ray = compute(&grid, &values, f.len(), &o).unwrap();
+            eprintln!("{split:?} {}: {} cells", ray.cells_method, ray.cells.len());
+            assert_eq!(
+                cell_partition(&ray),
+                cell_partition(&grouping),
+                "{split:?} {f:?}"
+            );
+        }
+    }
+    // A tet mesh: grouping.
+    let input = read_grid_input(&dir.join("mi4_R20.npz")).unwrap();
+    let mesh = Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap());
+    let net = compute(
+        &mesh,
+        &input.values,
+        input.k,
+        &NetworkOptions::new(Mode::Mi),
+    )
+    .unwrap();
     assert_eq!(net.cells_method, "grouping");
-    assert_eq!(net.cells.len(), 3);
 }
 
 #[test]

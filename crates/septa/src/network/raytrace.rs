@@ -10,8 +10,10 @@
 //! come in order from the per-tet complex.
 //!
 //! Preconditions, checked: a box grid (convex boundary, no cavities or
-//! handles) and no network vertex at a grid vertex. Otherwise `None`, and the
-//! caller falls back to cell grouping.
+//! handles). Network vertices at grid vertices are points a ray can hit
+//! too; where the local picture is ambiguous (a ray segment lying in the
+//! network, a ray returning to its own component) the answer is `None` and
+//! the caller falls back to cell grouping.
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
@@ -46,9 +48,6 @@ struct TetView {
 /// preconditions do not hold.
 pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> {
     let Grid::Box(g) = ctx.grid else { return None };
-    if inp.keys.iter().any(|k| k.grid[1] == u32::MAX) {
-        return None; // a network vertex at a grid vertex
-    }
     // Vertex -> faces.
     let nv = inp.keys.len();
     let mut start = vec![0u32; nv + 1];
@@ -88,17 +87,19 @@ pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> 
             return None; // a component touching no grid edge (cannot happen on a proper network)
         }
         let view = tet_view(ctx, g, v, u)?;
-        let pts = edge_points(ctx, &view, v, u);
-        // The component's point closest to v on this edge.
-        let j = pts.iter().position(|&(_, key)| {
-            vmap.get(&key)
-                .is_some_and(|&id| inp.vertex_comp[id as usize] == c as u32)
-        })?;
-        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j + 1, true)?;
-        let end_shell = if j > 0 {
-            facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, false)?
-        } else {
-            walk(ctx, g, inp, &vmap, &start, &vf, v)?
+        let pts = edge_points(ctx, &view, v, u, &vmap);
+        // The component's point closest to v on this edge (never a corner).
+        let j = (1..pts.len().saturating_sub(1))
+            .find(|&j| pts[j].is_some_and(|id| inp.vertex_comp[id as usize] == c as u32))?;
+        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, true)?;
+        let end_shell = match (0..j).rev().find(|&k| pts[k].is_some()) {
+            Some(k) => {
+                if inp.vertex_comp[pts[k]? as usize] == c as u32 {
+                    return None;
+                }
+                facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, k, false)?
+            }
+            None => walk(ctx, g, inp, &vmap, &start, &vf, v, c as u32)?,
         };
         uf.union(start_shell, end_shell);
     }
@@ -118,6 +119,7 @@ fn walk(
     start: &[u32],
     vf: &[u32],
     from: u32,
+    comp: u32,
 ) -> Option<u32> {
     let mut cur = from;
     loop {
@@ -127,10 +129,17 @@ fn walk(
         let w = lowest_neighbour(g, cur);
         if edge_may_cross(ctx, w, cur) {
             let view = tet_view(ctx, g, w, cur)?;
-            let pts = edge_points(ctx, &view, w, cur);
-            if let Some(last) = pts.len().checked_sub(1) {
-                // The point closest to `cur`; the ray arrives from `cur`'s side.
-                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, last + 1, false);
+            let pts = edge_points(ctx, &view, w, cur, vmap);
+            // The network point closest to `cur` (possibly `w` itself); the ray
+            // arrives from `cur`'s side.
+            if let Some(k) = (0..pts.len().saturating_sub(1))
+                .rev()
+                .find(|&k| pts[k].is_some())
+            {
+                if inp.vertex_comp[pts[k]? as usize] == comp {
+                    return None;
+                }
+                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, k, false);
             }
         }
         cur = w;
@@ -238,23 +247,34 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     })
 }
 
-/// Edge-points strictly inside grid edge `a b`, ordered from `a` to `b`:
-/// (complex vertex, key).
-fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32) -> SmallVec<[(u32, VKey); 8]> {
-    let mut out = SmallVec::new();
+/// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
+/// to `b` (corners included), each with its global id if it is a network vertex.
+fn edge_points(
+    ctx: &Ctx,
+    view: &TetView,
+    a: u32,
+    b: u32,
+    vmap: &FxHashMap<VKey, u32>,
+) -> SmallVec<[Option<u32>; 8]> {
     if view.complex.vertices().is_empty() {
-        return out;
+        return SmallVec::from_elem(None, 2);
     }
     let la = view.tet.iter().position(|&x| x == a).unwrap() as u8;
     let lb = view.tet.iter().position(|&x| x == b).unwrap() as u8;
-    let list = view.complex.tet_edge_points(la, lb);
-    for &cv in list.iter().skip(1).take(list.len().saturating_sub(2)) {
-        out.push((
-            cv,
-            vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active),
-        ));
-    }
-    out
+    view.complex
+        .tet_edge_points(la, lb)
+        .iter()
+        .map(|&cv| {
+            vmap.get(&vertex_key(
+                ctx.mode,
+                &view.complex,
+                cv,
+                &view.tet,
+                &view.active,
+            ))
+            .copied()
+        })
+        .collect()
 }
 
 /// The shell on the side of the network, at the `j`-th point of the list
@@ -277,6 +297,9 @@ fn facing_shell(
     let la = view.tet.iter().position(|&x| x == a)? as u8;
     let lb = view.tet.iter().position(|&x| x == b)? as u8;
     let list = c.tet_edge_points(la, lb);
+    if list.len() < 2 {
+        return None;
+    }
     let p = list[j];
     let q = if towards_a {
         list[j - 1]
@@ -287,6 +310,13 @@ fn facing_shell(
         .edges()
         .iter()
         .position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
+    // A ray segment lying in the network has no side: ambiguous.
+    if c.faces()
+        .iter()
+        .any(|f| f.plane.is_network() && f.edges.contains(&edge))
+    {
+        return None;
+    }
     let cell = c.cells().iter().position(|cl| {
         cl.faces
             .iter()

@@ -38,6 +38,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     let mut patch_uf = UnionFind::new(nf);
     let mut vert_uf = UnionFind::new(nv);
     let mut chain_edges = Vec::new();
+    let mut sheet_uf = UnionFind::new(nf);
     let mut i = 0;
     while i < ef.len() {
         let mut j = i;
@@ -47,6 +48,9 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         let (a, b) = ((ef[i].0 >> 32) as u32, ef[i].0 as u32);
         edges.push([a, b]);
         vert_uf.union(a, b);
+        for k in i + 1..j {
+            sheet_uf.union(ef[i].1, ef[k].1);
+        }
         match j - i {
             2 => patch_uf.union(ef[i].1, ef[i + 1].1),
             1 => {}
@@ -103,7 +107,10 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         shell_of_hp[hp] = s;
     }
     // Cells: by ray shooting where it applies, else by region groups.
-    let rays = ray.and_then(|ctx| {
+    // Ray shooting assumes shells of one component meet along edges: two
+    // pieces touching only at points (tangent spheres) break it.
+    let edge_connected = sheet_uf.components().1 == components;
+    let rays = ray.filter(|_| edge_connected).and_then(|ctx| {
         super::raytrace::ray_cells(
             ctx,
             &super::raytrace::RayInput {
