@@ -2,8 +2,10 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod bench_grid;
 mod cut;
 mod demo;
+mod labels;
 mod network;
 mod regions;
 mod stress;
@@ -29,6 +31,8 @@ enum Command {
     Mi(network::Args),
     /// Non-manifold implicit shapes from a scene with a region rule.
     Regions(regions::Args),
+    /// Surfaces between the labels of a segmented volume (.npy).
+    Labels(labels::Args),
     /// Cut a closed triangle mesh by planes into cut-cells.
     Cut(cut::Args),
     /// Run the built-in scenes.
@@ -45,6 +49,7 @@ fn main() {
         Command::Ia(a) => network::run(a, network::Mode::Ia),
         Command::Mi(a) => network::run(a, network::Mode::Mi),
         Command::Regions(a) => regions::run(a),
+        Command::Labels(a) => labels::run(a),
         Command::Cut(a) => cut::run(a),
         Command::Demo(a) => demo::run(a),
         Command::View(a) => view::run(a),

@@ -110,11 +110,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         obj.insert("seconds".into(), secs.into());
         println!("{}", serde_json::Value::Object(obj));
     } else {
-        let counts: Vec<String> = net
-            .counts()
-            .iter()
-            .map(|(k, v)| format!("{k} {v}"))
-            .collect();
+        let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
         println!("{:.3} s", t0.elapsed().as_secs_f64());
     }
@@ -131,11 +127,7 @@ fn split(args: &Args) -> Result<Split, String> {
 
 /// Reads the grid and values.
 fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Error>> {
-    let ext = args
-        .input
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("");
+    let ext = args.input.extension().and_then(|e| e.to_str()).unwrap_or("");
     if ext == "npz" {
         let input = npz::read_grid_input(&args.input)?;
         // A reference-style box grid is used implicitly when it matches the stored tets.
@@ -144,26 +136,20 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
                 let grid = Grid::Box(g);
                 let same = grid.num_tets() == input.tets.len()
                     && grid.num_vertices() == input.vertices.len()
-                    && input
-                        .tets
-                        .iter()
-                        .enumerate()
-                        .all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
+                    && input.tets.iter().enumerate().all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
                 if same {
                     return Ok((grid, input.values, input.k));
                 }
             }
         }
-        let mesh = TetMesh::new(input.vertices, &input.tets)
-            .map_err(|e| format!("{}: {e}", args.input.display()))?;
+        let mesh = TetMesh::new(input.vertices, &input.tets).map_err(|e| format!("{}: {e}", args.input.display()))?;
         return Ok((Grid::Mesh(mesh), input.values, input.k));
     }
     // A reference config JSON ({"funcFile", "tetMeshFile" | "gridResolution", "gridBbox"})
     // or a function list.
-    let text = std::fs::read_to_string(&args.input)
-        .map_err(|e| format!("{}: {e}", args.input.display()))?;
-    let json: serde_json::Value = serde_json::from_str(&text)
-        .map_err(|e| format!("{}: not JSON: {e}", args.input.display()))?;
+    let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{}: {e}", args.input.display()))?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", args.input.display()))?;
     let (funcs, mesh, grid_res, bounds) = if let Some(cfg) = json.as_object() {
         let dir = args.input.parent().unwrap_or(std::path::Path::new("."));
         let file = cfg
@@ -171,14 +157,8 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
             .and_then(|v| v.as_str())
             .ok_or_else(|| format!("{}: config has no \"funcFile\"", args.input.display()))?;
         let funcs = functions::read_functions(&dir.join(file))?;
-        let mesh = cfg
-            .get("tetMeshFile")
-            .and_then(|v| v.as_str())
-            .map(|m| dir.join(m));
-        let res = cfg
-            .get("gridResolution")
-            .and_then(|v| v.as_u64())
-            .map(|r| r as usize);
+        let mesh = cfg.get("tetMeshFile").and_then(|v| v.as_str()).map(|m| dir.join(m));
+        let res = cfg.get("gridResolution").and_then(|v| v.as_u64()).map(|r| r as usize);
         let bounds = cfg.get("gridBbox").and_then(|b| {
             let b: Vec<f64> = b
                 .as_array()?
@@ -188,35 +168,22 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
                 .collect();
             (b.len() == 6).then_some(b)
         });
-        (
-            funcs,
-            mesh.or(args.mesh.clone()),
-            res.or(args.grid),
-            bounds.or(args.bounds.clone()),
-        )
+        (funcs, mesh.or(args.mesh.clone()), res.or(args.grid), bounds.or(args.bounds.clone()))
     } else {
         let funcs = functions::parse_functions(&text, &args.input.display().to_string())?;
         (funcs, args.mesh.clone(), args.grid, args.bounds.clone())
     };
     if let Some(mesh) = mesh {
         let ext = mesh.extension().and_then(|e| e.to_str()).unwrap_or("");
-        let (vertices, tets) = if ext == "msh" {
-            septa::io::msh::read_msh(&mesh)?
-        } else {
-            functions::read_tet_mesh_json(&mesh)?
-        };
+        let (vertices, tets) =
+            if ext == "msh" { septa::io::msh::read_msh(&mesh)? } else { functions::read_tet_mesh_json(&mesh)? };
         let mesh = TetMesh::new(vertices, &tets).map_err(|e| format!("{}: {e}", mesh.display()))?;
         let values = functions::sample(&funcs, &mesh.vertices);
         return Ok((Grid::Mesh(mesh), values, funcs.len()));
     }
-    let n = grid_res
-        .ok_or("a function JSON input needs --grid N (and optionally --bounds) or --mesh FILE")?;
+    let n = grid_res.ok_or("a function JSON input needs --grid N (and optionally --bounds) or --mesh FILE")?;
     let b = bounds.unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
-    let g = BoxGrid::new(
-        [n; 3],
-        [[b[0], b[1], b[2]], [b[3], b[4], b[5]]],
-        split(args)?,
-    )?;
+    let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
     let grid = Grid::Box(g);
     let values = functions::sample(&funcs, &grid.vertices());
     Ok((grid, values, funcs.len()))

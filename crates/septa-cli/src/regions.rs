@@ -1,11 +1,69 @@
-//! `septa regions` (in progress).
+//! `septa regions`: surfaces and curves of interest of a scene's region rule.
+use std::path::PathBuf;
+
 use crate::CliResult;
+use septa::io::regions_out;
+use septa::regions::{region_surfaces, RegionOptions};
+use septa::scene::{builtin, Scene};
 
 /// Arguments of `septa regions`.
 #[derive(clap::Args)]
-pub struct Args {}
+pub struct Args {
+    /// A scene file (JSON) or `builtin:NAME` (see `--list`).
+    scene: Option<String>,
+    /// Output folder.
+    #[arg(short = 'o', long)]
+    output: Option<PathBuf>,
+    /// Print the built-in scenes and exit.
+    #[arg(long)]
+    list: bool,
+    /// Per-vertex normals from the analytic gradients.
+    #[arg(long)]
+    normals: bool,
+    /// Print one JSON object with counts, surfaces and curves.
+    #[arg(long)]
+    json: bool,
+}
 
 /// Runs `septa regions`.
-pub fn run(_args: Args) -> CliResult {
-    Err("septa regions: not implemented yet".into())
+pub fn run(a: Args) -> CliResult {
+    if a.list {
+        for (name, what) in builtin::list() {
+            println!("builtin:{name:<20} {what}");
+        }
+        return Ok(());
+    }
+    let Some(path) = a.scene else {
+        return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
+    };
+    let scene = Scene::load(&path)?;
+    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals })?;
+    if let Some(dir) = &a.output {
+        regions_out::write(&r, dir)?;
+    }
+    let summary = regions_out::summary(&r);
+    if a.json {
+        println!("{summary}");
+    } else {
+        println!("{path}: {} polygons in {} surfaces, {} curves", r.faces.len(), r.surfaces.len(), r.curves.len());
+        for s in &r.surfaces {
+            println!(
+                "  surface {:?}: {} polygons, Euler characteristic {}, {} boundary loop(s)",
+                s.regions, s.faces, s.euler, s.boundary_loops
+            );
+        }
+        for c in &r.curves {
+            println!(
+                "  curve {:?}: {} vertices, {}, length {:.4}",
+                c.regions,
+                c.vertices.len(),
+                if c.closed { "closed" } else { "open" },
+                c.length
+            );
+        }
+        if let Some(dir) = &a.output {
+            println!("wrote {}", dir.display());
+        }
+    }
+    Ok(())
 }

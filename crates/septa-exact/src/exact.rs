@@ -21,10 +21,7 @@ pub struct Exact {
 impl Exact {
     /// Zero.
     pub fn zero() -> Exact {
-        Exact {
-            mantissa: BigInt::zero(),
-            exponent: 0,
-        }
+        Exact { mantissa: BigInt::zero(), exponent: 0 }
     }
 
     /// The exact value of a finite `f64`.
@@ -41,16 +38,9 @@ impl Exact {
         let negative = bits >> 63 == 1;
         let biased = ((bits >> 52) & 0x7ff) as i64;
         let fraction = bits & ((1u64 << 52) - 1);
-        let (m, e) = if biased == 0 {
-            (fraction, -1074)
-        } else {
-            (fraction | (1u64 << 52), biased - 1075)
-        };
+        let (m, e) = if biased == 0 { (fraction, -1074) } else { (fraction | (1u64 << 52), biased - 1075) };
         let m = BigInt::from(m);
-        Exact {
-            mantissa: if negative { -m } else { m },
-            exponent: e,
-        }
+        Exact { mantissa: if negative { -m } else { m }, exponent: e }
     }
 
     /// The exact sign.
@@ -97,10 +87,7 @@ impl Add for &Exact {
             return self.clone();
         }
         let (a, b, e) = Exact::aligned(self, rhs);
-        Exact {
-            mantissa: a + b,
-            exponent: e,
-        }
+        Exact { mantissa: a + b, exponent: e }
     }
 }
 
@@ -114,20 +101,14 @@ impl Sub for &Exact {
 impl Mul for &Exact {
     type Output = Exact;
     fn mul(self, rhs: &Exact) -> Exact {
-        Exact {
-            mantissa: &self.mantissa * &rhs.mantissa,
-            exponent: self.exponent + rhs.exponent,
-        }
+        Exact { mantissa: &self.mantissa * &rhs.mantissa, exponent: self.exponent + rhs.exponent }
     }
 }
 
 impl Neg for &Exact {
     type Output = Exact;
     fn neg(self) -> Exact {
-        Exact {
-            mantissa: -&self.mantissa,
-            exponent: self.exponent,
-        }
+        Exact { mantissa: -&self.mantissa, exponent: self.exponent }
     }
 }
 

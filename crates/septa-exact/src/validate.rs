@@ -11,11 +11,7 @@ pub struct NonFinite {
 
 impl std::fmt::Display for NonFinite {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "value {} at index {} is not finite",
-            self.value, self.index
-        )
+        write!(f, "value {} at index {} is not finite", self.value, self.index)
     }
 }
 
@@ -31,9 +27,6 @@ impl std::error::Error for NonFinite {}
 pub fn check_finite(values: &[f64]) -> Result<(), NonFinite> {
     match values.iter().position(|v| !v.is_finite()) {
         None => Ok(()),
-        Some(index) => Err(NonFinite {
-            index,
-            value: values[index],
-        }),
+        Some(index) => Err(NonFinite { index, value: values[index] }),
     }
 }

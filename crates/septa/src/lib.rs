@@ -21,9 +21,11 @@
 //! coordinates, computed only for output.
 #![warn(missing_docs)]
 
+pub mod baseline;
 pub mod complex;
 pub mod cut;
 pub mod grid;
 pub mod io;
 pub mod network;
+pub mod regions;
 pub mod scene;

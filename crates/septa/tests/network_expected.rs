@@ -10,11 +10,7 @@ use septa::network::{compute, Mode, NetworkOptions};
 
 fn data_dir() -> Option<PathBuf> {
     let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../../shared/data/isn");
-    let d = if d.exists() {
-        d
-    } else {
-        PathBuf::from("/work/shared/data/isn")
-    };
+    let d = if d.exists() { d } else { PathBuf::from("/work/shared/data/isn") };
     d.join("expected.json").exists().then_some(d)
 }
 
@@ -39,10 +35,7 @@ fn box_grid_equals_input_tets() {
         for (v, p) in input.vertices.iter().enumerate() {
             let q = grid.vertex(v as u32);
             for a in 0..3 {
-                assert!(
-                    (p[a] - q[a]).abs() <= 1e-12 * (1.0 + p[a].abs()),
-                    "{name} vertex {v}"
-                );
+                assert!((p[a] - q[a]).abs() <= 1e-12 * (1.0 + p[a].abs()), "{name} vertex {v}");
             }
         }
     }
@@ -50,11 +43,7 @@ fn box_grid_equals_input_tets() {
 
 fn check_case(dir: &Path, name: &str, expected: &serde_json::Value, mesh: bool, raytrace: bool) {
     let (grid, values, k, input) = box_grid(&dir.join(format!("{name}.npz")));
-    let grid = if mesh {
-        Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap())
-    } else {
-        grid
-    };
+    let grid = if mesh { Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap()) } else { grid };
     let mode = match expected["mode"].as_str().unwrap() {
         "ia" => Mode::Ia,
         _ => Mode::Mi,
@@ -85,11 +74,7 @@ fn counts_equal_reference() {
         for (mesh, raytrace) in [(false, true), (false, false), (true, true)] {
             let r = std::panic::catch_unwind(|| check_case(&dir, name, exp, mesh, raytrace));
             if let Err(e) = r {
-                failures.push(
-                    e.downcast_ref::<String>()
-                        .cloned()
-                        .unwrap_or_else(|| name.clone()),
-                );
+                failures.push(e.downcast_ref::<String>().cloned().unwrap_or_else(|| name.clone()));
             }
         }
     }

@@ -7,19 +7,34 @@ use super::split::Scratch;
 use super::types::{Cell, Complex, Edge, Face, Mode, Plane, Vertex, NONE};
 
 /// Options of [`Complex::build`].
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct Options {
     /// Use naive floating-point signs instead of the exact predicate.
     /// Only for measuring what exactness buys (`septa stress --float`).
     /// Default value: `false`.
     pub float: bool,
+    /// Use the look-up tables for IA with 1-2 functions and MI with 2-3
+    /// (Sec. 6); they give the same complex as the incremental
+    /// construction. Ignored with `float`. Default value: `true`.
+    pub lookup: bool,
+}
+
+impl Default for Options {
+    fn default() -> Options {
+        Options { float: false, lookup: true }
+    }
 }
 
 impl Options {
     /// Options with the naive floating-point predicate switched on or off.
     pub fn with_float(float: bool) -> Options {
-        Options { float }
+        Options { float, ..Options::default() }
+    }
+
+    /// Options with the look-up tables switched on or off.
+    pub fn with_lookup(lookup: bool) -> Options {
+        Options { lookup, ..Options::default() }
     }
 }
 
@@ -61,6 +76,10 @@ pub enum BuildError {
 const TET_FACES: [[u32; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
 /// The six tet edges.
 const TET_EDGES: [[u32; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+/// Edges of each loop in `TET_FACES`: `TET_FACE_EDGES[t][i]` joins corners `i` and `i + 1`.
+const TET_FACE_EDGES: [[u32; 3]; 4] = [[4, 5, 3], [1, 5, 2], [2, 4, 0], [0, 3, 1]];
+/// Planes of each edge in `TET_EDGES`: the tet faces opposite the other two corners.
+const TET_EDGE_PLANES: [[u8; 2]; 6] = [[2, 3], [1, 3], [1, 2], [0, 3], [0, 2], [0, 1]];
 
 impl Complex {
     /// Builds the IA or MI of the functions whose values at the 4 tet
@@ -69,14 +88,11 @@ impl Complex {
     ///
     /// Functions are inserted in the given order; the result does not
     /// depend on it (up to numbering), since every sign is exact.
-    pub fn build(
-        &mut self,
-        mode: Mode,
-        values: &[[f64; 4]],
-        options: &Options,
-    ) -> Result<(), BuildError> {
-        let mut scratch = Scratch::default();
-        self.build_with(mode, values, options, &mut scratch)
+    pub fn build(&mut self, mode: Mode, values: &[[f64; 4]], options: &Options) -> Result<(), BuildError> {
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let result = self.build_with(mode, values, options, &mut scratch);
+        self.scratch = scratch;
+        result
     }
 
     /// [`Complex::build`] with caller-owned scratch space (no allocation
@@ -90,29 +106,27 @@ impl Complex {
     ) -> Result<(), BuildError> {
         for (function, row) in values.iter().enumerate() {
             if let Some(vertex) = row.iter().position(|v| !v.is_finite()) {
-                return Err(BuildError::NonFinite {
-                    function,
-                    vertex,
-                    value: row[vertex],
-                });
+                return Err(BuildError::NonFinite { function, vertex, value: row[vertex] });
             }
         }
         if values.len() > u16::MAX as usize {
-            return Err(BuildError::TooManyFunctions {
-                count: values.len(),
-            });
+            return Err(BuildError::TooManyFunctions { count: values.len() });
         }
         if mode == Mode::Mi && values.is_empty() {
             return Err(BuildError::NoFunctions);
         }
         self.mode = Some(mode);
         self.num_functions = values.len();
+        let preds = Predicates { values, mode, float: options.float };
+        if options.lookup && !options.float {
+            if let Some(table) = super::lookup::table(mode, values.len()) {
+                if let Some(t) = super::lookup::find(table, &preds, values.len()) {
+                    self.decode(&table.data[t as usize..]);
+                    return Ok(());
+                }
+            }
+        }
         self.init_tet(0);
-        let preds = Predicates {
-            values,
-            mode,
-            float: options.float,
-        };
         let first = if mode == Mode::Mi { 1 } else { 0 };
         for f in first..values.len() as u16 {
             self.insert(&preds, f, scratch)?;
@@ -131,49 +145,24 @@ impl Complex {
             self.orient.push(1);
         }
         self.edges.clear();
-        for [a, b] in TET_EDGES {
-            // Edge (a, b) lies on the two tet faces opposite the other two vertices.
-            let mut others = (0..4u8).filter(|&x| x as u32 != a && x as u32 != b);
-            let (p, q) = (others.next().unwrap(), others.next().unwrap());
-            self.edges.push(Edge {
-                vertices: [a, b],
-                planes: [Plane::TetFace(p), Plane::TetFace(q)],
-            });
+        for (e, [p, q]) in TET_EDGES.iter().zip(TET_EDGE_PLANES) {
+            self.edges.push(Edge { vertices: *e, planes: [Plane::TetFace(p), Plane::TetFace(q)] });
         }
         self.faces.clear();
         for (t, tri) in TET_FACES.iter().enumerate() {
-            let edge_of = |a: u32, b: u32| {
-                TET_EDGES
-                    .iter()
-                    .position(|e| (e[0] == a && e[1] == b) || (e[0] == b && e[1] == a))
-                    .unwrap() as u32
-            };
             self.faces.push(Face {
                 plane: Plane::TetFace(t as u8),
                 vertices: tri.iter().copied().collect(),
-                edges: smallvec![
-                    edge_of(tri[0], tri[1]),
-                    edge_of(tri[1], tri[2]),
-                    edge_of(tri[2], tri[0])
-                ],
+                edges: TET_FACE_EDGES[t].iter().copied().collect(),
                 cells: [0, NONE],
             });
         }
         self.cells.clear();
-        self.cells.push(Cell {
-            faces: smallvec![0, 1, 2, 3],
-            positive: smallvec![],
-            material,
-        });
+        self.cells.push(Cell { faces: smallvec![0, 1, 2, 3], positive: smallvec![], material });
     }
 
     /// Inserts function `f` (Sec. 4.1 for IA, 4.2 for MI).
-    fn insert(
-        &mut self,
-        preds: &Predicates,
-        f: u16,
-        scratch: &mut Scratch,
-    ) -> Result<(), BuildError> {
+    fn insert(&mut self, preds: &Predicates, f: u16, scratch: &mut Scratch) -> Result<(), BuildError> {
         self.vsign.clear();
         let (mut pos, mut neg) = (false, false);
         for v in 0..self.vertices.len() {

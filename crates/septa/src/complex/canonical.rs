@@ -71,10 +71,8 @@ impl CanonicalForm {
                 let label: Vec<u32> = if mi {
                     vec![ids[cell.material as usize]]
                 } else {
-                    let mut pos: Vec<u32> = (0..c.num_functions as u16)
-                        .filter(|&i| cell.is_positive(i))
-                        .map(|i| ids[i as usize])
-                        .collect();
+                    let mut pos: Vec<u32> =
+                        (0..c.num_functions as u16).filter(|&i| cell.is_positive(i)).map(|i| ids[i as usize]).collect();
                     pos.sort_unstable();
                     pos
                 };
@@ -84,21 +82,11 @@ impl CanonicalForm {
             })
             .collect();
         cells.sort();
-        CanonicalForm {
-            vertices,
-            edges,
-            faces,
-            cells,
-        }
+        CanonicalForm { vertices, edges, faces, cells }
     }
 
     /// Numbers of vertices, edges, faces and cells.
     pub fn counts(&self) -> [usize; 4] {
-        [
-            self.vertices.len(),
-            self.edges.len(),
-            self.faces.len(),
-            self.cells.len(),
-        ]
+        [self.vertices.len(), self.edges.len(), self.faces.len(), self.cells.len()]
     }
 }

@@ -18,17 +18,11 @@ impl Complex {
         for (fi, f) in self.faces.iter().enumerate() {
             let n = f.vertices.len();
             if n < 3 || f.edges.len() != n {
-                return Err(format!(
-                    "face {fi} has {n} vertices and {} edges",
-                    f.edges.len()
-                ));
+                return Err(format!("face {fi} has {n} vertices and {} edges", f.edges.len()));
             }
             for k in 0..n {
                 let (a, b) = (f.vertices[k], f.vertices[(k + 1) % n]);
-                let e = self
-                    .edges
-                    .get(f.edges[k] as usize)
-                    .ok_or(format!("face {fi}: bad edge id"))?;
+                let e = self.edges.get(f.edges[k] as usize).ok_or(format!("face {fi}: bad edge id"))?;
                 if !(e.vertices == [a, b] || e.vertices == [b, a]) {
                     return Err(format!("face {fi}: edge {} is not ({a},{b})", f.edges[k]));
                 }
@@ -38,16 +32,10 @@ impl Complex {
                 }
             }
             if f.cells[0] == NONE || (f.plane.is_network() == (f.cells[1] == NONE)) {
-                return Err(format!(
-                    "face {fi} on {:?} has cells {:?}",
-                    f.plane, f.cells
-                ));
+                return Err(format!("face {fi} on {:?} has cells {:?}", f.plane, f.cells));
             }
             for &c in f.cells.iter().filter(|&&c| c != NONE) {
-                let cell = self
-                    .cells
-                    .get(c as usize)
-                    .ok_or(format!("face {fi}: bad cell {c}"))?;
+                let cell = self.cells.get(c as usize).ok_or(format!("face {fi}: bad cell {c}"))?;
                 if !cell.faces.contains(&(fi as u32)) {
                     return Err(format!("cell {c} does not list its face {fi}"));
                 }
@@ -74,19 +62,13 @@ impl Complex {
             }
             directed.sort_unstable();
             if directed.windows(2).any(|w| w[0] == w[1]) {
-                return Err(format!(
-                    "cell {ci}: an edge is traversed twice in one direction"
-                ));
+                return Err(format!("cell {ci}: an edge is traversed twice in one direction"));
             }
-            if let Some(&(a, b)) = directed
-                .iter()
-                .find(|&&(a, b)| directed.binary_search(&(b, a)).is_err())
-            {
+            if let Some(&(a, b)) = directed.iter().find(|&&(a, b)| directed.binary_search(&(b, a)).is_err()) {
                 return Err(format!("cell {ci} is not closed at edge ({a},{b})"));
             }
         }
-        let euler =
-            nv as i64 - self.edges.len() as i64 + self.faces.len() as i64 - self.cells.len() as i64;
+        let euler = nv as i64 - self.edges.len() as i64 + self.faces.len() as i64 - self.cells.len() as i64;
         if euler != 1 {
             return Err(format!("Euler characteristic {euler}, expected 1"));
         }
@@ -108,10 +90,7 @@ impl Complex {
         if ok {
             Ok(())
         } else {
-            Err(format!(
-                "face {fi} on {:?} separates cells with inconsistent labels",
-                f.plane
-            ))
+            Err(format!("face {fi} on {:?} separates cells with inconsistent labels", f.plane))
         }
     }
 }

@@ -16,10 +16,7 @@ impl Complex {
         for r in 0..n - 1 {
             for j in 0..n {
                 a[r][j] = match self.mode {
-                    Some(Mode::Mi) => {
-                        values[f[r + 1] as usize][s[j] as usize]
-                            - values[f[0] as usize][s[j] as usize]
-                    }
+                    Some(Mode::Mi) => values[f[r + 1] as usize][s[j] as usize] - values[f[0] as usize][s[j] as usize],
                     _ => values[f[r] as usize][s[j] as usize],
                 };
             }
@@ -53,9 +50,7 @@ fn solve(a: &mut [[f64; 4]; 4], n: usize) -> [f64; 4] {
     let mut b = [0.0; 4];
     b[n - 1] = 1.0;
     for col in 0..n {
-        let piv = (col..n)
-            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
-            .unwrap();
+        let piv = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).unwrap();
         a.swap(col, piv);
         b.swap(col, piv);
         let d = a[col][col];

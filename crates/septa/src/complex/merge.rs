@@ -11,21 +11,38 @@
 use smallvec::SmallVec;
 
 use super::split::Scratch;
-use super::types::{Cell, Complex, Edge, Face, Plane, NONE};
+use super::types::{Cell, Complex, Edge, Face, Plane, Vertex, NONE};
+
+/// Buffers of [`Complex::merge`], kept between calls.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct MergeBuffers {
+    faces: Vec<Face>,
+    cells: Vec<Cell>,
+    edges: Vec<Edge>,
+    vertices: Vec<Vertex>,
+    orient: Vec<i8>,
+    vsign: Vec<i8>,
+    face_map: Vec<u32>,
+    cell_map: Vec<u32>,
+    edge_map: Vec<u32>,
+    vertex_map: Vec<u32>,
+}
 
 impl Complex {
     /// Merges the negative cells of the last split into one cell of material `new`.
-    pub(crate) fn merge(&mut self, new: u16, s: &Scratch) {
+    pub(crate) fn merge(&mut self, new: u16, s: &mut Scratch) {
         let neg = |c: u32| c != NONE && s.cell_side[c as usize] < 0;
         if !(0..self.cells.len() as u32).any(neg) {
             return;
         }
-        let keep_vertex = |v: u32, this: &Complex| {
-            !(this.vsign[v as usize] < 0 && this.vertices[v as usize].dim() > 0)
-        };
+        let keep_vertex = |v: u32, this: &Complex| !(this.vsign[v as usize] < 0 && this.vertices[v as usize].dim() > 0);
 
-        let mut faces: Vec<Face> = Vec::with_capacity(self.faces.len());
-        let mut face_map: Vec<u32> = vec![NONE; self.faces.len()];
+        // Buffers reused across calls: the old arrays become next call's buffers.
+        let mut faces = std::mem::take(&mut s.merge.faces);
+        faces.clear();
+        let mut face_map = std::mem::take(&mut s.merge.face_map);
+        face_map.clear();
+        face_map.resize(self.faces.len(), NONE);
         let mut new_cell_faces: SmallVec<[u32; 8]> = SmallVec::new();
         // Directed boundary edges of the negative sub-faces of each tet face.
         let mut groups: [SmallVec<[(u32, u32, u32); 12]>; 4] = Default::default();
@@ -36,11 +53,7 @@ impl Complex {
                 Plane::TetFace(t) if neg(c0) => {
                     let n = face.vertices.len();
                     for k in 0..n {
-                        groups[t as usize].push((
-                            face.vertices[k],
-                            face.vertices[(k + 1) % n],
-                            face.edges[k],
-                        ));
+                        groups[t as usize].push((face.vertices[k], face.vertices[(k + 1) % n], face.edges[k]));
                     }
                 }
                 _ if neg(c0) && neg(c1) => {}
@@ -78,11 +91,8 @@ impl Complex {
             if group.is_empty() {
                 continue;
             }
-            let boundary: SmallVec<[(u32, u32, u32); 12]> = group
-                .iter()
-                .copied()
-                .filter(|&(a, b, _)| !group.iter().any(|&(p, q, _)| p == b && q == a))
-                .collect();
+            let boundary: SmallVec<[(u32, u32, u32); 12]> =
+                group.iter().copied().filter(|&(a, b, _)| !group.iter().any(|&(p, q, _)| p == b && q == a)).collect();
             // Chain the boundary into a loop starting at a kept vertex.
             let Some(start) = boundary.iter().position(|&(a, _, _)| keep_vertex(a, self)) else {
                 continue;
@@ -96,15 +106,7 @@ impl Complex {
                     let e = if span == 1 {
                         first_edge
                     } else {
-                        merged_edge(
-                            cur,
-                            to,
-                            first_edge,
-                            &mut merged_edges,
-                            &mut extra_edges,
-                            self,
-                            n_old_edges,
-                        )
+                        merged_edge(cur, to, first_edge, &mut merged_edges, &mut extra_edges, self, n_old_edges)
                     };
                     verts.push(cur);
                     edges.push(e);
@@ -112,18 +114,12 @@ impl Complex {
                     if cur == boundary[start].0 {
                         break;
                     }
-                    let &(_, nt, ne) = boundary
-                        .iter()
-                        .find(|d| d.0 == cur)
-                        .expect("closed boundary");
+                    let &(_, nt, ne) = boundary.iter().find(|d| d.0 == cur).expect("closed boundary");
                     to = nt;
                     first_edge = ne;
                     span = 1;
                 } else {
-                    let &(_, nt, _) = boundary
-                        .iter()
-                        .find(|d| d.0 == to)
-                        .expect("closed boundary");
+                    let &(_, nt, _) = boundary.iter().find(|d| d.0 == to).expect("closed boundary");
                     to = nt;
                     span += 1;
                 }
@@ -132,28 +128,21 @@ impl Complex {
                 }
             }
             new_cell_faces.push(faces.len() as u32);
-            faces.push(Face {
-                plane: Plane::TetFace(t as u8),
-                vertices: verts,
-                edges,
-                cells: [new_cell, NONE],
-            });
+            faces.push(Face { plane: Plane::TetFace(t as u8), vertices: verts, edges, cells: [new_cell, NONE] });
         }
 
         // Cells: the positive ones keep their faces; the new one is appended.
-        let mut cells: Vec<Cell> = Vec::with_capacity(self.cells.len());
-        let mut cell_map: Vec<u32> = vec![NONE; self.cells.len()];
+        let mut cells = std::mem::take(&mut s.merge.cells);
+        cells.clear();
+        let mut cell_map = std::mem::take(&mut s.merge.cell_map);
+        cell_map.clear();
+        cell_map.resize(self.cells.len(), NONE);
         for (c, cell) in self.cells.iter().enumerate() {
             if neg(c as u32) {
                 continue;
             }
             let mut cell = cell.clone();
-            cell.faces = cell
-                .faces
-                .iter()
-                .map(|&f| face_map[f as usize])
-                .filter(|&f| f != NONE)
-                .collect();
+            cell.faces = cell.faces.iter().map(|&f| face_map[f as usize]).filter(|&f| f != NONE).collect();
             cell_map[c] = cells.len() as u32;
             cells.push(cell);
         }
@@ -175,12 +164,20 @@ impl Complex {
         // Keep only the edges and vertices that surviving faces use.
         let mut all_edges = std::mem::take(&mut self.edges);
         all_edges.extend(extra_edges);
-        let mut edge_map = vec![NONE; all_edges.len()];
-        let mut edges: Vec<Edge> = Vec::with_capacity(all_edges.len());
-        let mut vertex_map = vec![NONE; self.vertices.len()];
-        let mut vertices = Vec::with_capacity(self.vertices.len());
-        let mut orient = Vec::with_capacity(self.vertices.len());
-        let mut vsign = Vec::with_capacity(self.vertices.len());
+        let mut edge_map = std::mem::take(&mut s.merge.edge_map);
+        edge_map.clear();
+        edge_map.resize(all_edges.len(), NONE);
+        let mut edges = std::mem::take(&mut s.merge.edges);
+        edges.clear();
+        let mut vertex_map = std::mem::take(&mut s.merge.vertex_map);
+        vertex_map.clear();
+        vertex_map.resize(self.vertices.len(), NONE);
+        let mut vertices = std::mem::take(&mut s.merge.vertices);
+        vertices.clear();
+        let mut orient = std::mem::take(&mut s.merge.orient);
+        orient.clear();
+        let mut vsign = std::mem::take(&mut s.merge.vsign);
+        vsign.clear();
         for face in &mut faces {
             for e in face.edges.iter_mut() {
                 if edge_map[*e as usize] == NONE {
@@ -207,12 +204,15 @@ impl Complex {
                 *v = vertex_map[*v as usize];
             }
         }
-        self.vertices = vertices;
-        self.orient = orient;
-        self.vsign = vsign;
+        let m = &mut s.merge;
+        m.vertices = std::mem::replace(&mut self.vertices, vertices);
+        m.orient = std::mem::replace(&mut self.orient, orient);
+        m.vsign = std::mem::replace(&mut self.vsign, vsign);
         self.edges = edges;
-        self.faces = faces;
-        self.cells = cells;
+        m.edges = all_edges;
+        m.faces = std::mem::replace(&mut self.faces, faces);
+        m.cells = std::mem::replace(&mut self.cells, cells);
+        (m.face_map, m.cell_map, m.edge_map, m.vertex_map) = (face_map, cell_map, edge_map, vertex_map);
     }
 }
 
@@ -232,10 +232,7 @@ fn merged_edge(
         return e;
     }
     let e = base + extra.len() as u32;
-    extra.push(Edge {
-        vertices: [a, b],
-        planes: this.edges[first as usize].planes,
-    });
+    extra.push(Edge { vertices: [a, b], planes: this.edges[first as usize].planes });
     merged.push((key.0, key.1, e));
     e
 }

@@ -38,9 +38,15 @@ mod build;
 mod canonical;
 mod check;
 mod coords;
+mod lookup;
+#[doc(hidden)]
+pub mod lookup_gen;
+#[rustfmt::skip]
+mod lookup_table;
 mod merge;
 mod predicate;
 mod split;
+pub mod stress;
 mod types;
 
 pub use build::{BuildError, Options};

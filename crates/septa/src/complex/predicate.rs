@@ -41,11 +41,7 @@ impl Predicates<'_> {
     }
 
     fn rows(&self, v: &Vertex, last: Option<u16>) -> Rows {
-        let mut r = Rows {
-            a: [[0.0; 4]; 4],
-            b: [[0.0; 4]; 4],
-            n: 0,
-        };
+        let mut r = Rows { a: [[0.0; 4]; 4], b: [[0.0; 4]; 4], n: 0 };
         let s = v.tet_vertices();
         let n = s.len();
         r.n = n;
@@ -132,25 +128,17 @@ fn naive_det(m: &[[f64; 4]; 4], n: usize) -> f64 {
         1 => m[0][0],
         2 => d2(0, 1, 0, 1),
         3 => {
-            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
-                - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
                 + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
         }
         _ => {
             let mut det = 0.0;
             for c in 0..4 {
                 let cols: Vec<usize> = (0..4).filter(|&x| x != c).collect();
-                let minor = m[1][cols[0]]
-                    * (m[2][cols[1]] * m[3][cols[2]] - m[2][cols[2]] * m[3][cols[1]])
-                    - m[1][cols[1]]
-                        * (m[2][cols[0]] * m[3][cols[2]] - m[2][cols[2]] * m[3][cols[0]])
-                    + m[1][cols[2]]
-                        * (m[2][cols[0]] * m[3][cols[1]] - m[2][cols[1]] * m[3][cols[0]]);
-                det += if c % 2 == 0 {
-                    m[0][c] * minor
-                } else {
-                    -m[0][c] * minor
-                };
+                let minor = m[1][cols[0]] * (m[2][cols[1]] * m[3][cols[2]] - m[2][cols[2]] * m[3][cols[1]])
+                    - m[1][cols[1]] * (m[2][cols[0]] * m[3][cols[2]] - m[2][cols[2]] * m[3][cols[0]])
+                    + m[1][cols[2]] * (m[2][cols[0]] * m[3][cols[1]] - m[2][cols[1]] * m[3][cols[0]]);
+                det += if c % 2 == 0 { m[0][c] * minor } else { -m[0][c] * minor };
             }
             det
         }

@@ -32,6 +32,7 @@ pub(crate) struct Scratch {
     pub loop_v: SmallVec<[u32; 16]>,
     pub loop_e: SmallVec<[u32; 16]>,
     pub directed: SmallVec<[(u32, u32, u32); 16]>,
+    pub merge: super::merge::MergeBuffers,
 }
 
 /// The vertex where three planes meet, named by the tet element it lies on
@@ -63,12 +64,7 @@ impl Complex {
     /// planes `f_j = f_new` with `j` the material of each element (MI),
     /// using the signs in `self.vsign`. Afterwards `scratch.cell_side`
     /// holds `+1`/`-1` per cell.
-    pub(crate) fn split(
-        &mut self,
-        preds: &Predicates,
-        new: u16,
-        s: &mut Scratch,
-    ) -> Result<(), BuildError> {
+    pub(crate) fn split(&mut self, preds: &Predicates, new: u16, s: &mut Scratch) -> Result<(), BuildError> {
         let mode = preds.mode;
         if mode == Mode::Mi {
             s.edge_material.clear();
@@ -93,10 +89,7 @@ impl Complex {
         s.edge_child.clear();
         s.edge_child.resize(n_edges, NONE);
         for e in 0..n_edges {
-            let Edge {
-                vertices: [a, b],
-                planes,
-            } = self.edges[e];
+            let Edge { vertices: [a, b], planes } = self.edges[e];
             if self.vsign[a as usize] * self.vsign[b as usize] >= 0 {
                 continue;
             }
@@ -112,10 +105,7 @@ impl Complex {
             let v = vertex_from_planes([planes[0], planes[1], cut_plane(j)]);
             let orient = preds.orient(&v);
             if orient == 0 {
-                return Err(BuildError::Ambiguous {
-                    function: new as usize,
-                    element: "cut-vertex",
-                });
+                return Err(BuildError::Ambiguous { function: new as usize, element: "cut-vertex" });
             }
             let c = self.vertices.len() as u32;
             self.vertices.push(v);
@@ -124,10 +114,7 @@ impl Complex {
             self.edges[e].vertices = [a, c];
             s.edge_cut[e] = c;
             s.edge_child[e] = self.edges.len() as u32;
-            self.edges.push(Edge {
-                vertices: [c, b],
-                planes,
-            });
+            self.edges.push(Edge { vertices: [c, b], planes });
         }
 
         // 2. Faces with both signs get a cut-edge between their zero vertices.
@@ -163,14 +150,9 @@ impl Complex {
             } else {
                 0
             };
-            let ambiguous = BuildError::Ambiguous {
-                function: new as usize,
-                element: "face",
-            };
+            let ambiguous = BuildError::Ambiguous { function: new as usize, element: "face" };
             let n = s.loop_v.len();
-            let zeros: SmallVec<[usize; 4]> = (0..n)
-                .filter(|&k| self.vsign[s.loop_v[k] as usize] == 0)
-                .collect();
+            let zeros: SmallVec<[usize; 4]> = (0..n).filter(|&k| self.vsign[s.loop_v[k] as usize] == 0).collect();
             if zeros.len() != 2 || zeros[1] - zeros[0] < 2 || zeros[0] + n - zeros[1] < 2 {
                 return Err(ambiguous);
             }
@@ -196,10 +178,7 @@ impl Complex {
             }
             let (zi, zk) = (s.loop_v[i], s.loop_v[k]);
             let ne = self.edges.len() as u32;
-            self.edges.push(Edge {
-                vertices: [zi, zk],
-                planes: [plane, cut_plane(j)],
-            });
+            self.edges.push(Edge { vertices: [zi, zk], planes: [plane, cut_plane(j)] });
             // Part A: i..=k then the cut-edge back to i. Part B: k..=i (cyclic) then the cut-edge back to k.
             let mut a_v: SmallVec<[u32; 8]> = s.loop_v[i..=k].iter().copied().collect();
             let mut a_e: SmallVec<[u32; 8]> = s.loop_e[i..k].iter().copied().collect();
@@ -219,12 +198,7 @@ impl Complex {
             let child = self.faces.len() as u32;
             self.faces[f].vertices = a_v;
             self.faces[f].edges = a_e;
-            self.faces.push(Face {
-                plane,
-                vertices: b_v,
-                edges: b_e,
-                cells,
-            });
+            self.faces.push(Face { plane, vertices: b_v, edges: b_e, cells });
             s.face_side[f] = 1;
             s.face_side.push(-1);
             s.face_child[f] = child;
@@ -292,17 +266,8 @@ impl Complex {
     }
 
     /// Splits cell `c` (which has both signs) by a new face on `plane`.
-    fn split_cell(
-        &mut self,
-        c: u32,
-        new: u16,
-        plane: Plane,
-        s: &mut Scratch,
-    ) -> Result<(), BuildError> {
-        let ambiguous = BuildError::Ambiguous {
-            function: new as usize,
-            element: "cell",
-        };
+    fn split_cell(&mut self, c: u32, new: u16, plane: Plane, s: &mut Scratch) -> Result<(), BuildError> {
+        let ambiguous = BuildError::Ambiguous { function: new as usize, element: "cell" };
         // Faces of c after the face splits, with their sides.
         let mut pos_faces: SmallVec<[u32; 16]> = SmallVec::new();
         let mut neg_faces: SmallVec<[u32; 16]> = SmallVec::new();
@@ -361,12 +326,7 @@ impl Complex {
         }
         let c2 = self.cells.len() as u32;
         let nf = self.faces.len() as u32;
-        self.faces.push(Face {
-            plane,
-            vertices: verts,
-            edges,
-            cells: [c, c2],
-        });
+        self.faces.push(Face { plane, vertices: verts, edges, cells: [c, c2] });
         for &f in &neg_faces {
             let cells = &mut self.faces[f as usize].cells;
             for x in cells.iter_mut() {

@@ -66,11 +66,7 @@ impl Vertex {
         let mut funcs = [0u16; 4];
         funcs[..functions.len()].copy_from_slice(functions);
         funcs[..functions.len()].sort_unstable();
-        Vertex {
-            simplex,
-            len: functions.len() as u8,
-            funcs,
-        }
+        Vertex { simplex, len: functions.len() as u8, funcs }
     }
 
     /// Bit mask over the tet vertices spanning the element the vertex lies on.
@@ -173,6 +169,8 @@ pub struct Complex {
     pub(crate) orient: Vec<i8>,
     /// Scratch: sign of the function being inserted, per vertex.
     pub(crate) vsign: Vec<i8>,
+    /// Scratch of the split and merge steps, kept to reuse its buffers.
+    pub(crate) scratch: super::split::Scratch,
 }
 
 impl Complex {
@@ -218,11 +216,7 @@ impl Complex {
     /// on a whole tet face) splits nothing; such faces are on `TetFace`
     /// planes and are found by the caller from the input values.
     pub fn network_faces(&self) -> impl Iterator<Item = u32> + '_ {
-        self.faces
-            .iter()
-            .enumerate()
-            .filter(|(_, f)| f.plane.is_network())
-            .map(|(i, _)| i as u32)
+        self.faces.iter().enumerate().filter(|(_, f)| f.plane.is_network()).map(|(i, _)| i as u32)
     }
 
     /// Vertices on the tet edge from tet vertex `a` to tet vertex `b`,
@@ -230,11 +224,7 @@ impl Complex {
     pub fn tet_edge_points(&self, a: u8, b: u8) -> SmallVec<[u32; 8]> {
         let mask = (1u8 << a) | (1u8 << b);
         let on = |v: u32| self.vertices[v as usize].simplex() & !mask == 0;
-        let start = self
-            .vertices
-            .iter()
-            .position(|v| v.simplex() == 1 << a)
-            .map(|i| i as u32);
+        let start = self.vertices.iter().position(|v| v.simplex() == 1 << a).map(|i| i as u32);
         let mut out = SmallVec::new();
         let Some(mut cur) = start else { return out };
         let mut prev = NONE;

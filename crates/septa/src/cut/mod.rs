@@ -1,1 +1,561 @@
-//! (in progress)
+//! Planar cut-cell meshes of closed triangle meshes (TopoCut, Fang et al.
+//! 2022): the domain bounded by a closed, outward-oriented triangle mesh is
+//! cut by planes into cut-cells whose combinatorics are those of exact
+//! rational arithmetic.
+//!
+//! Pipeline (paper sections):
+//! 1. [`input`]: input conditions (Sec. 2.1, App. A).
+//! 2. [`lines`]: cut-vertices as face triples on mesh edges and plane-plane
+//!    lines, exact line sorting, merging of equal triples (Sec. 3).
+//! 3. [`clip`]: cut-faces inside triangles (Sec. 4 for `H(t)`).
+//! 4. [`plane_graph`]: cut-faces inside planes, edge-cycle order, inside
+//!    loops (Sec. 4, App. C).
+//! 5. [`cells`]: half-faces joined around cut-edges into cut-cells (Sec. 5).
+//!
+//! Every sign deciding the combinatorics comes from a filtered exact
+//! predicate (`septa_exact::filtered_sign`).
+
+pub mod cells;
+pub mod clip;
+pub mod geom;
+pub mod holes;
+pub mod input;
+pub mod lines;
+pub mod nodes;
+pub mod output;
+pub mod plane_graph;
+
+use cells::{FaceLoop, Support};
+use clip::EdgeLine;
+use geom::{Ctx, Def, LineDir};
+use nodes::{FxMap, Nodes};
+use plane_graph::{Boundary, GEdge};
+use rayon::prelude::*;
+use septa_exact::Sign;
+use std::time::Instant;
+
+/// Options of [`cut_mesh`].
+#[derive(Clone, Debug, Default)]
+pub struct CutOptions {
+    /// Worker threads (0: all available). The result does not depend on it.
+    pub threads: usize,
+}
+
+/// Why a cut was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum CutError {
+    /// No triangles.
+    #[error("the mesh has no triangles")]
+    EmptyMesh,
+    /// A vertex coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate")]
+    NonFiniteVertex {
+        /// Vertex index (0-based).
+        vertex: usize,
+    },
+    /// Two vertices at the same position.
+    #[error("vertices {first} and {second} are at the same position (duplicate vertex)")]
+    DuplicateVertex {
+        /// First vertex.
+        first: usize,
+        /// Its duplicate.
+        second: usize,
+    },
+    /// A triangle refers to a missing vertex.
+    #[error("triangle {triangle} refers to a vertex that does not exist")]
+    BadIndex {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A triangle with collinear corners.
+    #[error("triangle {triangle} is degenerate (zero area, exactly)")]
+    DegenerateTriangle {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// An edge used twice in the same direction.
+    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle}: non-manifold edge or inconsistent orientation")]
+    NonManifoldOrFlipped {
+        /// Triangle index.
+        triangle: usize,
+        /// The other triangle.
+        other: usize,
+        /// Edge start vertex.
+        a: u32,
+        /// Edge end vertex.
+        b: u32,
+    },
+    /// An edge with only one triangle.
+    #[error(
+        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
+    )]
+    NotWatertight {
+        /// Triangle index.
+        triangle: usize,
+        /// Edge start.
+        a: u32,
+        /// Edge end.
+        b: u32,
+    },
+    /// The triangles around a vertex form more than one fan.
+    #[error("vertex {vertex} is non-manifold (its triangles form several fans)")]
+    NonManifoldVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// Negative or zero signed volume.
+    #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]
+    InwardOrientation {
+        /// The signed volume.
+        volume: f64,
+    },
+    /// NaN or infinite plane coefficient.
+    #[error("plane {plane} has a non-finite coefficient")]
+    NonFinitePlane {
+        /// Plane index.
+        plane: usize,
+    },
+    /// `a = b = c = 0`.
+    #[error("plane {plane} has a zero-length normal")]
+    ZeroNormal {
+        /// Plane index.
+        plane: usize,
+    },
+    /// The result failed a consistency check (a bug, reported not hidden).
+    #[error("internal consistency check failed: {0}")]
+    Inconsistent(String),
+}
+
+/// Counts of the cut-cell mesh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct CutCounts {
+    /// Cut-vertices.
+    pub cut_vertices: usize,
+    /// Cut-edges, counting like the reference one joining edge per hole of
+    /// a cut-face (TopoCut Sec. 6.1 joins each hole to the outer boundary).
+    pub cut_edges: usize,
+    /// Cut-faces (a face with holes counts once).
+    pub cut_faces: usize,
+    /// Cut-cells.
+    pub cut_cells: usize,
+}
+
+/// Timings and predicate statistics.
+#[derive(Clone, Debug, Default, serde::Serialize)]
+pub struct CutStats {
+    /// Seconds per stage.
+    pub seconds: Vec<(String, f64)>,
+    /// Filtered predicates that needed the exact fallback during this cut
+    /// (process-wide counter: concurrent cuts in other threads add to it).
+    pub exact_fallbacks: u64,
+    /// Cut-edges whose face-cycle order was computed (more than two faces).
+    pub ordered_edges: usize,
+    /// Holes of cut-faces (each joined to its face's outer boundary; the
+    /// reference counts one extra cut-edge per hole for that join).
+    pub holes: usize,
+    /// Holes whose face needed an exact containment test.
+    pub hole_containment_tests: usize,
+    /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
+    pub dropped_planes: Vec<(usize, usize)>,
+}
+
+/// One cut-face.
+#[derive(Clone, Debug)]
+pub struct CutFace {
+    /// The input face it lies in.
+    pub support: Support,
+    /// Boundary loops of corner vertex ids: the outer boundary first,
+    /// counter-clockwise about the support normal (triangle outward
+    /// normal, or plane normal `(a, b, c)`), then holes (clockwise).
+    pub loops: Vec<Vec<u32>>,
+    /// Cell on the negative side (against the normal) and on the positive
+    /// side; `u32::MAX` for none (outside the domain).
+    pub cells: [u32; 2],
+}
+
+/// The cut-cell mesh.
+#[derive(Clone, Debug, Default)]
+pub struct CutCellMesh {
+    /// Floating-point coordinates of the cut-vertices (nearest to exact up
+    /// to rounding of the homogeneous coordinates).
+    pub vertices: Vec<[f64; 3]>,
+    /// Exact definition of each cut-vertex as a face triple.
+    pub vertex_defs: Vec<Def>,
+    /// Cut-faces.
+    pub faces: Vec<CutFace>,
+    /// Number of cut-cells; cell ids are `0..num_cells`.
+    pub num_cells: usize,
+    /// Counts.
+    pub counts: CutCounts,
+    /// Signed volume of the input mesh.
+    pub mesh_volume: f64,
+    /// Euler characteristic of the input surface (`V - E + T`).
+    pub mesh_euler: i64,
+    /// Volume of each cell (from the floating-point embedding).
+    pub cell_volumes: Vec<f64>,
+    /// Timings and predicate statistics.
+    pub stats: CutStats,
+}
+
+/// Results of [`CutCellMesh::validate`].
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Validation {
+    /// `V - E + F - C`.
+    pub euler: i64,
+    /// `|sum of cell volumes - mesh volume| / mesh volume`.
+    pub volume_relative_error: f64,
+    /// Smallest cell volume.
+    pub min_cell_volume: f64,
+    /// Euler characteristic of the domain, `chi(mesh) / 2`.
+    pub domain_euler: i64,
+    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
+    /// counted on each cell's own boundary: equals `domain_euler` when
+    /// every cut-face is a disc (holes are joined by one edge each), whatever
+    /// the topology of the cells (a cell around a handle has `chi = 0`).
+    pub euler_by_cell: i64,
+    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
+    pub non_ball_cells: usize,
+}
+
+impl CutCellMesh {
+    /// Checks: every cut-face bounds one (boundary) or two distinct
+    /// (interior) cells, cell volumes are positive and sum to the mesh
+    /// volume within `1e-9` relative.
+    pub fn validate(&self) -> Result<Validation, CutError> {
+        for (i, f) in self.faces.iter().enumerate() {
+            match f.support {
+                Support::Tri(_) => {
+                    if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
+                        return Err(CutError::Inconsistent(format!(
+                            "boundary face {i} does not bound exactly one cell"
+                        )));
+                    }
+                }
+                Support::Plane(_) => {
+                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
+                    {
+                        return Err(CutError::Inconsistent(format!(
+                            "plane face {i} does not bound two distinct cells"
+                        )));
+                    }
+                }
+            }
+        }
+        let total: f64 = self.cell_volumes.iter().sum();
+        let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
+        let min = self
+            .cell_volumes
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        if err > 1e-9 {
+            return Err(CutError::Inconsistent(format!(
+                "cell volumes sum to {total}, mesh volume {}",
+                self.mesh_volume
+            )));
+        }
+        if min <= 0.0 {
+            return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
+        }
+        let c = &self.counts;
+        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
+        // faces and join edges (one per hole) per cell
+        let mut cv: Vec<(u32, u32)> = Vec::new();
+        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
+        let mut cf = vec![0i64; self.num_cells];
+        for f in &self.faces {
+            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
+                cf[cell as usize] += 1;
+                // a joined hole adds one edge and keeps one face: chi contribution 0
+                cf[cell as usize] -= f.loops.len() as i64 - 1;
+                for l in &f.loops {
+                    for (k, &v) in l.iter().enumerate() {
+                        let w = l[(k + 1) % l.len()];
+                        cv.push((cell, v));
+                        ce.push((cell, v.min(w), v.max(w)));
+                    }
+                }
+            }
+        }
+        cv.sort_unstable();
+        cv.dedup();
+        ce.sort_unstable();
+        ce.dedup();
+        let mut chi2 = cf;
+        for &(cell, _) in &cv {
+            chi2[cell as usize] += 1;
+        }
+        for &(cell, _, _) in &ce {
+            chi2[cell as usize] -= 1;
+        }
+        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
+        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
+        Ok(Validation {
+            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - c.cut_cells as i64,
+            volume_relative_error: err,
+            min_cell_volume: min,
+            domain_euler: self.mesh_euler / 2,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
+            non_ball_cells: non_ball,
+        })
+    }
+}
+
+/// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
+/// (`a x + b y + c z + d = 0`).
+pub fn cut_mesh(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+    opts: &CutOptions,
+) -> Result<CutCellMesh, CutError> {
+    if opts.threads == 0 {
+        return cut_impl(vertices, triangles, planes);
+    }
+    match rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads)
+        .build()
+    {
+        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
+        Err(_) => cut_impl(vertices, triangles, planes),
+    }
+}
+
+fn cut_impl(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    planes: &[[f64; 4]],
+) -> Result<CutCellMesh, CutError> {
+    let fb0 = septa_exact::fallback_count();
+    let mut stats = CutStats::default();
+    let mut clock = Instant::now();
+    let mut lap = |name: &str, stats: &mut CutStats| {
+        stats
+            .seconds
+            .push((name.to_string(), clock.elapsed().as_secs_f64()));
+        clock = Instant::now();
+    };
+    let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
+    let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
+    let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
+    let nv = vertices.len();
+    let np = planes.len();
+    let mut pv = vec![0i8; np * nv];
+    if nv > 0 {
+        pv.par_chunks_mut(nv)
+            .zip(planes.par_iter())
+            .for_each(|(row, pl)| {
+                for (r, x) in row.iter_mut().zip(vertices) {
+                    *r = septa_exact::plane_point_sign(pl, x).as_i8();
+                }
+            });
+    }
+    let c = Ctx {
+        verts: vertices,
+        tris: triangles,
+        planes: &planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv,
+    };
+    let mut crosses = vec![false; np * np];
+    for p in 0..np {
+        for q in p + 1..np {
+            crosses[p * np + q] = c.planes_cross(p as u32, q as u32);
+        }
+    }
+    lap("input", &mut stats);
+    let mut nodes = Nodes::default();
+    let mut line_pts = lines::LinePoints::default();
+    let chains = lines::mesh_edges(&c, &mut nodes, &mut line_pts, &crosses);
+    lap("mesh_edges", &mut stats);
+    let clipped = clip::clip_all(&c);
+    for (d, z) in &clipped.interior {
+        let n = nodes.get(*d);
+        lines::register(&mut line_pts, &crosses, np, n, z);
+    }
+    let piece_nodes: Vec<Vec<u32>> = clipped
+        .pieces
+        .iter()
+        .map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect())
+        .collect();
+    lap("triangles", &mut stats);
+    let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
+    lap("plane_lines", &mut stats);
+    // compact ids of distinct points
+    let mut canon = vec![u32::MAX; nodes.len()];
+    let mut rep: Vec<Def> = Vec::new();
+    for i in 0..nodes.len() as u32 {
+        let r = nodes.find(i);
+        if canon[r as usize] == u32::MAX {
+            canon[r as usize] = rep.len() as u32;
+            rep.push(nodes.defs[r as usize]);
+        }
+        canon[i as usize] = canon[r as usize];
+    }
+    let cid = |n: u32| canon[n as usize];
+    // boundary edge maps and per-plane edge lists
+    let mut bnd = Boundary {
+        gamma: FxMap::default(),
+        mesh: FxMap::default(),
+    };
+    let mut pedges: Vec<Vec<GEdge>> = vec![Vec::new(); np];
+    for (e, chain) in chains.iter().enumerate() {
+        let [u, v] = c.edges[e];
+        let inside: Vec<u32> = (0..np as u32)
+            .filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0)
+            .collect();
+        for w in chain.windows(2) {
+            let (a, b) = (cid(w[0]), cid(w[1]));
+            bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
+            for &p in &inside {
+                pedges[p as usize].push(GEdge {
+                    a,
+                    b,
+                    dir: LineDir::Mesh(e as u32),
+                    fwd: true,
+                });
+            }
+        }
+    }
+    let mut faces: Vec<FaceLoop> = Vec::with_capacity(clipped.pieces.len());
+    for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
+        let t = piece.tri;
+        let n = pn.len();
+        let mut fl = FaceLoop {
+            support: Support::Tri(t),
+            verts: Vec::with_capacity(n),
+            dirs: Vec::with_capacity(n),
+            face: 0,
+        };
+        for i in 0..n {
+            let (na, nb) = (pn[i], pn[(i + 1) % n]);
+            let (a, b) = (cid(na), cid(nb));
+            fl.verts.push(a);
+            match piece.lines[i] {
+                EdgeLine::Mesh(e) => fl
+                    .dirs
+                    .push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
+                EdgeLine::Plane(p, fwd) => {
+                    let dir = LineDir::TriPlane(t, p);
+                    debug_assert_eq!(
+                        fwd,
+                        c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive
+                    );
+                    fl.dirs.push((dir, fwd));
+                    bnd.gamma.insert((a.min(b), a.max(b)), t);
+                    pedges[p as usize].push(GEdge { a, b, dir, fwd });
+                }
+            }
+        }
+        faces.push(fl);
+    }
+    for ((p, q), pts) in &plines {
+        for w in pts.windows(2) {
+            let (a, b) = (cid(w[0]), cid(w[1]));
+            let ge = GEdge {
+                a,
+                b,
+                dir: LineDir::PlanePlane(*p, *q),
+                fwd: true,
+            };
+            pedges[*p as usize].push(ge);
+            pedges[*q as usize].push(ge);
+        }
+    }
+    lap("edges", &mut stats);
+    let mut nholes = 0usize;
+    for f in faces.iter_mut().enumerate() {
+        f.1.face = f.0 as u32;
+    }
+    let mut nface = faces.len() as u32;
+    let per_plane: Vec<(Vec<plane_graph::PlaneLoop>, u64, usize, usize)> = (0..np)
+        .into_par_iter()
+        .map(|p| {
+            let mut u = 0u64;
+            let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut u);
+            let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
+            (loops, u, h, t)
+        })
+        .collect();
+    for (loops, u, h, t) in per_plane {
+        let _ = u; // loops of unbounded, outside regions
+        nholes += h;
+        stats.hole_containment_tests += t;
+        let mut id = vec![u32::MAX; loops.len()];
+        for (k, l) in loops.iter().enumerate() {
+            if l.outer as usize == k {
+                id[k] = nface;
+                nface += 1;
+            }
+        }
+        for l in loops {
+            let face = id[l.outer as usize];
+            faces.push(FaceLoop {
+                support: Support::Plane(l.plane),
+                verts: l.verts,
+                dirs: l.dirs,
+                face,
+            });
+        }
+    }
+    stats.holes = nholes;
+    lap("plane_faces", &mut stats);
+    let cells = cells::assemble(&c, &faces);
+    stats.ordered_edges = cells.ordered_edges;
+    lap("cells", &mut stats);
+    // output: used vertices, coordinates, volumes
+    let mut used = vec![u32::MAX; rep.len()];
+    let mut out = CutCellMesh::default();
+    for f in &faces {
+        for &v in &f.verts {
+            if used[v as usize] == u32::MAX {
+                used[v as usize] = out.vertex_defs.len() as u32;
+                out.vertex_defs.push(rep[v as usize]);
+            }
+        }
+    }
+    out.vertices = out.vertex_defs.iter().map(|&d| c.approx(d)).collect();
+    out.num_cells = cells.count;
+    out.cell_volumes = vec![0.0; cells.count];
+    let nf = nface as usize;
+    out.faces = vec![
+        CutFace {
+            support: Support::Plane(0),
+            loops: Vec::new(),
+            cells: [u32::MAX; 2]
+        };
+        nf
+    ];
+    for f in faces.iter() {
+        let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
+        let i = f.face as usize;
+        let cneg = cells.cell_of[2 * i + 1];
+        let cpos = cells.cell_of[2 * i];
+        let vol = output::loop_volume(&out.vertices, &verts);
+        if cneg != u32::MAX {
+            out.cell_volumes[cneg as usize] += vol;
+        }
+        if cpos != u32::MAX {
+            out.cell_volumes[cpos as usize] -= vol;
+        }
+        let cf = &mut out.faces[i];
+        cf.support = f.support;
+        cf.cells = [cneg, cpos];
+        cf.loops.push(verts);
+    }
+    out.mesh_volume = output::mesh_volume(vertices, triangles);
+    out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;
+    out.counts = CutCounts {
+        cut_vertices: out.vertex_defs.len(),
+        cut_edges: cells.edges + nholes,
+        cut_faces: nf,
+        cut_cells: cells.count,
+    };
+    lap("output", &mut stats);
+    stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
+    out.stats = stats;
+    Ok(out)
+}

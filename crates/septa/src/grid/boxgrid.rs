@@ -77,8 +77,7 @@ impl BoxGrid {
             if res[a] == 0 {
                 return Err(format!("grid resolution along axis {a} is 0"));
             }
-            let increasing =
-                bounds[0][a].partial_cmp(&bounds[1][a]) == Some(std::cmp::Ordering::Less);
+            let increasing = bounds[0][a].partial_cmp(&bounds[1][a]) == Some(std::cmp::Ordering::Less);
             if !increasing || !bounds[0][a].is_finite() || !bounds[1][a].is_finite() {
                 return Err(format!(
                     "grid bounds along axis {a} are not increasing finite numbers: {} .. {}",
@@ -129,11 +128,7 @@ impl BoxGrid {
         let mut p = [0.0; 3];
         for a in 0..3 {
             let (lo, hi) = (self.bounds[0][a], self.bounds[1][a]);
-            p[a] = if ijk[a] == self.res[a] {
-                hi
-            } else {
-                lo + (hi - lo) * ijk[a] as f64 / self.res[a] as f64
-            };
+            p[a] = if ijk[a] == self.res[a] { hi } else { lo + (hi - lo) * ijk[a] as f64 / self.res[a] as f64 };
         }
         p
     }
@@ -169,11 +164,7 @@ impl BoxGrid {
                 for k in (0..self.res[2]).step_by(size) {
                     out.push(Block::Cubes {
                         lo: [i, j, k],
-                        hi: [
-                            (i + size).min(self.res[0]),
-                            (j + size).min(self.res[1]),
-                            (k + size).min(self.res[2]),
-                        ],
+                        hi: [(i + size).min(self.res[0]), (j + size).min(self.res[1]), (k + size).min(self.res[2])],
                     });
                 }
             }
@@ -183,9 +174,7 @@ impl BoxGrid {
 
     /// Volume of the box.
     pub fn volume(&self) -> f64 {
-        (0..3)
-            .map(|a| self.bounds[1][a] - self.bounds[0][a])
-            .product()
+        (0..3).map(|a| self.bounds[1][a] - self.bounds[0][a]).product()
     }
 }
 

@@ -72,9 +72,7 @@ impl TetMesh {
     /// last two vertices.
     pub fn new(vertices: Vec<[f64; 3]>, tets: &[[i64; 4]]) -> Result<TetMesh, MeshError> {
         if vertices.len() >= u32::MAX as usize {
-            return Err(MeshError::TooLarge {
-                count: vertices.len(),
-            });
+            return Err(MeshError::TooLarge { count: vertices.len() });
         }
         for (v, p) in vertices.iter().enumerate() {
             if let Some(&value) = p.iter().find(|x| !x.is_finite()) {
@@ -86,11 +84,7 @@ impl TetMesh {
             let mut ids = [0u32; 4];
             for (slot, &index) in ids.iter_mut().zip(tet) {
                 if index < 0 || index as usize >= vertices.len() {
-                    return Err(MeshError::IndexOutOfRange {
-                        tet: t,
-                        index,
-                        count: vertices.len(),
-                    });
+                    return Err(MeshError::IndexOutOfRange { tet: t, index, count: vertices.len() });
                 }
                 *slot = index as u32;
             }
@@ -98,20 +92,12 @@ impl TetMesh {
             match orientation(&p) {
                 Sign::Positive => {}
                 Sign::Negative => ids.swap(2, 3),
-                Sign::Zero => {
-                    return Err(MeshError::Degenerate {
-                        tet: t,
-                        vertices: ids,
-                    })
-                }
+                Sign::Zero => return Err(MeshError::Degenerate { tet: t, vertices: ids }),
             }
             out.push(ids);
         }
         check_manifold(&out)?;
-        Ok(TetMesh {
-            vertices,
-            tets: out,
-        })
+        Ok(TetMesh { vertices, tets: out })
     }
 }
 
@@ -126,10 +112,7 @@ fn check_manifold(tets: &[[u32; 4]]) -> Result<(), MeshError> {
             let e = faces.entry(key).or_insert((t, parity, 0));
             e.2 += 1;
             if e.2 > 2 || (e.2 == 2 && e.1 == parity) {
-                return Err(MeshError::NonManifold {
-                    face: key,
-                    tets: vec![e.0, t],
-                });
+                return Err(MeshError::NonManifold { face: key, tets: vec![e.0, t] });
             }
         }
     }
@@ -159,47 +142,25 @@ mod tests {
     use super::*;
 
     fn unit() -> Vec<[f64; 3]> {
-        vec![
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [0.0, 1.0, 0.0],
-            [0.0, 0.0, 1.0],
-            [1.0, 1.0, 1.0],
-        ]
+        vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 1.0]]
     }
 
     #[test]
     fn reorients_and_rejects() {
         let m = TetMesh::new(unit(), &[[0, 2, 1, 3]]).unwrap();
-        assert_eq!(
-            orientation(&m.tets[0].map(|v| m.vertices[v as usize])),
-            Sign::Positive
-        );
+        assert_eq!(orientation(&m.tets[0].map(|v| m.vertices[v as usize])), Sign::Positive);
         assert!(matches!(
             TetMesh::new(unit(), &[[0, 1, 2, 7]]),
-            Err(MeshError::IndexOutOfRange {
-                tet: 0,
-                index: 7,
-                ..
-            })
+            Err(MeshError::IndexOutOfRange { tet: 0, index: 7, .. })
         ));
-        assert!(matches!(
-            TetMesh::new(unit(), &[[0, 1, 2, 2]]),
-            Err(MeshError::Degenerate { tet: 0, .. })
-        ));
+        assert!(matches!(TetMesh::new(unit(), &[[0, 1, 2, 2]]), Err(MeshError::Degenerate { tet: 0, .. })));
         let mut bad = unit();
         bad[3][1] = f64::NAN;
-        assert!(matches!(
-            TetMesh::new(bad, &[[0, 1, 2, 3]]),
-            Err(MeshError::NonFiniteVertex { vertex: 3, .. })
-        ));
+        assert!(matches!(TetMesh::new(bad, &[[0, 1, 2, 3]]), Err(MeshError::NonFiniteVertex { vertex: 3, .. })));
         // Two tets on the same side of face (1,2,3): overlap.
         let mut v = unit();
         v.push([0.1, 0.1, 0.1]);
-        assert!(matches!(
-            TetMesh::new(v.clone(), &[[0, 1, 2, 3], [5, 1, 2, 3]]),
-            Err(MeshError::NonManifold { .. })
-        ));
+        assert!(matches!(TetMesh::new(v.clone(), &[[0, 1, 2, 3], [5, 1, 2, 3]]), Err(MeshError::NonManifold { .. })));
         assert!(TetMesh::new(v, &[[0, 1, 2, 3], [4, 1, 2, 3]]).is_ok());
     }
 }

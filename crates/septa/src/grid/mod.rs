@@ -62,9 +62,7 @@ impl Grid {
 
     /// All vertex positions, in vertex order.
     pub fn vertices(&self) -> Vec<[f64; 3]> {
-        (0..self.num_vertices() as u32)
-            .map(|v| self.vertex(v))
-            .collect()
+        (0..self.num_vertices() as u32).map(|v| self.vertex(v)).collect()
     }
 
     /// The (positively oriented) tet `t`.
@@ -83,10 +81,7 @@ impl Grid {
             Grid::Box(g) => g.blocks(size),
             Grid::Mesh(m) => {
                 let step = 5 * size * size * size;
-                (0..m.tets.len())
-                    .step_by(step)
-                    .map(|s| Block::Tets(s..(s + step).min(m.tets.len())))
-                    .collect()
+                (0..m.tets.len()).step_by(step).map(|s| Block::Tets(s..(s + step).min(m.tets.len()))).collect()
             }
         }
     }
@@ -131,7 +126,5 @@ pub fn tet_volume(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64
     let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
     let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
-    (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-        + u[2] * (v[0] * w[1] - v[1] * w[0]))
-        / 6.0
+    (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0
 }

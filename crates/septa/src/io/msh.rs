@@ -47,40 +47,24 @@ impl<'a> Lines<'a> {
         }
     }
     fn err(&self, m: impl Into<String>) -> MshError {
-        MshError::Format {
-            path: self.path.clone(),
-            line: self.line,
-            message: m.into(),
-        }
+        MshError::Format { path: self.path.clone(), line: self.line, message: m.into() }
     }
     fn nums<T: std::str::FromStr>(&mut self) -> Result<Vec<T>, MshError> {
         let l = self.next()?;
-        l.split_whitespace()
-            .map(|t| {
-                t.parse()
-                    .map_err(|_| self.err(format!("'{t}' is not a number")))
-            })
-            .collect()
+        l.split_whitespace().map(|t| t.parse().map_err(|_| self.err(format!("'{t}' is not a number")))).collect()
     }
 }
 
 /// Reads the vertices and tets of a Gmsh `.msh` (2.2 or 4.1, ASCII).
 pub fn read_msh(path: &Path) -> Result<MeshData, MshError> {
     let p = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| MshError::Io {
-        path: p.clone(),
-        source,
-    })?;
+    let text = std::fs::read_to_string(path).map_err(|source| MshError::Io { path: p.clone(), source })?;
     parse_msh(&text, &p)
 }
 
 /// Parses `.msh` text; `path` names the source in errors.
 pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
-    let mut ls = Lines {
-        it: text.lines().enumerate(),
-        line: 0,
-        path: path.to_string(),
-    };
+    let mut ls = Lines { it: text.lines().enumerate(), line: 0, path: path.to_string() };
     let mut version = 0.0f64;
     let mut vertices = Vec::new();
     let mut tag_to_id: HashMap<i64, i64> = HashMap::new();
@@ -92,17 +76,12 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
         match l {
             "$MeshFormat" => {
                 let f: Vec<String> = ls.next()?.split_whitespace().map(String::from).collect();
-                version = f
-                    .first()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or_else(|| ls.err("bad $MeshFormat"))?;
+                version = f.first().and_then(|v| v.parse().ok()).ok_or_else(|| ls.err("bad $MeshFormat"))?;
                 if f.get(1).map(String::as_str) != Some("0") {
                     return Err(ls.err("binary .msh is not supported; save as ASCII"));
                 }
                 if !(version == 2.2 || (4.0..4.2).contains(&version)) {
-                    return Err(ls.err(format!(
-                        "msh version {version} is not supported (2.2 or 4.1)"
-                    )));
+                    return Err(ls.err(format!("msh version {version} is not supported (2.2 or 4.1)")));
                 }
             }
             "$Nodes" if version < 3.0 => {
@@ -151,9 +130,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                     }
                     if e[1] == 4 {
                         let start = 3 + e[2] as usize;
-                        let nodes = e
-                            .get(start..start + 4)
-                            .ok_or_else(|| ls.err("tet needs 4 nodes"))?;
+                        let nodes = e.get(start..start + 4).ok_or_else(|| ls.err("tet needs 4 nodes"))?;
                         pending_tets.push(([nodes[0], nodes[1], nodes[2], nodes[3]], ls.line));
                     }
                 }
@@ -192,11 +169,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
         tets.push(ids);
     }
     if version == 0.0 {
-        return Err(MshError::Format {
-            path: path.to_string(),
-            line: 1,
-            message: "no $MeshFormat section".into(),
-        });
+        return Err(MshError::Format { path: path.to_string(), line: 1, message: "no $MeshFormat section".into() });
     }
     Ok((vertices, tets))
 }

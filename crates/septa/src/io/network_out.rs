@@ -17,10 +17,7 @@ pub fn write_atomic(
     write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
     let result = (|| {
         let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
@@ -34,10 +31,7 @@ pub fn write_atomic(
     result
 }
 
-fn list<W: Write, T: std::fmt::Display>(
-    w: &mut W,
-    xs: impl IntoIterator<Item = T>,
-) -> std::io::Result<()> {
+fn list<W: Write, T: std::fmt::Display>(w: &mut W, xs: impl IntoIterator<Item = T>) -> std::io::Result<()> {
     w.write_all(b"[")?;
     for (i, x) in xs.into_iter().enumerate() {
         if i > 0 {
@@ -62,13 +56,7 @@ fn cell_label(net: &Network, c: usize) -> String {
     match net.mode {
         Mode::Ia => {
             let bits: Vec<&str> = (0..net.functions)
-                .map(|f| {
-                    if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) {
-                        "true"
-                    } else {
-                        "false"
-                    }
-                })
+                .map(|f| if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) { "true" } else { "false" })
                 .collect();
             format!("[{}]", bits.join(","))
         }
@@ -78,21 +66,13 @@ fn cell_label(net: &Network, c: usize) -> String {
 
 /// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
 /// Everything but `"seconds"` (written last) depends only on the input.
-pub fn write_json(
-    net: &Network,
-    path: &Path,
-    extra_seconds: &[(&str, f64)],
-) -> std::io::Result<()> {
+pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
     write_atomic(path, |w| {
         let mode = match net.mode {
             Mode::Ia => "ia",
             Mode::Mi => "mi",
         };
-        write!(
-            w,
-            "{{\"mode\":\"{mode}\",\"functions\":{},\n\"points\":[",
-            net.functions
-        )?;
+        write!(w, "{{\"mode\":\"{mode}\",\"functions\":{},\n\"points\":[", net.functions)?;
         for (i, p) in net.points.iter().enumerate() {
             if i > 0 {
                 w.write_all(b",")?;
@@ -127,11 +107,7 @@ pub fn write_json(
             if i > 0 {
                 w.write_all(b",")?;
             }
-            write!(
-                w,
-                "{{\"label\":[{},{}],\"faces\":{}}}",
-                p.label[0], p.label[1], p.faces
-            )?;
+            write!(w, "{{\"label\":[{},{}],\"faces\":{}}}", p.label[0], p.label[1], p.faces)?;
         }
         w.write_all(b"],\n\"chains\":[")?;
         for (i, c) in net.chains.iter().enumerate() {
@@ -213,10 +189,7 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
         for f in 0..net.num_faces() {
             let vs = net.face(f);
             if vs.len() > 255 {
-                return Err(std::io::Error::other(format!(
-                    "face {f} has {} vertices; PLY lists hold 255",
-                    vs.len()
-                )));
+                return Err(std::io::Error::other(format!("face {f} has {} vertices; PLY lists hold 255", vs.len())));
             }
             w.write_all(&[vs.len() as u8])?;
             for &v in vs {
@@ -235,12 +208,7 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
 /// Writes an OBJ: a group `patch_<p>` per patch and an `l` polyline per chain.
 pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
     write_atomic(path, |w| {
-        writeln!(
-            w,
-            "# septa surface network: {} patches, {} chains",
-            net.patches.len(),
-            net.chains.len()
-        )?;
+        writeln!(w, "# septa surface network: {} patches, {} chains", net.patches.len(), net.chains.len())?;
         for p in &net.points {
             writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
         }
@@ -305,8 +273,7 @@ pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
              <AppendedData encoding=\"raw\">\n_",
             da(0), da(1), da(2), da(3), da(4), da(5), da(6)
         )?;
-        let head =
-            |w: &mut BufWriter<File>, i: usize| w.write_all(&(sizes[i].0 as u64).to_le_bytes());
+        let head = |w: &mut BufWriter<File>, i: usize| w.write_all(&(sizes[i].0 as u64).to_le_bytes());
         head(w, 0)?;
         for p in &net.points {
             for x in p {

@@ -68,29 +68,19 @@ impl Array {
 /// Reads every array of an `.npz` file.
 pub fn read_npz(path: &Path) -> Result<BTreeMap<String, Array>, NpzError> {
     let p = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|source| NpzError::Io {
-        path: p.clone(),
-        source,
-    })?;
-    let zerr = |e: zip::result::ZipError| NpzError::Zip {
-        path: p.clone(),
-        message: e.to_string(),
-    };
+    let file = std::fs::File::open(path).map_err(|source| NpzError::Io { path: p.clone(), source })?;
+    let zerr = |e: zip::result::ZipError| NpzError::Zip { path: p.clone(), message: e.to_string() };
     let mut zip = zip::ZipArchive::new(std::io::BufReader::new(file)).map_err(zerr)?;
     let mut out = BTreeMap::new();
     for i in 0..zip.len() {
         let mut member = zip.by_index(i).map_err(zerr)?;
         let name = member.name().trim_end_matches(".npy").to_string();
         let mut bytes = Vec::with_capacity(member.size() as usize);
-        member.read_to_end(&mut bytes).map_err(|e| NpzError::Zip {
-            path: p.clone(),
-            message: format!("member {name}: {e}"),
-        })?;
-        let arr = parse_npy(&bytes).map_err(|message| NpzError::Array {
-            path: p.clone(),
-            array: name.clone(),
-            message,
-        })?;
+        member
+            .read_to_end(&mut bytes)
+            .map_err(|e| NpzError::Zip { path: p.clone(), message: format!("member {name}: {e}") })?;
+        let arr =
+            parse_npy(&bytes).map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
         out.insert(name, arr);
     }
     Ok(out)
@@ -117,10 +107,7 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
     let data = &b[hstart + hlen..];
     let need = |size: usize| -> Result<(), String> {
         if data.len() < count * size {
-            Err(format!(
-                "data truncated: {} bytes for {count} items of {size}",
-                data.len()
-            ))
+            Err(format!("data truncated: {} bytes for {count} items of {size}", data.len()))
         } else {
             Ok(())
         }
@@ -134,20 +121,14 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
             need(8)?;
             Ok(Array::F64(
                 shape,
-                data.chunks_exact(8)
-                    .take(count)
-                    .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
-                    .collect(),
+                data.chunks_exact(8).take(count).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect(),
             ))
         }
         ('f', 4) => {
             need(4)?;
             Ok(Array::F64(
                 shape,
-                data.chunks_exact(4)
-                    .take(count)
-                    .map(|c| f32::from_le_bytes(c.try_into().unwrap()) as f64)
-                    .collect(),
+                data.chunks_exact(4).take(count).map(|c| f32::from_le_bytes(c.try_into().unwrap()) as f64).collect(),
             ))
         }
         ('i' | 'u', 1 | 2 | 4 | 8) => {
@@ -181,11 +162,9 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
             }
             Ok(Array::Str(s))
         }
-        ('S', n) => Ok(Array::Str(
-            String::from_utf8_lossy(&data[..n.min(data.len())])
-                .trim_end_matches('\0')
-                .to_string(),
-        )),
+        ('S', n) => {
+            Ok(Array::Str(String::from_utf8_lossy(&data[..n.min(data.len())]).trim_end_matches('\0').to_string()))
+        }
         _ => Err(format!("unsupported dtype {descr}")),
     }
 }
@@ -240,17 +219,8 @@ pub struct GridInput {
 pub fn read_grid_input(path: &Path) -> Result<GridInput, NpzError> {
     let mut arrays = read_npz(path)?;
     let p = path.display().to_string();
-    let mut take = |name: &str| {
-        arrays.remove(name).ok_or(NpzError::Missing {
-            path: p.clone(),
-            array: name.into(),
-        })
-    };
-    let bad = |array: &str, message: String| NpzError::Array {
-        path: p.clone(),
-        array: array.into(),
-        message,
-    };
+    let mut take = |name: &str| arrays.remove(name).ok_or(NpzError::Missing { path: p.clone(), array: name.into() });
+    let bad = |array: &str, message: String| NpzError::Array { path: p.clone(), array: array.into(), message };
     let (vs, vd) = match take("vertices")? {
         Array::F64(s, d) => (s, d),
         Array::I64(s, d) => (s, d.into_iter().map(|x| x as f64).collect()),
@@ -261,30 +231,13 @@ pub fn read_grid_input(path: &Path) -> Result<GridInput, NpzError> {
     }
     let vertices: Vec<[f64; 3]> = vd.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     let tets = match take("tets")? {
-        Array::I64(s, d) if s.len() == 2 && s[1] == 4 => d
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect(),
-        a => {
-            return Err(bad(
-                "tets",
-                format!("shape {:?} / dtype, expected (M, 4) integers", a.shape()),
-            ))
-        }
+        Array::I64(s, d) if s.len() == 2 && s[1] == 4 => d.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+        a => return Err(bad("tets", format!("shape {:?} / dtype, expected (M, 4) integers", a.shape()))),
     };
     let (values, k) = match take("values")? {
         Array::F64(s, d) if s.len() == 2 && s[0] == vertices.len() => (d, s[1]),
         Array::F64(s, d) if s.len() == 1 && s[0] == vertices.len() => (d, 1),
-        a => {
-            return Err(bad(
-                "values",
-                format!(
-                    "shape {:?}, expected ({}, k) floats",
-                    a.shape(),
-                    vertices.len()
-                ),
-            ))
-        }
+        a => return Err(bad("values", format!("shape {:?}, expected ({}, k) floats", a.shape(), vertices.len()))),
     };
     let grid_res = match arrays.remove("grid_res") {
         Some(Array::I64(_, d)) if d.len() == 1 && d[0] > 0 => Some(d[0] as usize),
@@ -294,12 +247,5 @@ pub fn read_grid_input(path: &Path) -> Result<GridInput, NpzError> {
         Some(Array::F64(_, d)) if d.len() == 6 => Some([[d[0], d[1], d[2]], [d[3], d[4], d[5]]]),
         _ => None,
     };
-    Ok(GridInput {
-        vertices,
-        tets,
-        values,
-        k,
-        grid_res,
-        bbox,
-    })
+    Ok(GridInput { vertices, tets, values, k, grid_res, bbox })
 }

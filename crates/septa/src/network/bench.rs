@@ -30,17 +30,13 @@ pub fn run_on_box(
     options: &NetworkOptions,
 ) -> Result<GridRun, NetworkError> {
     let t0 = Instant::now();
-    let g = BoxGrid::new([resolution; 3], bounds, Split::Five)
-        .map_err(|message| NetworkError::Tet { tet: 0, message })?;
+    let g =
+        BoxGrid::new([resolution; 3], bounds, Split::Five).map_err(|message| NetworkError::Tet { tet: 0, message })?;
     let grid = Grid::Box(g);
     let values = sample(functions, &grid.vertices());
     let sample_seconds = t0.elapsed().as_secs_f64();
     let network = compute(&grid, &values, functions.len(), options)?;
-    Ok(GridRun {
-        network,
-        sample_seconds,
-        total_seconds: t0.elapsed().as_secs_f64(),
-    })
+    Ok(GridRun { network, sample_seconds, total_seconds: t0.elapsed().as_secs_f64() })
 }
 
 /// Spheres `r - |x - c|` in the pattern of the paper's Sec. 8.3 (IA: unit
@@ -53,8 +49,7 @@ pub fn paper_spheres(mode: Mode, k: usize, seed: u64) -> Vec<Primitive> {
     let mut out = Vec::with_capacity(k);
     match mode {
         Mode::Ia => {
-            let mut centres: Vec<[f64; 3]> =
-                vec![[0.0; 3], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
+            let mut centres: Vec<[f64; 3]> = vec![[0.0; 3], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
             for &x in &[-0.4, 0.4] {
                 for &y in &[-0.4, 0.4] {
                     for &z in &[-0.4, 0.4] {
@@ -72,20 +67,14 @@ pub fn paper_spheres(mode: Mode, k: usize, seed: u64) -> Vec<Primitive> {
             for i in 0..k {
                 let c = centres[i % centres.len()];
                 let mut j = || rng.gen_range(-1e-3..1e-3);
-                out.push(Primitive::Sphere {
-                    center: [c[0] + j(), c[1] + j(), c[2] + j()],
-                    radius: 0.5 + j(),
-                });
+                out.push(Primitive::Sphere { center: [c[0] + j(), c[1] + j(), c[2] + j()], radius: 0.5 + j() });
             }
         }
         Mode::Mi => {
             for _ in 0..k {
                 let mut c = || rng.gen_range(-0.8..0.8);
                 let center = [c(), c(), c()];
-                out.push(Primitive::Sphere {
-                    center,
-                    radius: rng.gen_range(0.01..0.1),
-                });
+                out.push(Primitive::Sphere { center, radius: rng.gen_range(0.01..0.1) });
             }
         }
     }

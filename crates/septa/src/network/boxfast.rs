@@ -106,9 +106,7 @@ impl Worker {
         }
         let per = g.split.tets_per_cube();
         let cube_vol = if ctx.volumes {
-            (0..3)
-                .map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64)
-                .product()
+            (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product()
         } else {
             0.0
         };

@@ -30,10 +30,7 @@ pub(crate) struct Merged {
 }
 
 pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
-    let mut m = Merged {
-        face_start: vec![0],
-        ..Default::default()
-    };
+    let mut m = Merged { face_start: vec![0], ..Default::default() };
     let mut vmap: FxHashMap<VKey, u32> = FxHashMap::default();
     let mut contacts: FxHashMap<(FaceKey, Label), u32> = FxHashMap::default();
     let mut open_t: FxHashMap<OpenT, u32> = FxHashMap::default();
@@ -57,11 +54,7 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
                 let key = b.keys[v as usize];
                 let next = m.keys.len() as u32;
                 // A vertex inside its block is unique: no global lookup.
-                let id = if b.shared[v as usize] {
-                    *vmap.entry(key).or_insert(next)
-                } else {
-                    next
-                };
+                let id = if b.shared[v as usize] { *vmap.entry(key).or_insert(next) } else { next };
                 if id == next {
                     m.keys.push(key);
                     m.points.push(b.points[v as usize]);
@@ -189,15 +182,10 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
             Pre::Half(h) => half_side[h as usize].unwrap_or(half_extra_base + h),
         }
     };
-    m.shell_pairs = pre_unions
-        .into_iter()
-        .map(|(a, b)| (resolve(a), resolve(b)))
-        .collect();
-    m.shell_pairs
-        .extend(t_pairs.into_iter().map(|(a, b)| (sides + a, sides + b)));
+    m.shell_pairs = pre_unions.into_iter().map(|(a, b)| (resolve(a), resolve(b))).collect();
+    m.shell_pairs.extend(t_pairs.into_iter().map(|(a, b)| (sides + a, sides + b)));
     for (a, b) in extra_pairs {
-        m.shell_pairs
-            .push((resolve(Pre::Half(a)), resolve(Pre::Half(b))));
+        m.shell_pairs.push((resolve(Pre::Half(a)), resolve(Pre::Half(b))));
         let (ra, rb) = (halves[a as usize].2, halves[b as usize].2);
         m.region_uf.union(ra, rb);
     }

@@ -94,7 +94,8 @@ pub struct NetworkOptions {
     pub float: bool,
     /// Block edge in cubes.
     pub block: usize,
-    /// Compute cell volumes (floating point, for invariant checks).
+    /// Compute cell volumes (floating point, for invariant checks); they
+    /// come from cell grouping, so this selects grouping over ray shooting.
     pub volumes: bool,
     /// Identify cells by topological ray shooting (Sec. 7.1) when the grid
     /// allows it (a box, no network vertex at a grid vertex); otherwise, or
@@ -105,13 +106,7 @@ pub struct NetworkOptions {
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions {
-            mode,
-            float: false,
-            block: 16,
-            volumes: false,
-            raytrace: true,
-        }
+        NetworkOptions { mode, float: false, block: 16, volumes: false, raytrace: true }
     }
 }
 
@@ -224,12 +219,7 @@ fn ray_applies(grid: &Grid, values: &[f64], k: usize, mode: Mode) -> bool {
 
 /// Computes the IA or MI network of `k` functions given by their values at
 /// the grid vertices (`values[v * k + f]`), on the current rayon pool.
-pub fn compute(
-    grid: &Grid,
-    values: &[f64],
-    k: usize,
-    options: &NetworkOptions,
-) -> Result<Network, NetworkError> {
+pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) -> Result<Network, NetworkError> {
     let t0 = Instant::now();
     let n = grid.num_vertices();
     if k == 0 {
@@ -239,19 +229,10 @@ pub fn compute(
         return Err(NetworkError::TooManyFunctions(k));
     }
     if values.len() != n * k {
-        return Err(NetworkError::ValueCount {
-            expected: n * k,
-            vertices: n,
-            functions: k,
-            got: values.len(),
-        });
+        return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
     }
     if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(NetworkError::NonFinite {
-            vertex: i / k,
-            function: i % k,
-            value: values[i],
-        });
+        return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
     }
     let ctx = block::Ctx {
         grid,
@@ -260,19 +241,15 @@ pub fn compute(
         mode: options.mode,
         options: Options::with_float(options.float),
         volumes: options.volumes,
-        grouping: !(options.raytrace
-            && !options.volumes
-            && ray_applies(grid, values, k, options.mode)),
+        grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
     };
     let blocks = grid.blocks(options.block);
-    let outs: Vec<block::BlockOut> = blocks
-        .par_iter()
-        .map_init(block::Worker::default, |w, b| w.run(&ctx, b))
-        .collect::<Result<_, _>>()?;
+    let outs: Vec<block::BlockOut> =
+        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m, options.raytrace.then_some(&ctx));
+    let topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
     let t3 = Instant::now();
     if !ctx.grouping && topo.cells_method != "raytrace" {
         // Cannot happen when the preconditions hold; never answer without cells.

@@ -66,12 +66,7 @@ pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> 
             fill[v] += 1;
         }
     }
-    let vmap: FxHashMap<VKey, u32> = inp
-        .keys
-        .iter()
-        .enumerate()
-        .map(|(i, k)| (*k, i as u32))
-        .collect();
+    let vmap: FxHashMap<VKey, u32> = inp.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
     // Smallest grid edge (v, u) carrying an edge-point, per component.
     let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); inp.num_comps];
     for (v, k) in inp.keys.iter().enumerate() {
@@ -132,10 +127,7 @@ fn walk(
             let pts = edge_points(ctx, &view, w, cur, vmap);
             // The network point closest to `cur` (possibly `w` itself); the ray
             // arrives from `cur`'s side.
-            if let Some(k) = (0..pts.len().saturating_sub(1))
-                .rev()
-                .find(|&k| pts[k].is_some())
-            {
+            if let Some(k) = (0..pts.len().saturating_sub(1)).rev().find(|&k| pts[k].is_some()) {
                 if inp.vertex_comp[pts[k]? as usize] == comp {
                     return None;
                 }
@@ -153,10 +145,7 @@ fn edge_may_cross(ctx: &Ctx, a: u32, b: u32) -> bool {
     let ra = &ctx.values[a as usize * k..(a as usize + 1) * k];
     let rb = &ctx.values[b as usize * k..(b as usize + 1) * k];
     match ctx.mode {
-        Mode::Ia => ra
-            .iter()
-            .zip(rb)
-            .any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
+        Mode::Ia => ra.iter().zip(rb).any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
         Mode::Mi => {
             let arg = |r: &[f64]| {
                 let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -228,10 +217,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     let mut active = Vec::new();
     active_functions(ctx, 0, &tet, &mut active).ok()?;
     let k = ctx.k;
-    let vals: Vec<[f64; 4]> = active
-        .iter()
-        .map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize]))
-        .collect();
+    let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize])).collect();
     let mut complex = Complex::new();
     let empty = match ctx.mode {
         Mode::Ia => active.is_empty(),
@@ -240,22 +226,12 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     if !empty {
         complex.build(ctx.mode, &vals, &ctx.options).ok()?;
     }
-    Some(TetView {
-        tet,
-        active,
-        complex,
-    })
+    Some(TetView { tet, active, complex })
 }
 
 /// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
 /// to `b` (corners included), each with its global id if it is a network vertex.
-fn edge_points(
-    ctx: &Ctx,
-    view: &TetView,
-    a: u32,
-    b: u32,
-    vmap: &FxHashMap<VKey, u32>,
-) -> SmallVec<[Option<u32>; 8]> {
+fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &FxHashMap<VKey, u32>) -> SmallVec<[Option<u32>; 8]> {
     if view.complex.vertices().is_empty() {
         return SmallVec::from_elem(None, 2);
     }
@@ -264,16 +240,7 @@ fn edge_points(
     view.complex
         .tet_edge_points(la, lb)
         .iter()
-        .map(|&cv| {
-            vmap.get(&vertex_key(
-                ctx.mode,
-                &view.complex,
-                cv,
-                &view.tet,
-                &view.active,
-            ))
-            .copied()
-        })
+        .map(|&cv| vmap.get(&vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)).copied())
         .collect()
 }
 
@@ -301,27 +268,14 @@ fn facing_shell(
         return None;
     }
     let p = list[j];
-    let q = if towards_a {
-        list[j - 1]
-    } else {
-        *list.get(j + 1)?
-    };
-    let edge = c
-        .edges()
-        .iter()
-        .position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
+    let q = if towards_a { list[j - 1] } else { *list.get(j + 1)? };
+    let edge = c.edges().iter().position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
     // A ray segment lying in the network has no side: ambiguous.
-    if c.faces()
-        .iter()
-        .any(|f| f.plane.is_network() && f.edges.contains(&edge))
-    {
+    if c.faces().iter().any(|f| f.plane.is_network() && f.edges.contains(&edge)) {
         return None;
     }
-    let cell = c.cells().iter().position(|cl| {
-        cl.faces
-            .iter()
-            .any(|&f| c.faces()[f as usize].edges.contains(&edge))
-    })? as u32;
+    let cell =
+        c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
     let gp = *vmap.get(&vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
     for &fi in &c.cells()[cell as usize].faces {
         let face = &c.faces()[fi as usize];
@@ -334,9 +288,8 @@ fn facing_shell(
         }
         keys.sort_unstable();
         for &gf in &vf[start[gp as usize] as usize..start[gp as usize + 1] as usize] {
-            let mut vs: SmallVec<[u32; 8]> = inp.face_verts
-                [inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize]
-                .into();
+            let mut vs: SmallVec<[u32; 8]> =
+                inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
             vs.sort_unstable();
             if vs == keys {
                 let side = if face.cells[0] == cell { 0 } else { 1 };

@@ -59,12 +59,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         i = j;
     }
     let (face_patch, np) = patch_uf.components();
-    let mut patches: Vec<Patch> = (0..np)
-        .map(|_| Patch {
-            label: [0, 0],
-            faces: 0,
-        })
-        .collect();
+    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
     for f in 0..nf {
         let p = &mut patches[face_patch[f] as usize];
         p.label = m.face_label[f];
@@ -141,13 +136,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         );
     }
     let (region_cell, ncells) = m.region_uf.components();
-    let mut cells: Vec<CellInfo> = (0..ncells)
-        .map(|_| CellInfo {
-            shells: Vec::new(),
-            label: Default::default(),
-            volume: 0.0,
-        })
-        .collect();
+    let mut cells: Vec<CellInfo> =
+        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
     for (r, &c) in region_cell.iter().enumerate() {
         let cell = &mut cells[c as usize];
         if cell.label.is_empty() {
@@ -155,19 +145,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         }
         cell.volume += m.region_volume[r];
     }
-    let face_cells: Vec<[u32; 2]> = m
-        .face_nodes
-        .iter()
-        .map(|n| {
-            n.map(|x| {
-                if x == NONE {
-                    NONE
-                } else {
-                    region_cell[x as usize]
-                }
-            })
-        })
-        .collect();
+    let face_cells: Vec<[u32; 2]> =
+        m.face_nodes.iter().map(|n| n.map(|x| if x == NONE { NONE } else { region_cell[x as usize] })).collect();
     let mut shell_cell = vec![NONE; shells.len()];
     for f in 0..nf {
         for s in 0..2 {
@@ -213,13 +192,8 @@ fn ray_topology(
     shell_cell: Vec<u32>,
     ncells: usize,
 ) -> Topology {
-    let mut cells: Vec<CellInfo> = (0..ncells)
-        .map(|_| CellInfo {
-            shells: Vec::new(),
-            label: Default::default(),
-            volume: 0.0,
-        })
-        .collect();
+    let mut cells: Vec<CellInfo> =
+        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
     for (s, &c) in shell_cell.iter().enumerate() {
         cells[c as usize].shells.push(s as u32);
     }
@@ -272,9 +246,7 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
         adj[fill[b as usize] as usize] = (a, e as u32);
         fill[b as usize] += 1;
     }
-    let corners: Vec<u32> = (0..nv as u32)
-        .filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2)
-        .collect();
+    let corners: Vec<u32> = (0..nv as u32).filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2).collect();
     let mut used = vec![false; chain_edges.len()];
     let mut out = Vec::new();
     let walk = |from: u32, e0: u32, used: &mut Vec<bool>| -> Vec<u32> {

@@ -1,0 +1,410 @@
+//! Filtered exact signs of polynomial expressions built from plane
+//! coefficients and mesh-vertex coordinates (the predicates of planar
+//! cutting, TopoCut App. B-C).
+//!
+//! Triangle planes are not representable in doubles, so the predicates of
+//! planar cutting (a point given as a face triple against a plane, the order
+//! of two points along a line, the cyclic order of directions around a
+//! vertex or an edge) are polynomials of moderate degree in the input
+//! doubles. Rather than derive a separate static bound for every one of
+//! them, each predicate is written **once**, generically over [`Ring`], and
+//! evaluated twice at most:
+//!
+//! 1. in [`Interval`] arithmetic with outward rounding. Every operation
+//!    returns an interval that contains the exact result of the same
+//!    operation on any reals inside its operands (the bound is the
+//!    Shewchuk-style `|err| <= 1 ulp` of each rounded bound, applied
+//!    per operation, so it is *proven* for the whole expression by
+//!    induction over the expression tree). Bounds that were computed
+//!    without rounding error (checked with error-free transformations,
+//!    TwoSum and Dekker's TwoProduct) are not widened, so exactly zero
+//!    expressions of small integers (the staircase case) are decided here.
+//!    If the final interval excludes zero, or is the point `[0, 0]`, its
+//!    sign is the exact sign.
+//! 2. otherwise in [`Exact`] dyadic bignum arithmetic, which cannot err.
+//!
+//! [`fallback_count`] reports how often step 2 ran.
+
+use crate::{Exact, Sign};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+static FALLBACKS: AtomicU64 = AtomicU64::new(0);
+
+/// Number of filtered signs that needed the exact fallback since start
+/// (all threads; only the rare fallbacks touch this shared counter).
+pub fn fallback_count() -> u64 {
+    FALLBACKS.load(Ordering::Relaxed)
+}
+
+/// The arithmetic a generic predicate needs: a commutative ring containing
+/// the doubles.
+pub trait Ring: Clone {
+    /// The value of a double.
+    fn of(x: f64) -> Self;
+    /// `self + o`.
+    fn add(&self, o: &Self) -> Self;
+    /// `self - o`.
+    fn sub(&self, o: &Self) -> Self;
+    /// `self * o`.
+    fn mul(&self, o: &Self) -> Self;
+    /// `-self`.
+    fn neg(&self) -> Self;
+}
+
+impl Ring for Exact {
+    #[inline]
+    fn of(x: f64) -> Self {
+        Exact::from_f64(x)
+    }
+    #[inline]
+    fn add(&self, o: &Self) -> Self {
+        self + o
+    }
+    #[inline]
+    fn sub(&self, o: &Self) -> Self {
+        self - o
+    }
+    #[inline]
+    fn mul(&self, o: &Self) -> Self {
+        self * o
+    }
+    #[inline]
+    fn neg(&self) -> Self {
+        -self
+    }
+}
+
+/// A closed interval `[lo, hi]` of reals with outward-rounded operations.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Interval {
+    /// Lower bound.
+    pub lo: f64,
+    /// Upper bound.
+    pub hi: f64,
+}
+
+#[inline]
+fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let b = x.to_bits();
+    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
+}
+
+#[inline]
+fn next_down(x: f64) -> f64 {
+    -next_up(-x)
+}
+
+/// `a + b = s + e` exactly (Knuth's TwoSum), for finite non-overflowing sums.
+#[inline]
+fn two_sum(a: f64, b: f64) -> (f64, f64) {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    (s, e)
+}
+
+#[inline]
+fn split(a: f64) -> (f64, f64) {
+    let c = 134_217_729.0 * a; // 2^27 + 1
+    let hi = c - (c - a);
+    (hi, a - hi)
+}
+
+/// `a * b = p + e` exactly (Dekker's TwoProduct) when no underflow or
+/// overflow occurs; callers guard the range.
+#[inline]
+fn two_prod(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    let (ah, al) = split(a);
+    let (bh, bl) = split(b);
+    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    (p, e)
+}
+
+// Dekker's product is exact when |a|,|b| < 2^996 and the product's error
+// term does not underflow; stay well inside (|p| in [2^-900, 2^900] or p == 0).
+const SAFE_HI: f64 = 1e270;
+const SAFE_LO: f64 = 1e-270;
+
+#[inline]
+fn add_down(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    if !s.is_finite() {
+        return if s.is_nan() {
+            f64::NEG_INFINITY
+        } else {
+            next_down(s)
+        };
+    }
+    if e < 0.0 {
+        next_down(s)
+    } else {
+        s
+    }
+}
+
+#[inline]
+fn add_up(a: f64, b: f64) -> f64 {
+    let (s, e) = two_sum(a, b);
+    if !s.is_finite() {
+        return if s.is_nan() {
+            f64::INFINITY
+        } else {
+            next_up(s)
+        };
+    }
+    if e > 0.0 {
+        next_up(s)
+    } else {
+        s
+    }
+}
+
+/// Product rounded down (`up = false`) or up.
+#[inline]
+fn mul_round(a: f64, b: f64, up: bool) -> f64 {
+    if a == 0.0 || b == 0.0 {
+        return 0.0;
+    }
+    let p = a * b;
+    let ap = p.abs();
+    if !(SAFE_LO..=SAFE_HI).contains(&ap) || !p.is_finite() {
+        // No error-free check possible: widen unconditionally.
+        if p.is_nan() {
+            return if up { f64::INFINITY } else { f64::NEG_INFINITY };
+        }
+        return if up { next_up(p) } else { next_down(p) };
+    }
+    // Significant bits of the factors (odd mantissas of m and n bits have a
+    // product of m + n - 1 or m + n bits): above 54 the product is surely
+    // rounded, so widen without the TwoProduct test; at most 53 it is exact.
+    let sig = |x: f64| 53 - ((x.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
+    let bits = sig(a) + sig(b);
+    if bits > 54 {
+        return if up { next_up(p) } else { next_down(p) };
+    }
+    if bits <= 53 {
+        return p;
+    }
+    let (_, e) = two_prod(a, b);
+    if up {
+        if e > 0.0 {
+            next_up(p)
+        } else {
+            p
+        }
+    } else if e < 0.0 {
+        next_down(p)
+    } else {
+        p
+    }
+}
+
+impl Interval {
+    /// The point interval of a double.
+    #[inline]
+    pub fn point(x: f64) -> Interval {
+        Interval { lo: x, hi: x }
+    }
+
+    /// The sign if the interval decides it: excludes zero, or is exactly `[0,0]`.
+    #[inline]
+    pub fn sign(&self) -> Option<Sign> {
+        if self.lo > 0.0 {
+            Some(Sign::Positive)
+        } else if self.hi < 0.0 {
+            Some(Sign::Negative)
+        } else if self.lo == 0.0 && self.hi == 0.0 {
+            Some(Sign::Zero)
+        } else {
+            None
+        }
+    }
+
+    /// `self / o`, or `None` when `o` contains zero. Each bound of a
+    /// correctly rounded quotient is widened by one ulp outward.
+    pub fn div(&self, o: &Interval) -> Option<Interval> {
+        if o.lo <= 0.0 && o.hi >= 0.0 {
+            return None;
+        }
+        let q = [
+            self.lo / o.lo,
+            self.lo / o.hi,
+            self.hi / o.lo,
+            self.hi / o.hi,
+        ];
+        let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        if !lo.is_finite() || !hi.is_finite() {
+            return None;
+        }
+        Some(Interval {
+            lo: next_down(lo),
+            hi: next_up(hi),
+        })
+    }
+
+    /// Midpoint (an approximation of the value, for embeddings and pre-sorts).
+    #[inline]
+    pub fn mid(&self) -> f64 {
+        0.5 * self.lo + 0.5 * self.hi
+    }
+}
+
+impl Ring for Interval {
+    #[inline]
+    fn of(x: f64) -> Self {
+        Interval::point(x)
+    }
+    #[inline]
+    fn add(&self, o: &Self) -> Self {
+        Interval {
+            lo: add_down(self.lo, o.lo),
+            hi: add_up(self.hi, o.hi),
+        }
+    }
+    #[inline]
+    fn sub(&self, o: &Self) -> Self {
+        Interval {
+            lo: add_down(self.lo, -o.hi),
+            hi: add_up(self.hi, -o.lo),
+        }
+    }
+    #[inline]
+    fn mul(&self, o: &Self) -> Self {
+        let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
+        if a >= 0.0 && c >= 0.0 {
+            return Interval {
+                lo: mul_round(a, c, false),
+                hi: mul_round(b, d, true),
+            };
+        }
+        if b <= 0.0 && d <= 0.0 {
+            return Interval {
+                lo: mul_round(b, d, false),
+                hi: mul_round(a, c, true),
+            };
+        }
+        if a >= 0.0 && d <= 0.0 {
+            return Interval {
+                lo: mul_round(b, c, false),
+                hi: mul_round(a, d, true),
+            };
+        }
+        if b <= 0.0 && c >= 0.0 {
+            return Interval {
+                lo: mul_round(a, d, false),
+                hi: mul_round(b, c, true),
+            };
+        }
+        let lo = mul_round(a, d, false)
+            .min(mul_round(b, c, false))
+            .min(mul_round(a, c, false))
+            .min(mul_round(b, d, false));
+        let hi = mul_round(a, c, true)
+            .max(mul_round(b, d, true))
+            .max(mul_round(a, d, true))
+            .max(mul_round(b, c, true));
+        Interval { lo, hi }
+    }
+    #[inline]
+    fn neg(&self) -> Self {
+        Interval {
+            lo: -self.hi,
+            hi: -self.lo,
+        }
+    }
+}
+
+/// The exact sign of an expression given twice: once over [`Interval`]
+/// (the filter) and once over [`Exact`] (the fallback, run only when the
+/// filter cannot decide).
+#[inline]
+#[track_caller]
+pub fn filtered_sign(fast: impl FnOnce() -> Interval, exact: impl FnOnce() -> Exact) -> Sign {
+    if let Some(s) = fast().sign() {
+        return s;
+    }
+    FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    if std::env::var_os("SEPTA_TRACE").is_some() {
+        let l = std::panic::Location::caller();
+        let s = exact().sign();
+        eprintln!("fallback {}:{} {:?}", l.file(), l.line(), s);
+        return s;
+    }
+    exact().sign()
+}
+
+/// Sign of `n . x + d` for a plane `(n, d)` and a point `x` (TopoCut's
+/// `T_pv`, App. B eq. 13), exact.
+pub fn plane_point_sign(plane: &[f64; 4], x: &[f64; 3]) -> Sign {
+    // Static filter: v = fl(fl(fl(fl(a x) + fl(b y)) + fl(c z)) + d). Each of
+    // the 3 products and 3 sums commits a relative error <= u = 2^-53 of its
+    // result, so |v - exact| <= (3u + 3u(1 + u)^3) * S <= 7u * S with
+    // S = |a x| + |b y| + |c z| + |d| (all terms enter each partial sum at
+    // most once; the (1+u)^k growth is absorbed by the spare u). Requires no
+    // underflow: S is large enough or we fall through to the interval path.
+    let t = [plane[0] * x[0], plane[1] * x[1], plane[2] * x[2]];
+    let v = t[0] + t[1] + t[2] + plane[3];
+    let s = t[0].abs() + t[1].abs() + t[2].abs() + plane[3].abs();
+    let bound = 8.0 * f64::EPSILON * 0.5 * s;
+    if s > 1e-250 && s < 1e250 && v.abs() > bound {
+        return if v > 0.0 {
+            Sign::Positive
+        } else {
+            Sign::Negative
+        };
+    }
+    fn f<R: Ring>(p: &[f64; 4], x: &[f64; 3]) -> R {
+        let mut acc = R::of(p[3]);
+        for k in 0..3 {
+            acc = acc.add(&R::of(p[k]).mul(&R::of(x[k])));
+        }
+        acc
+    }
+    filtered_sign(|| f::<Interval>(plane, x), || f::<Exact>(plane, x))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn exact_zero_of_small_integers_is_decided_by_the_filter() {
+        // plane x = 15 through the point (15, 3, 7): 1*15 + 0*3 + 0*7 - 15
+        let v = Interval::point(1.0)
+            .mul(&Interval::point(15.0))
+            .add(&Interval::point(-15.0));
+        assert_eq!(v.sign(), Some(Sign::Zero));
+        assert_eq!(
+            plane_point_sign(&[1.0, 0.0, 0.0, -15.0], &[15.0, 3.0, 7.0]),
+            Sign::Zero
+        );
+    }
+
+    #[test]
+    fn near_zero_falls_back_and_is_exact() {
+        // 0.1*3 - 0.3 is not zero in binary; 0.1 + 0.2 - 0.3 neither.
+        let s = plane_point_sign(&[0.1, 0.0, 0.0, -0.3], &[3.0, 0.0, 0.0]);
+        let e = (&Exact::from_f64(0.1) * &Exact::from_f64(3.0)) - Exact::from_f64(0.3);
+        assert_eq!(s, e.sign());
+        let tiny = plane_point_sign(&[1.0, 1.0, 0.0, 0.0], &[1e-300, -1e-300, 0.0]);
+        assert_eq!(tiny, Sign::Zero);
+    }
+
+    #[test]
+    fn interval_contains_exact_value() {
+        let a = Interval::point(0.1);
+        let b = Interval::point(0.7);
+        let c = a.mul(&b).sub(&Interval::point(0.07));
+        let e = (&Exact::from_f64(0.1) * &Exact::from_f64(0.7)) - Exact::from_f64(0.07);
+        let v = e.to_f64_approx();
+        assert!(c.lo <= v && v <= c.hi);
+    }
+}

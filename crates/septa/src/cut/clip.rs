@@ -1,0 +1,229 @@
+//! Cut-faces inside input triangles: each triangle is clipped by the planes
+//! that cross it, in plane order, into convex pieces (the half-edge
+//! structure `H(t)` of TopoCut Sec. 4, which for a triangle is a set of
+//! convex polygons because every cut is a full plane).
+
+use super::geom::{Ctx, Def};
+use rayon::prelude::*;
+use septa_exact::Sign;
+use septa_exact::{Interval, Ring};
+use smallvec::SmallVec;
+
+/// The line an edge of a piece lies on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeLine {
+    /// Part of mesh edge `e`.
+    Mesh(u32),
+    /// Part of the intersection with plane `p`; the flag is true when the
+    /// piece lies on the positive side of `p` (then the piece runs along
+    /// `n_p x n_t`, see [`super::geom::LineDir::TriPlane`]).
+    Plane(u32, bool),
+}
+
+/// A convex piece of a triangle, counter-clockwise about the outward normal.
+#[derive(Clone, Debug)]
+pub struct Piece {
+    /// The triangle.
+    pub tri: u32,
+    /// Corners as face triples (merged into cut-vertices later).
+    pub nodes: SmallVec<[Def; 8]>,
+    /// Line of the edge from corner `i` to corner `i + 1`.
+    pub lines: SmallVec<[EdgeLine; 8]>,
+    /// Interval coordinates of the corners (a filter for side tests), or
+    /// `None` when the filter could not bound them.
+    pub boxes: SmallVec<[Option<[Interval; 3]>; 8]>,
+}
+
+/// Interval coordinates of a cut-vertex.
+fn coords(c: &Ctx, d: Def) -> Option<[Interval; 3]> {
+    let (h, w) = c.hom::<Interval>(d);
+    Some([h[0].div(&w)?, h[1].div(&w)?, h[2].div(&w)?])
+}
+
+/// Side of a corner on plane `q`: interval test on its coordinates, then the
+/// full filtered predicate.
+fn corner_side(c: &Ctx, d: Def, b: &Option<[Interval; 3]>, q: u32) -> Sign {
+    if let Def::V(v) = d {
+        return Sign::from_i8(c.pv_sign(q, v));
+    }
+    if let Some(x) = b {
+        let pl = &c.planes[q as usize];
+        let v = Interval::point(pl[3])
+            .add(&Interval::point(pl[0]).mul(&x[0]))
+            .add(&Interval::point(pl[1]).mul(&x[1]))
+            .add(&Interval::point(pl[2]).mul(&x[2]));
+        if v.lo > 0.0 {
+            return Sign::Positive;
+        }
+        if v.hi < 0.0 {
+            return Sign::Negative;
+        }
+    }
+    c.side(d, q)
+}
+
+/// Output of clipping all triangles.
+pub struct Clipped {
+    /// All pieces.
+    pub pieces: Vec<Piece>,
+    /// Interior cut-vertices of triangles with the planes through them
+    /// (including planes containing the triangle), for line point lists.
+    pub interior: Vec<(Def, SmallVec<[u32; 4]>)>,
+}
+
+/// Clips every triangle by the planes crossing it (in parallel; the
+/// result is in triangle order whatever the thread count).
+pub fn clip_all(c: &Ctx) -> Clipped {
+    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> = (0..c.tris.len() as u32)
+        .into_par_iter()
+        .map(|t| clip_tri(c, t))
+        .collect();
+    let mut out = Clipped {
+        pieces: Vec::new(),
+        interior: Vec::new(),
+    };
+    for (p, i) in per {
+        out.pieces.extend(p);
+        out.interior.extend(i);
+    }
+    out
+}
+
+fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
+    let np = c.planes.len() as u32;
+    let mut polys: Vec<Piece> = Vec::new();
+    let mut next: Vec<Piece> = Vec::new();
+    let mut signs: Vec<Sign> = Vec::new();
+    let tri = &c.tris[t as usize];
+    {
+        let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
+        let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
+        for p in 0..np {
+            let s = tri.map(|v| c.pv_sign(p, v));
+            if s.iter().any(|&x| x > 0) && s.iter().any(|&x| x < 0) {
+                crossing.push(p);
+            } else if s.iter().all(|&x| x == 0) {
+                coplanar.push(p);
+            }
+        }
+        let first = Piece {
+            tri: t,
+            nodes: tri.iter().map(|&v| Def::V(v)).collect(),
+            boxes: tri.iter().map(|_| None).collect(),
+            lines: c.tri_edges[t as usize]
+                .iter()
+                .map(|&e| EdgeLine::Mesh(e))
+                .collect(),
+        };
+        polys.clear();
+        polys.push(first);
+        // planes through each interior vertex, local to this triangle
+        let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
+        for &q in &crossing {
+            next.clear();
+            for poly in polys.drain(..) {
+                signs.clear();
+                for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
+                    let d = n;
+                    let s = corner_side(c, d, bx, q);
+                    if s == Sign::Zero {
+                        if let Def::TPP(..) = d {
+                            if let Some(e) = inner.iter_mut().find(|e| e.0 == n) {
+                                if !e.1.contains(&q) {
+                                    e.1.push(q);
+                                }
+                            }
+                        }
+                    }
+                    signs.push(s);
+                }
+                let pos = signs.iter().any(|&s| s == Sign::Positive);
+                let neg = signs.iter().any(|&s| s == Sign::Negative);
+                if !(pos && neg) {
+                    next.push(poly);
+                    continue;
+                }
+                let mut a = Piece {
+                    tri: t,
+                    nodes: SmallVec::new(),
+                    lines: SmallVec::new(),
+                    boxes: SmallVec::new(),
+                };
+                let mut b = Piece {
+                    tri: t,
+                    nodes: SmallVec::new(),
+                    lines: SmallVec::new(),
+                    boxes: SmallVec::new(),
+                };
+                let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
+                let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
+                let n = poly.nodes.len();
+                for i in 0..n {
+                    let j = (i + 1) % n;
+                    let (si, sj) = (signs[i], signs[j]);
+                    let line = poly.lines[i];
+                    let zero = si == Sign::Zero;
+                    if si != Sign::Negative {
+                        a.nodes.push(poly.nodes[i]);
+                        a.boxes.push(poly.boxes[i]);
+                        a.lines.push(line);
+                        a_on.push(zero);
+                    }
+                    if si != Sign::Positive {
+                        b.nodes.push(poly.nodes[i]);
+                        b.boxes.push(poly.boxes[i]);
+                        b.lines.push(line);
+                        b_on.push(zero);
+                    }
+                    if si.as_i8() * sj.as_i8() < 0 {
+                        let x = match line {
+                            EdgeLine::Mesh(e) => Def::EP(e, q),
+                            EdgeLine::Plane(p, _) => {
+                                let k = Def::TPP(t, p.min(q), p.max(q));
+                                let mut z: SmallVec<[u32; 4]> = SmallVec::new();
+                                z.push(p);
+                                z.push(q);
+                                inner.push((k, z));
+                                k
+                            }
+                        };
+                        let bx = coords(c, x);
+                        for (piece, on) in [(&mut a, &mut a_on), (&mut b, &mut b_on)] {
+                            piece.nodes.push(x);
+                            piece.boxes.push(bx);
+                            piece.lines.push(line);
+                            on.push(true);
+                        }
+                    }
+                }
+                // In a convex piece, an edge with both ends on q lies on q.
+                for (piece, on, pos) in [(&mut a, &a_on, true), (&mut b, &b_on, false)] {
+                    let m = piece.nodes.len();
+                    for i in 0..m {
+                        if on[i] && on[(i + 1) % m] {
+                            let in_q = match piece.lines[i] {
+                                EdgeLine::Mesh(e) => {
+                                    let [u, v] = c.edges[e as usize];
+                                    c.pv_sign(q, u) == 0 && c.pv_sign(q, v) == 0
+                                }
+                                EdgeLine::Plane(..) => false,
+                            };
+                            if !in_q {
+                                piece.lines[i] = EdgeLine::Plane(q, pos);
+                            }
+                        }
+                    }
+                }
+                next.push(a);
+                next.push(b);
+            }
+            std::mem::swap(&mut polys, &mut next);
+        }
+        let mut interior = Vec::with_capacity(inner.len());
+        for (k, mut z) in inner {
+            z.extend(coplanar.iter().copied());
+            interior.push((k, z));
+        }
+        (polys, interior)
+    }
+}

@@ -1,0 +1,98 @@
+//! Cut-vertex candidates (face triples) and their merging: two triples that
+//! name the same point are found equal by exact sorting along a line they
+//! share (TopoCut Sec. 3.1, "equivalent" points) and united here.
+
+use super::geom::Def;
+use std::collections::HashMap;
+use std::hash::{BuildHasherDefault, Hasher};
+
+/// A small multiplicative hasher for integer keys (the default SipHash is
+/// needlessly slow for the millions of look-ups of triples).
+#[derive(Default, Clone, Copy)]
+pub struct FxHasher(u64);
+
+impl Hasher for FxHasher {
+    #[inline]
+    fn finish(&self) -> u64 {
+        self.0
+    }
+    #[inline]
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+    #[inline]
+    fn write_u32(&mut self, i: u32) {
+        self.write_u64(i as u64);
+    }
+    #[inline]
+    fn write_u8(&mut self, i: u8) {
+        self.write_u64(i as u64);
+    }
+    #[inline]
+    fn write_usize(&mut self, i: usize) {
+        self.write_u64(i as u64);
+    }
+    #[inline]
+    fn write_u64(&mut self, i: u64) {
+        self.0 = (self.0.rotate_left(5) ^ i).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// Hash map with [`FxHasher`].
+pub type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
+
+/// All candidate triples with a union-find over "same point".
+#[derive(Default)]
+pub struct Nodes {
+    /// Definition of each node.
+    pub defs: Vec<Def>,
+    index: FxMap<Def, u32>,
+    parent: Vec<u32>,
+}
+
+impl Nodes {
+    /// The node of a triple, created on first use.
+    pub fn get(&mut self, d: Def) -> u32 {
+        if let Some(&i) = self.index.get(&d) {
+            return i;
+        }
+        let i = self.defs.len() as u32;
+        self.defs.push(d);
+        self.parent.push(i);
+        self.index.insert(d, i);
+        i
+    }
+
+    /// Representative of a node.
+    pub fn find(&mut self, mut i: u32) -> u32 {
+        while self.parent[i as usize] != i {
+            let g = self.parent[self.parent[i as usize] as usize];
+            self.parent[i as usize] = g;
+            i = g;
+        }
+        i
+    }
+
+    /// Records that two triples are the same point. The smaller definition
+    /// becomes the representative, so the result does not depend on the
+    /// order of merges.
+    pub fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra == rb {
+            return;
+        }
+        let (keep, drop) = if self.defs[ra as usize] <= self.defs[rb as usize] {
+            (ra, rb)
+        } else {
+            (rb, ra)
+        };
+        self.parent[drop as usize] = keep;
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.defs.len()
+    }
+}

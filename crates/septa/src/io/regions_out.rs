@@ -1,0 +1,79 @@
+//! Writers for region surfaces: `network.json` in the schema every Septa
+//! job writes (the viewer reads it) and `surfaces.obj` (a group per
+//! surface, `l` polylines for curves). Files are written atomically.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use serde_json::{json, Value};
+
+use super::cut_out::write_atomic;
+use crate::regions::RegionSurfaces;
+
+/// The JSON summary: counts, surfaces and curves (what `--json` prints).
+pub fn summary(r: &RegionSurfaces) -> Value {
+    let net = &r.network;
+    let mut counts = serde_json::Map::new();
+    for (name, n) in net.counts() {
+        counts.insert(name.to_string(), json!(n));
+    }
+    json!({
+        "mode": "regions",
+        "network": counts,
+        "vertices": r.loops.iter().collect::<std::collections::BTreeSet<_>>().len(),
+        "faces": r.faces.len(),
+        "surfaces": r.surfaces.iter().map(|s| json!({"regions": s.regions, "faces": s.faces, "euler": s.euler,
+            "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
+        "curves": r.curves.iter().map(|c| json!({"regions": c.regions, "closed": c.closed, "length": c.length,
+            "vertices": c.vertices.len()})).collect::<Vec<_>>(),
+        "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+    })
+}
+
+/// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
+pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let net = &r.network;
+    let polys: Vec<&[u32]> =
+        (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
+    let mut corners: Vec<u32> =
+        r.curves.iter().filter(|c| !c.closed).flat_map(|c| [c.vertices[0], *c.vertices.last().unwrap()]).collect();
+    corners.sort_unstable();
+    corners.dedup();
+    let regions: std::collections::BTreeSet<_> = r.cell_region.iter().copied().collect();
+    let doc = json!({
+        "mode": "regions",
+        "points": net.points,
+        "faces": polys,
+        "face_patch": r.face_surface,
+        "face_cells": r.faces.iter().map(|&f| net.face_cells[f as usize].map(|c| if c == u32::MAX { -1 } else { c as i64 })).collect::<Vec<_>>(),
+        "patches": r.surfaces.iter().map(|s| json!({"label": s.regions, "faces": s.faces, "euler": s.euler, "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
+        "chains": r.curves.iter().map(|c| &c.vertices).collect::<Vec<_>>(),
+        "chain_regions": r.curves.iter().map(|c| c.regions).collect::<Vec<_>>(),
+        "corners": corners,
+        "shells": Vec::<Vec<u32>>::new(),
+        "cells": regions.iter().map(|g| json!({"shells": [], "label": [g]})).collect::<Vec<_>>(),
+        "counts": summary(r),
+        "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+    });
+    write_atomic(&dir.join("network.json"), doc.to_string().as_bytes())?;
+    let mut obj = String::from("# Septa region surfaces: a group per surface, curves as polylines\n");
+    for p in &net.points {
+        writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();
+    }
+    for (s, surf) in r.surfaces.iter().enumerate() {
+        writeln!(obj, "g surface_{s}_regions_{}_{}", surf.regions[0], surf.regions[1]).unwrap();
+        for (i, poly) in polys.iter().enumerate() {
+            if r.face_surface[i] as usize == s {
+                let ids: Vec<String> = poly.iter().map(|v| (v + 1).to_string()).collect();
+                writeln!(obj, "f {}", ids.join(" ")).unwrap();
+            }
+        }
+    }
+    for (i, c) in r.curves.iter().enumerate() {
+        writeln!(obj, "g curve_{i}_regions_{}_{}_{}", c.regions[0], c.regions[1], c.regions[2]).unwrap();
+        let ids: Vec<String> = c.vertices.iter().map(|v| (v + 1).to_string()).collect();
+        writeln!(obj, "l {}", ids.join(" ")).unwrap();
+    }
+    write_atomic(&dir.join("surfaces.obj"), obj.as_bytes())
+}

@@ -1,0 +1,111 @@
+//! Curves of interest: network edges around which the three regions of a
+//! triple of interest meet, joined into polylines.
+
+use rustc_hash::FxHashMap;
+
+use crate::network::Network;
+use crate::scene::{Interest, RegionId};
+
+/// A curve where three regions of interest meet.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    /// The region triple, ascending.
+    pub regions: [RegionId; 3],
+    /// Network vertices in order (a closed curve repeats its first vertex).
+    pub vertices: Vec<u32>,
+    /// Whether the curve is a loop.
+    pub closed: bool,
+    /// Length of the polyline (floating point).
+    pub length: f64,
+}
+
+pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -> Vec<Curve> {
+    if interest.curves.is_empty() {
+        return Vec::new();
+    }
+    // Regions around each network edge, from the cells of its polygons.
+    let mut around: FxHashMap<(u32, u32), Vec<RegionId>> = FxHashMap::default();
+    for f in 0..net.num_faces() {
+        let p = net.face(f);
+        for k in 0..p.len() {
+            let (a, b) = (p[k], p[(k + 1) % p.len()]);
+            let e = around.entry((a.min(b), a.max(b))).or_default();
+            for c in net.face_cells[f] {
+                if c != u32::MAX && !e.contains(&region[c as usize]) {
+                    e.push(region[c as usize]);
+                }
+            }
+        }
+    }
+    let mut curve_edges: FxHashMap<[RegionId; 3], Vec<(u32, u32)>> = FxHashMap::default();
+    let mut keys: Vec<(u32, u32)> = around.keys().copied().collect();
+    keys.sort_unstable();
+    for e in keys {
+        if let Some(t) = interest.curve(&around[&e]) {
+            curve_edges.entry(t).or_default().push(e);
+        }
+    }
+    let mut triples: Vec<[RegionId; 3]> = curve_edges.keys().copied().collect();
+    triples.sort();
+    let mut out = Vec::new();
+    for t in triples {
+        for (vertices, closed) in polylines(&curve_edges[&t]) {
+            let length = vertices
+                .windows(2)
+                .map(|w| {
+                    let (p, q) = (net.points[w[0] as usize], net.points[w[1] as usize]);
+                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+                })
+                .sum();
+            out.push(Curve { regions: t, vertices, closed, length });
+        }
+    }
+    out
+}
+
+/// Splits an edge set into maximal paths between vertices of degree != 2,
+/// and loops; deterministic for a sorted input.
+fn polylines(edges: &[(u32, u32)]) -> Vec<(Vec<u32>, bool)> {
+    let mut adj: FxHashMap<u32, Vec<(u32, usize)>> = FxHashMap::default();
+    for (i, &(a, b)) in edges.iter().enumerate() {
+        adj.entry(a).or_default().push((b, i));
+        adj.entry(b).or_default().push((a, i));
+    }
+    let mut used = vec![false; edges.len()];
+    let mut out = Vec::new();
+    let walk = |start: u32, first: usize, used: &mut Vec<bool>| {
+        let mut path = vec![start];
+        let (mut cur, mut e) = (start, first);
+        loop {
+            used[e] = true;
+            let (a, b) = edges[e];
+            let next = if a == cur { b } else { a };
+            path.push(next);
+            cur = next;
+            if adj[&cur].len() != 2 {
+                break;
+            }
+            match adj[&cur].iter().find(|&&(_, j)| !used[j]) {
+                Some(&(_, j)) => e = j,
+                None => break,
+            }
+        }
+        let closed = path.len() > 2 && path[0] == *path.last().unwrap();
+        (path, closed)
+    };
+    let mut ends: Vec<u32> = adj.iter().filter(|(_, n)| n.len() != 2).map(|(&v, _)| v).collect();
+    ends.sort_unstable();
+    for v in ends {
+        for &(_, e) in adj[&v].clone().iter() {
+            if !used[e] {
+                out.push(walk(v, e, &mut used));
+            }
+        }
+    }
+    for e in 0..edges.len() {
+        if !used[e] {
+            out.push(walk(edges[e].0, e, &mut used));
+        }
+    }
+    out
+}

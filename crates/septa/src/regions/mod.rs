@@ -1,0 +1,215 @@
+//! Non-manifold implicit shapes (Bloomenthal 1995, chapter 4): only the
+//! surfaces and curves of interest of a region rule, computed exactly on
+//! top of the implicit arrangement or material interface.
+//!
+//! A [`RegionRule`] maps every cell of the network to a region. Polygons
+//! between cells of one region are dropped; those between a region pair of
+//! interest are kept, oriented counter-clockwise seen from the lesser
+//! region (Bloomenthal 4.5.2.4), and grouped into **surfaces**: connected
+//! pieces with one region pair. **Curves** are the network edges around
+//! which the three regions of a triple of interest meet, joined into
+//! polylines.
+//!
+//! Unlike Bloomenthal's sampled polygonizer there is no limit of one
+//! vertex per face or tet and no truncated loop: the combinatorics are
+//! those of the exact network; only coordinates and normals are floating
+//! point.
+//!
+//! ```
+//! use septa::regions::region_surfaces;
+//! use septa::scene::Scene;
+//! let scene = Scene::load("builtin:sphere-with-hole").unwrap();
+//! let shape = region_surfaces(&scene, &Default::default()).unwrap();
+//! // One disk: Euler characteristic 1 and one boundary loop.
+//! assert_eq!(shape.surfaces.len(), 1);
+//! assert_eq!((shape.surfaces[0].euler, shape.surfaces[0].boundary_loops), (1, 1));
+//! ```
+
+mod curves;
+mod labels;
+mod surfaces;
+
+use std::time::Instant;
+
+use crate::complex::Mode;
+use crate::grid::{BoxGrid, Grid, Split};
+use crate::network::{compute, Network, NetworkError, NetworkOptions};
+use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
+
+pub use curves::Curve;
+pub use labels::label_surfaces;
+pub use surfaces::Surface;
+
+/// Options of [`region_surfaces`].
+#[derive(Clone, Debug, Default)]
+pub struct RegionOptions {
+    /// Compute per-vertex normals (one vertex copy per region pair) from
+    /// the analytic gradients. Default value: `false`.
+    pub normals: bool,
+}
+
+/// The surfaces and curves of interest of a region rule.
+#[derive(Clone, Debug)]
+pub struct RegionSurfaces {
+    /// The underlying exact network (all polygons, cells, labels).
+    pub network: Network,
+    /// Region of every network cell.
+    pub cell_region: Vec<RegionId>,
+    /// Kept polygons as network polygon ids.
+    pub faces: Vec<u32>,
+    /// Kept polygons' vertex loops, counter-clockwise seen from the lesser
+    /// region of their pair; polygon `i` is `loops[loop_start[i]..loop_start[i+1]]`.
+    pub loop_start: Vec<u32>,
+    /// See `loop_start`.
+    pub loops: Vec<u32>,
+    /// Surface of each kept polygon.
+    pub face_surface: Vec<u32>,
+    /// Surfaces of interest.
+    pub surfaces: Vec<Surface>,
+    /// Curves of interest.
+    pub curves: Vec<Curve>,
+    /// With normals: one vertex copy per (vertex, region pair): its network
+    /// vertex, region pair and unit normal pointing into the lesser region.
+    pub normals: Vec<(u32, [RegionId; 2], [f64; 3])>,
+    /// Seconds per stage.
+    pub seconds: Vec<(&'static str, f64)>,
+}
+
+impl RegionSurfaces {
+    /// Volume enclosed by the kept polygons around region `r` (divergence
+    /// theorem over the oriented polygons; floating point). Meaningful when
+    /// the region's whole boundary is of interest and inside the grid.
+    pub fn enclosed_volume(&self, r: RegionId) -> f64 {
+        let net = &self.network;
+        let mut vol = 0.0;
+        for (i, &f) in self.faces.iter().enumerate() {
+            let [cp, cn] = net.face_cells[f as usize];
+            let (a, b) = (self.cell_region[cp as usize], self.cell_region[cn as usize]);
+            // Normals point into the lesser region: outward for the greater.
+            let sign = if r == a.max(b) {
+                1.0
+            } else if r == a.min(b) {
+                -1.0
+            } else {
+                continue;
+            };
+            let p = &self.loops[self.loop_start[i] as usize..self.loop_start[i + 1] as usize];
+            let q = |v: u32| net.points[v as usize];
+            for k in 1..p.len() - 1 {
+                let (x, y, z) = (q(p[0]), q(p[k]), q(p[k + 1]));
+                let cross = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]];
+                vol += sign * (x[0] * cross[0] + x[1] * cross[1] + x[2] * cross[2]) / 6.0;
+            }
+        }
+        vol
+    }
+}
+
+/// Why region surfaces could not be computed.
+#[derive(Debug, thiserror::Error)]
+pub enum RegionError {
+    /// The grid of the scene is invalid.
+    #[error("grid: {0}")]
+    Grid(String),
+    /// The network failed.
+    #[error(transparent)]
+    Network(#[from] NetworkError),
+}
+
+/// Samples the scene's functions on its grid, computes the exact network
+/// and extracts the surfaces and curves of interest.
+pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionSurfaces, RegionError> {
+    let t0 = Instant::now();
+    let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
+    let grid = Grid::Box(BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split).map_err(RegionError::Grid)?);
+    let points = grid.vertices();
+    let values = sample_grid(&scene.functions, &points);
+    let mode = match scene.mode {
+        crate::scene::Mode::Ia => Mode::Ia,
+        crate::scene::Mode::Mi => Mode::Mi,
+    };
+    let t1 = Instant::now();
+    let net = compute(&grid, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
+    let mut out = from_network(net, &scene.regions, &scene.interest);
+    if options.normals {
+        out.normals = normals(&out, &scene.functions);
+    }
+    out.seconds.insert(0, ("sample", (t1 - t0).as_secs_f64()));
+    Ok(out)
+}
+
+/// Region of a network cell.
+fn cell_region(net: &Network, rule: &RegionRule, c: usize) -> RegionId {
+    let label = &net.cells[c].label;
+    match net.mode {
+        Mode::Ia => {
+            let bit = |f: usize| label.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1);
+            let positive: Vec<bool> = (0..net.functions).map(bit).collect();
+            rule.region_ia(&positive)
+        }
+        Mode::Mi => rule.region_mi(label.first().copied().unwrap_or(0) as usize),
+    }
+}
+
+/// The surfaces and curves of interest of an existing network.
+pub fn from_network(network: Network, rule: &RegionRule, interest: &Interest) -> RegionSurfaces {
+    let t0 = Instant::now();
+    let cell_region: Vec<RegionId> = (0..network.cells.len()).map(|c| cell_region(&network, rule, c)).collect();
+    let s = surfaces::extract(&network, &cell_region, interest);
+    let curves = curves::extract(&network, &cell_region, interest);
+    let t1 = Instant::now();
+    let mut seconds = network.seconds.clone();
+    seconds.push(("regions", (t1 - t0).as_secs_f64()));
+    RegionSurfaces {
+        network,
+        cell_region,
+        faces: s.faces,
+        loop_start: s.loop_start,
+        loops: s.loops,
+        face_surface: s.face_surface,
+        surfaces: s.surfaces,
+        curves,
+        normals: Vec::new(),
+        seconds,
+    }
+}
+
+/// Per (vertex, region pair) normals from the gradient of the function (IA)
+/// or function difference (MI) each kept polygon lies on, summed over the
+/// polygons of that pair at the vertex (Bloomenthal 4.5.3.2).
+fn normals(r: &RegionSurfaces, functions: &[Primitive]) -> Vec<(u32, [RegionId; 2], [f64; 3])> {
+    use std::collections::BTreeMap;
+    let net = &r.network;
+    let mut acc: BTreeMap<(u32, [RegionId; 2]), [f64; 3]> = BTreeMap::new();
+    for (i, &f) in r.faces.iter().enumerate() {
+        let f = f as usize;
+        let [cp, cn] = net.face_cells[f];
+        let (rp, rn) = (r.cell_region[cp as usize], r.cell_region[cn as usize]);
+        let pair = [rp.min(rn), rp.max(rn)];
+        let [a, b] = net.face_label[f];
+        for &v in &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize] {
+            let p = net.points[v as usize];
+            // Gradient of the plane's function, pointing to its positive side.
+            let ga = functions[a as usize].gradient(p);
+            let g = match net.mode {
+                Mode::Ia => ga,
+                Mode::Mi => {
+                    let gb = functions[b as usize].gradient(p);
+                    [ga[0] - gb[0], ga[1] - gb[1], ga[2] - gb[2]]
+                }
+            };
+            // The lesser region must be in front of the normal.
+            let s = if rp < rn { 1.0 } else { -1.0 };
+            let e = acc.entry((v, pair)).or_insert([0.0; 3]);
+            for k in 0..3 {
+                e[k] += s * g[k];
+            }
+        }
+    }
+    acc.into_iter()
+        .map(|((v, pair), n)| {
+            let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            (v, pair, if l > 0.0 { n.map(|x| x / l) } else { n })
+        })
+        .collect()
+}

@@ -1,0 +1,134 @@
+//! A bicubic tensor-product (Bezier) patch as a height field, for
+//! Bloomenthal's "blend to a patch" (4.8.4). The patch is
+//! `P(s, t) = (x0 + s sx, y0 + t sy, h(s, t))`, `h = sum H_ij B_i(s) B_j(t)`
+//! with cubic Bernstein `B`. Its function is the first-order signed distance
+//! `(z - h) / sqrt(1 + h_x^2 + h_y^2)`: zero exactly on the patch, positive
+//! above, with unit gradient on the patch. (Bloomenthal projects onto the
+//! patch by Newton steps; only the zero set and the sign matter for the
+//! arrangement, and this form has a closed-form gradient and interval bound.)
+//! Outside the parameter square the polynomial is simply continued; the
+//! scene's region rule decides where the patch ends (Bloomenthal's `Beyond`).
+
+use super::interval::Interval;
+use super::vec3::V3;
+
+/// Bicubic height-field patch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BicubicPatch {
+    /// Corner `(x0, y0)` of the parameter square in x, y.
+    pub origin: [f64; 2],
+    /// Side lengths `(sx, sy)` (positive).
+    pub size: [f64; 2],
+    /// Control heights `H[i][j]`, `i` along x, `j` along y.
+    pub heights: [[f64; 4]; 4],
+}
+
+fn bern(s: f64) -> [f64; 4] {
+    let r = 1.0 - s;
+    [r * r * r, 3.0 * s * r * r, 3.0 * s * s * r, s * s * s]
+}
+
+fn bern_d1(s: f64) -> [f64; 4] {
+    let r = 1.0 - s;
+    [-3.0 * r * r, 3.0 * r * r - 6.0 * s * r, 6.0 * s * r - 3.0 * s * s, 3.0 * s * s]
+}
+
+fn bern_d2(s: f64) -> [f64; 4] {
+    let r = 1.0 - s;
+    [6.0 * r, 6.0 * s - 12.0 * r, 6.0 * r - 12.0 * s, 6.0 * s]
+}
+
+fn bern_iv(s: Interval) -> [Interval; 4] {
+    let one = Interval::point(1.0);
+    let r = one.sub(s);
+    let r2 = r.sqr();
+    let s2 = s.sqr();
+    [r2.mul(r), s.mul(r2).scale(3.0), s2.mul(r).scale(3.0), s2.mul(s)]
+}
+
+fn bern_d1_iv(s: Interval) -> [Interval; 4] {
+    let r = Interval::point(1.0).sub(s);
+    let sr = s.mul(r);
+    [
+        r.sqr().scale(-3.0),
+        r.sqr().scale(3.0).sub(sr.scale(6.0)),
+        sr.scale(6.0).sub(s.sqr().scale(3.0)),
+        s.sqr().scale(3.0),
+    ]
+}
+
+impl BicubicPatch {
+    fn st(&self, p: V3) -> (f64, f64) {
+        ((p[0] - self.origin[0]) / self.size[0], (p[1] - self.origin[1]) / self.size[1])
+    }
+
+    #[allow(clippy::needless_range_loop)]
+    fn combine(&self, a: [f64; 4], b: [f64; 4]) -> f64 {
+        let mut v = 0.0;
+        for i in 0..4 {
+            for j in 0..4 {
+                v += self.heights[i][j] * a[i] * b[j];
+            }
+        }
+        v
+    }
+
+    /// Height `h` and its x, y derivatives at `p`.
+    fn height(&self, p: V3) -> (f64, f64, f64) {
+        let (s, t) = self.st(p);
+        let (bs, bt) = (bern(s), bern(t));
+        let h = self.combine(bs, bt);
+        let hx = self.combine(bern_d1(s), bt) / self.size[0];
+        let hy = self.combine(bs, bern_d1(t)) / self.size[1];
+        (h, hx, hy)
+    }
+
+    /// The surface point at parameters `(s, t)`.
+    pub fn point(&self, s: f64, t: f64) -> V3 {
+        [self.origin[0] + s * self.size[0], self.origin[1] + t * self.size[1], self.combine(bern(s), bern(t))]
+    }
+
+    pub(crate) fn eval(&self, p: V3) -> f64 {
+        let (h, hx, hy) = self.height(p);
+        (p[2] - h) / (1.0 + hx * hx + hy * hy).sqrt()
+    }
+
+    pub(crate) fn gradient(&self, p: V3) -> V3 {
+        let (s, t) = self.st(p);
+        let (bs, bt) = (bern(s), bern(t));
+        let (ds, dt) = (bern_d1(s), bern_d1(t));
+        let (sx, sy) = (self.size[0], self.size[1]);
+        let h = self.combine(bs, bt);
+        let hx = self.combine(ds, bt) / sx;
+        let hy = self.combine(bs, dt) / sy;
+        let hxx = self.combine(bern_d2(s), bt) / (sx * sx);
+        let hyy = self.combine(bs, bern_d2(t)) / (sy * sy);
+        let hxy = self.combine(ds, dt) / (sx * sy);
+        let w = (1.0 + hx * hx + hy * hy).sqrt();
+        let e = p[2] - h;
+        // d = e / w; d_x = -h_x / w - e (h_x h_xx + h_y h_xy) / w^3.
+        let w3 = w * w * w;
+        [-hx / w - e * (hx * hxx + hy * hxy) / w3, -hy / w - e * (hx * hxy + hy * hyy) / w3, 1.0 / w]
+    }
+
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
+        let s = Interval::new(lo[0], hi[0]).sub(Interval::point(self.origin[0])).div(Interval::point(self.size[0]));
+        let t = Interval::new(lo[1], hi[1]).sub(Interval::point(self.origin[1])).div(Interval::point(self.size[1]));
+        let comb = |a: [Interval; 4], b: [Interval; 4]| {
+            let mut v = Interval::point(0.0);
+            for i in 0..4 {
+                for j in 0..4 {
+                    v = v.add(a[i].mul(b[j]).scale(self.heights[i][j]));
+                }
+            }
+            v
+        };
+        let (bs, bt) = (bern_iv(s), bern_iv(t));
+        let h = comb(bs, bt);
+        let hx = comb(bern_d1_iv(s), bt).div(Interval::point(self.size[0]));
+        let hy = comb(bs, bern_d1_iv(t)).div(Interval::point(self.size[1]));
+        let w = Interval::point(1.0).add(hx.sqr()).add(hy.sqr()).sqrt();
+        Interval::new(lo[2], hi[2]).sub(h).div(w)
+    }
+}

@@ -1,0 +1,258 @@
+//! The [`Primitive`] enum: every function a scene can sample, with its
+//! value, analytic gradient and a guaranteed bound over a box.
+
+use std::sync::Arc;
+
+use super::composite::{self, Mat3, Transform, Wyvill};
+use super::interval::Interval;
+use super::mesh::TriMesh;
+use super::patch::BicubicPatch;
+use super::shapes::*;
+use super::vec3::{mag, normalize, V3};
+
+/// A real function of a point in space.
+///
+/// Sign convention (the reference implementation's): **positive inside**.
+/// Distance-like primitives without an inside (`line`, `segment`, `circle`,
+/// `points`) are negated distances.
+///
+/// ```
+/// use septa::scene::Primitive;
+/// let s = Primitive::sphere([0.0, 0.0, 0.0], 1.0);
+/// assert_eq!(s.eval([0.5, 0.0, 0.0]), 0.5);
+/// assert_eq!(s.gradient([0.5, 0.0, 0.0]), [-1.0, 0.0, 0.0]);
+/// let (lo, hi) = s.bounds([2.0, 2.0, 2.0], [3.0, 3.0, 3.0]);
+/// assert!(hi < 0.0 && lo <= 1.0 - 27f64.sqrt());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub enum Primitive {
+    /// A constant (reference `zero` is 0).
+    Constant(f64),
+    /// Signed distance to a plane, growing along the normal.
+    Plane(Plane),
+    /// Half-space behind an outward normal: positive inside
+    /// (the negated plane).
+    HalfSpace(Plane),
+    /// Sphere.
+    Sphere(Sphere),
+    /// Ellipsoid.
+    Ellipsoid(Ellipsoid),
+    /// Axis-aligned box, exact signed distance.
+    Box(BoxShape),
+    /// Infinite cylinder, or a line with radius 0.
+    Cylinder(Cylinder),
+    /// Capped cylinder, exact signed distance.
+    CappedCylinder(CappedCylinder),
+    /// Cone.
+    Cone(Cone),
+    /// Torus, or a circle with minor radius 0.
+    Torus(Torus),
+    /// Capsule, or a segment with radius 0.
+    Capsule(Capsule),
+    /// Weighted point set (Voronoi / Apollonius sites).
+    Points(PointSet),
+    /// Signed distance to a closed triangle mesh.
+    Mesh(Arc<TriMesh>),
+    /// Bicubic height-field patch.
+    Patch(Box<BicubicPatch>),
+    /// Wyvill blend bump.
+    Wyvill(Wyvill),
+    /// Affine transform of another primitive.
+    Transform(Box<Transform>),
+    /// Sum of primitives.
+    Sum(Vec<Primitive>),
+    /// Constant multiple.
+    Scale(f64, Box<Primitive>),
+    /// Absolute value.
+    Abs(Box<Primitive>),
+    /// Pointwise minimum (non-empty).
+    Min(Vec<Primitive>),
+    /// Pointwise maximum (non-empty).
+    Max(Vec<Primitive>),
+}
+
+/// Relative padding of every bound: covers the rounding of `eval` (a few
+/// ulps of the magnitudes involved) with a wide margin.
+const PAD_REL: f64 = 256.0 * f64::EPSILON;
+
+impl Primitive {
+    /// Sphere `r - |p - c|`.
+    pub fn sphere(center: V3, radius: f64) -> Primitive {
+        Primitive::Sphere(Sphere { center, radius, kind: SphereKind::Signed })
+    }
+    /// Plane `n . (p - point)` (normal normalized here).
+    pub fn plane(point: V3, normal: V3) -> Primitive {
+        Primitive::Plane(Plane { point, normal: normalize(normal) })
+    }
+    /// Half-space `-n . (p - point)`, positive on the side opposite the
+    /// outward normal.
+    pub fn half_space(point: V3, outward: V3) -> Primitive {
+        Primitive::HalfSpace(Plane { point, normal: normalize(outward) })
+    }
+    /// Axis-aligned box from centre and half sizes.
+    pub fn cuboid(center: V3, half: V3) -> Primitive {
+        Primitive::Box(BoxShape { center, half })
+    }
+    /// Infinite cylinder `r - dist(p, axis)`.
+    pub fn cylinder(point: V3, axis: V3, radius: f64) -> Primitive {
+        Primitive::Cylinder(Cylinder { point, axis: normalize(axis), radius, squared: false })
+    }
+    /// Capped cylinder between `a` and `b`.
+    pub fn capped_cylinder(a: V3, b: V3, radius: f64) -> Primitive {
+        Primitive::CappedCylinder(CappedCylinder { a, b, radius })
+    }
+    /// Negated distance to a line.
+    pub fn line(point: V3, direction: V3) -> Primitive {
+        Primitive::cylinder(point, direction, 0.0)
+    }
+    /// Torus.
+    pub fn torus(center: V3, axis: V3, major: f64, minor: f64) -> Primitive {
+        Primitive::Torus(Torus { center, axis: normalize(axis), major, minor })
+    }
+    /// Affine transform `p -> A p + t` of `inner`; `None` if `A` is singular.
+    pub fn transform(linear: Mat3, translation: V3, inner: Primitive) -> Option<Primitive> {
+        Transform::new(linear, translation, inner).map(|t| Primitive::Transform(Box::new(t)))
+    }
+
+    /// Value at `p`.
+    pub fn eval(&self, p: V3) -> f64 {
+        use Primitive::*;
+        match self {
+            Constant(v) => *v,
+            Plane(s) => s.eval(p),
+            HalfSpace(s) => -s.eval(p),
+            Sphere(s) => s.eval(p),
+            Ellipsoid(s) => s.eval(p),
+            Box(s) => s.eval(p),
+            Cylinder(s) => s.eval(p),
+            CappedCylinder(s) => s.eval(p),
+            Cone(s) => s.eval(p),
+            Torus(s) => s.eval(p),
+            Capsule(s) => s.eval(p),
+            Points(s) => s.eval(p),
+            Mesh(s) => s.eval(p),
+            Patch(s) => s.eval(p),
+            Wyvill(s) => s.eval(p),
+            Transform(s) => s.eval(p),
+            Sum(t) => composite::sum_eval(t, p),
+            Scale(k, t) => k * t.eval(p),
+            Abs(t) => t.eval(p).abs(),
+            Min(t) => composite::extreme(t, p, false).0,
+            Max(t) => composite::extreme(t, p, true).0,
+        }
+    }
+
+    /// Analytic gradient at `p` (a one-sided or zero gradient where the
+    /// function has a kink, e.g. at a sphere's centre).
+    pub fn gradient(&self, p: V3) -> V3 {
+        use Primitive::*;
+        match self {
+            Constant(_) => [0.0; 3],
+            Plane(s) => s.gradient(p),
+            HalfSpace(s) => s.gradient(p).map(|x| -x),
+            Sphere(s) => s.gradient(p),
+            Ellipsoid(s) => s.gradient(p),
+            Box(s) => s.gradient(p),
+            Cylinder(s) => s.gradient(p),
+            CappedCylinder(s) => s.gradient(p),
+            Cone(s) => s.gradient(p),
+            Torus(s) => s.gradient(p),
+            Capsule(s) => s.gradient(p),
+            Points(s) => s.gradient(p),
+            Mesh(s) => s.gradient(p),
+            Patch(s) => s.gradient(p),
+            Wyvill(s) => s.gradient(p),
+            Transform(s) => s.gradient(p),
+            Sum(t) => composite::sum_gradient(t, p),
+            Scale(k, t) => t.gradient(p).map(|x| k * x),
+            Abs(t) => {
+                let k = if t.eval(p) < 0.0 { -1.0 } else { 1.0 };
+                t.gradient(p).map(|x| k * x)
+            }
+            Min(t) => t[composite::extreme(t, p, false).1].gradient(p),
+            Max(t) => t[composite::extreme(t, p, true).1].gradient(p),
+        }
+    }
+
+    /// A guaranteed enclosure `(lo, hi)` of the values [`Primitive::eval`]
+    /// returns at any point of the box `[min, max]` (corners included),
+    /// float rounding included: interval arithmetic with outward rounding,
+    /// or a Lipschitz bound around the box centre, then padded by
+    /// `256 eps` times the magnitudes involved. Used to skip empty blocks
+    /// (issue 6). May be infinite, never NaN.
+    pub fn bounds(&self, min: V3, max: V3) -> (f64, f64) {
+        let i = self.bounds_interval(min, max);
+        (i.lo, i.hi)
+    }
+
+    pub(crate) fn bounds_interval(&self, lo: V3, hi: V3) -> Interval {
+        use Primitive::*;
+        let raw = match self {
+            Constant(v) => Interval::point(*v),
+            Plane(s) => s.bounds(lo, hi),
+            HalfSpace(s) => s.bounds(lo, hi).neg(),
+            Sphere(s) => s.bounds(lo, hi),
+            Ellipsoid(s) => s.bounds(lo, hi),
+            Box(s) => s.bounds(lo, hi),
+            Cylinder(s) => s.bounds(lo, hi),
+            CappedCylinder(s) => s.bounds(lo, hi),
+            Cone(s) => s.bounds(lo, hi),
+            Torus(s) => s.bounds(lo, hi),
+            Capsule(s) => s.bounds(lo, hi),
+            Points(s) => s.bounds(lo, hi),
+            Mesh(s) => s.bounds(lo, hi),
+            Patch(s) => s.bounds(lo, hi),
+            Wyvill(s) => s.bounds(lo, hi),
+            Transform(s) => s.bounds(lo, hi),
+            Sum(t) => composite::sum_bounds(t, lo, hi),
+            Scale(k, t) => t.bounds_interval(lo, hi).scale(*k),
+            Abs(t) => t.bounds_interval(lo, hi).abs(),
+            Min(t) => composite::extreme_bounds(t, lo, hi, false),
+            Max(t) => composite::extreme_bounds(t, lo, hi, true),
+        };
+        if matches!(self, Constant(_)) {
+            return raw;
+        }
+        raw.pad(self.eval_error(lo, hi, raw))
+    }
+
+    /// Bound on the rounding error of [`Primitive::eval`] anywhere in the
+    /// box, given an enclosure `range` of its values there: `256 eps` times
+    /// the magnitudes involved (meshes: `1e-10` times).
+    pub(crate) fn eval_error(&self, lo: V3, hi: V3, range: Interval) -> f64 {
+        if matches!(self, Primitive::Constant(_)) {
+            return 0.0;
+        }
+        let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + range.mag().min(1e300);
+        let rel = if matches!(self, Primitive::Mesh(_)) { 1e-10 } else { PAD_REL };
+        rel * m
+    }
+
+    /// Largest absolute parameter (positions, radii), for the rounding pad.
+    pub(crate) fn magnitude(&self) -> f64 {
+        use Primitive::*;
+        match self {
+            Constant(v) => v.abs(),
+            Plane(s) | HalfSpace(s) => mag(s.point),
+            Sphere(s) => mag(s.center) + s.radius.abs().powi(2).max(s.radius.abs()),
+            Ellipsoid(s) => mag(s.center) + mag(s.radii),
+            Box(s) => mag(s.center) + mag(s.half),
+            Cylinder(s) => mag(s.point) + s.radius.abs().powi(2).max(s.radius.abs()),
+            CappedCylinder(s) => mag(s.a).max(mag(s.b)) + s.radius.abs(),
+            Cone(s) => mag(s.apex),
+            Torus(s) => mag(s.center) + s.major.abs() + s.minor.abs(),
+            Capsule(s) => mag(s.a).max(mag(s.b)) + s.radius.abs(),
+            Points(s) => s.points.iter().zip(&s.weights).map(|(p, w)| mag(*p) + w.abs()).fold(0.0, f64::max),
+            Mesh(m) => m.magnitude(),
+            Patch(p) => {
+                let h = p.heights.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
+                h + p.origin[0].abs().max(p.origin[1].abs()) + p.size[0].max(p.size[1])
+            }
+            Wyvill(w) => mag(w.center) + w.height.abs(),
+            Transform(t) => mag(t.translation) + t.inner.magnitude(),
+            Sum(t) | Min(t) | Max(t) => t.iter().map(|x| x.magnitude()).fold(0.0, f64::max),
+            Scale(k, t) => k.abs() * (1.0 + t.magnitude()),
+            Abs(t) => t.magnitude(),
+        }
+    }
+}

@@ -1,0 +1,438 @@
+//! Scene files: a grid, named functions, a mode, region rules and the
+//! surfaces and curves of interest (issue 7).
+//!
+//! ```json
+//! {"grid": {"resolution": 33, "bounds": [[-1,-1,-1],[1,1,1]], "split": 5},
+//!  "mode": "ia",
+//!  "functions": [{"name": "big", "type": "sphere", "center": [0,0,0], "radius": 0.6},
+//!                {"name": "hole", "type": "sphere", "center": [0,0,0.6], "radius": 0.3}],
+//!  "regions": [{"when": "hole", "region": 1}, {"when": "big", "region": 2}, {"region": 0}],
+//!  "surfaces": [[0, 2]], "curves": [[0, 1, 2]]}
+//! ```
+//!
+//! `regions` may instead be `{"rules": [...], "otherwise": R}`, or replaced
+//! by `"solid": "EXPR"` (CSG: region 1 inside, 0 outside). Conditions are
+//! [`Expr`] text (`"a & !b"`, `"box - hole"`) or trees (`{"union": [..]}`,
+//! `{"intersection": [..]}`, `{"difference": [a, b]}`, `{"complement": e}`).
+//! A function without `name` is named by its index. `functions` may also be
+//! the path of a reference implementation function file.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+use serde_json::Value;
+
+use super::error::{err, locate, JsonPath, Located, SceneError};
+use super::primitive::Primitive;
+use super::regions::{Expr, Interest, RegionId, RegionRule, Rule};
+use super::spec::{array, num, primitive, vec3, Ctx, Obj};
+use super::vec3::V3;
+
+/// Arrangement (IA) or material interface (MI).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Mode {
+    /// Implicit arrangement: cells labelled by sign vectors.
+    Ia,
+    /// Material interface: cells labelled by the largest function.
+    Mi,
+}
+
+/// A box grid split into tetrahedra.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GridSpec {
+    /// Number of cubes along x, y, z (each >= 1).
+    pub resolution: [usize; 3],
+    /// Min and max corners.
+    pub bounds: [V3; 2],
+    /// Tets per cube: 5 (alternating, as the reference) or 6.
+    pub split: u8,
+}
+
+impl GridSpec {
+    /// `n^3` cubes over `[lo, hi]`, 5 tets per cube.
+    pub fn cube(n: usize, lo: f64, hi: f64) -> GridSpec {
+        GridSpec { resolution: [n; 3], bounds: [[lo; 3], [hi; 3]], split: 5 }
+    }
+
+    /// Position of grid vertex `(i, j, k)`: `lo + (hi - lo) * i / n` per
+    /// axis, the reference data's formula (bit-identical vertices).
+    pub fn vertex(&self, ijk: [usize; 3]) -> V3 {
+        let [lo, hi] = self.bounds;
+        [0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * ijk[a] as f64 / self.resolution[a] as f64)
+    }
+
+    /// All vertices, vertex `(i, j, k)` at index
+    /// `(i * (ny + 1) + j) * (nz + 1) + k` (the reference's order).
+    pub fn vertices(&self) -> Vec<V3> {
+        let [nx, ny, nz] = self.resolution;
+        let mut v = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
+        for i in 0..=nx {
+            for j in 0..=ny {
+                for k in 0..=nz {
+                    v.push(self.vertex([i, j, k]));
+                }
+            }
+        }
+        v
+    }
+}
+
+/// A scene: what to partition and which walls to return.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The grid.
+    pub grid: GridSpec,
+    /// IA or MI.
+    pub mode: Mode,
+    /// Function names (unnamed functions are named by their index).
+    pub names: Vec<String>,
+    /// The functions, in order.
+    pub functions: Vec<Primitive>,
+    /// Cell label -> region.
+    pub regions: RegionRule,
+    /// Region pairs and triples of interest.
+    pub interest: Interest,
+}
+
+impl Scene {
+    /// Index of the function called `name` (or whose index `name` is).
+    pub fn function_index(&self, name: &str) -> Option<usize> {
+        resolve(&self.names, name)
+    }
+
+    /// Read a scene from a file, or `builtin:NAME`.
+    pub fn load(path: &str) -> Result<Scene, SceneError> {
+        if let Some(name) = path.strip_prefix("builtin:") {
+            return super::builtin::get(name).ok_or_else(|| SceneError {
+                file: path.to_string(),
+                line: 0,
+                column: 0,
+                path: JsonPath::default(),
+                message: format!(
+                    "no built-in scene `{name}` (known: {})",
+                    super::builtin::list().iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                ),
+            });
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: path.to_string(),
+            line: 0,
+            column: 0,
+            path: JsonPath::default(),
+            message: format!("cannot read: {e}"),
+        })?;
+        Scene::from_json(&text, path, Path::new(path).parent())
+    }
+
+    /// Parse scene JSON `text`; `file` names it in errors and `base_dir`
+    /// resolves relative paths inside it.
+    ///
+    /// ```
+    /// use septa::scene::Scene;
+    /// let text = r#"{"grid": {"resolution": 8, "bounds": [[-1,-1,-1],[1,1,1]]},
+    ///   "functions": [{"type": "sphere", "center": [0,0,0], "radius": -1}]}"#;
+    /// let e = Scene::from_json(text, "s.json", None).unwrap_err();
+    /// assert_eq!((e.line, e.path.to_string()), (2, "functions[0].radius".to_string()));
+    /// assert!(e.to_string().starts_with("s.json:2:"));
+    /// ```
+    pub fn from_json(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+        let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+            file: file.to_string(),
+            line: e.line(),
+            column: e.column(),
+            path: JsonPath::default(),
+            message: e.to_string(),
+        })?;
+        scene(&v, base_dir).map_err(|l| {
+            let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
+            SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
+        })
+    }
+}
+
+/// Read a reference implementation function file (a JSON list of
+/// primitives, or `{"input": [...]}`), with the reference's meaning of a
+/// negative sphere radius (unsigned distance).
+pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Vec<Primitive>, SceneError> {
+    let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+        file: file.to_string(),
+        line: e.line(),
+        column: e.column(),
+        path: JsonPath::default(),
+        message: e.to_string(),
+    })?;
+    let ctx = Ctx { base_dir, compat: true };
+    function_list(&v, &JsonPath::default(), &ctx).map_err(|l| {
+        let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
+        SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
+    })
+}
+
+fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>, Located> {
+    let (v, path) = match v.get("input") {
+        Some(inner) if v.is_object() => (inner, path.key("input")),
+        _ => (v, path.clone()),
+    };
+    let a = array(v, &path)?;
+    a.iter().enumerate().map(|(i, f)| primitive(f, &path.index(i), ctx)).collect()
+}
+
+fn resolve(names: &[String], name: &str) -> Option<usize> {
+    names.iter().position(|n| n == name).or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
+}
+
+fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
+    let o = Obj::new(v, path)?;
+    let rp = path.key("resolution");
+    let r = o.get("resolution")?;
+    let res: Vec<&Value> = match r {
+        Value::Array(a) => a.iter().collect(),
+        _ => vec![r; 3],
+    };
+    if res.len() != 3 {
+        return err(&rp, "expected n or [nx, ny, nz]");
+    }
+    let mut resolution = [0usize; 3];
+    for (i, x) in res.iter().enumerate() {
+        match x.as_i64() {
+            Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
+            Some(n) => return err(&rp, format!("empty grid: resolution {n} (needs at least 1 cube per axis)")),
+            None => return err(&rp, "resolution must be a whole number"),
+        }
+    }
+    let bp = path.key("bounds");
+    let b = array(o.get("bounds")?, &bp)?;
+    if b.len() != 2 {
+        return err(&bp, "expected [[x0,y0,z0],[x1,y1,z1]]");
+    }
+    let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
+    if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
+        return err(&bp, "empty grid: each max must exceed its min");
+    }
+    let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
+    if split != 5.0 && split != 6.0 {
+        return err(&path.key("split"), "split must be 5 or 6");
+    }
+    Ok(GridSpec { resolution, bounds, split: split as u8 })
+}
+
+fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
+    match v {
+        Value::String(s) => Expr::parse(s, &|n: &str| resolve(names, n)).or_else(|m| err(path, m)),
+        Value::Object(m) if m.len() == 1 => {
+            let (k, inner) = m.iter().next().unwrap();
+            let p = path.key(k);
+            let list = |inner: &Value| -> Result<Vec<Expr>, Located> {
+                let a = array(inner, &p)?;
+                if a.is_empty() {
+                    return err(&p, "needs at least one operand");
+                }
+                a.iter().enumerate().map(|(i, e)| expr(e, &p.index(i), names)).collect()
+            };
+            match k.as_str() {
+                "union" => Ok(Expr::Or(list(inner)?)),
+                "intersection" => Ok(Expr::And(list(inner)?)),
+                "complement" => Ok(Expr::Not(Box::new(expr(inner, &p, names)?))),
+                "difference" => {
+                    let mut l = list(inner)?;
+                    let first = l.remove(0);
+                    Ok(l.into_iter().fold(first, |a, b| Expr::Diff(Box::new(a), Box::new(b))))
+                }
+                "function" => match inner.as_str().and_then(|n| resolve(names, n)) {
+                    Some(i) => Ok(Expr::Func(i)),
+                    None => err(&p, format!("unknown function {inner}")),
+                },
+                _ => err(&p, format!("unknown operator `{k}` (union, intersection, difference, complement, function)")),
+            }
+        }
+        _ => err(
+            path,
+            "expected an expression string or {\"union\"|\"intersection\"|\"difference\"|\"complement\": ...}",
+        ),
+    }
+}
+
+fn region_id(v: &Value, path: &JsonPath) -> Result<RegionId, Located> {
+    v.as_i64().map_or_else(|| err(path, "a region is an integer"), Ok)
+}
+
+fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Located> {
+    let (list, lp, mut otherwise) = match v {
+        Value::Object(_) => {
+            let o = Obj::new(v, path)?;
+            let other =
+                if o.has("otherwise") { Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?) } else { None };
+            (o.get("rules")?, path.key("rules"), other)
+        }
+        _ => (v, path.clone(), None),
+    };
+    let mut out = Vec::new();
+    for (i, r) in array(list, &lp)?.iter().enumerate() {
+        let o = Obj::new(r, &lp.index(i))?;
+        let region = region_id(o.get("region")?, &o.path.key("region"))?;
+        if !o.has("when") {
+            // A catch-all ends the list (later rules could never match).
+            otherwise.get_or_insert(region);
+            break;
+        }
+        out.push(Rule { when: expr(o.get("when")?, &o.path.key("when"), names)?, region });
+    }
+    Ok(RegionRule::Rules { rules: out, otherwise: otherwise.unwrap_or(0) })
+}
+
+fn tuples<const N: usize>(
+    v: &Value,
+    path: &JsonPath,
+    known: &BTreeSet<RegionId>,
+) -> Result<Vec<[RegionId; N]>, Located> {
+    let mut out = Vec::new();
+    for (i, t) in array(v, path)?.iter().enumerate() {
+        let p = path.index(i);
+        let a = array(t, &p)?;
+        if a.len() != N {
+            return err(&p, format!("expected {N} regions"));
+        }
+        let mut r = [0; N];
+        for j in 0..N {
+            r[j] = region_id(&a[j], &p.index(j))?;
+            if !known.is_empty() && !known.contains(&r[j]) {
+                return err(&p.index(j), format!("region {} is never produced by the region rule", r[j]));
+            }
+        }
+        out.push(r);
+    }
+    Ok(out)
+}
+
+fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
+    let root = JsonPath::default();
+    if v.is_array() {
+        return err(
+            &root,
+            "a scene is an object with `grid` and `functions` (this looks like a reference function list)",
+        );
+    }
+    let o = Obj::new(v, &root)?;
+    if o.has("funcFile") {
+        return reference_config(&o, base_dir);
+    }
+    let grid = grid(o.get("grid")?, &root.key("grid"))?;
+    let mode = match o.map.get("mode").map(|m| m.as_str()) {
+        None | Some(Some("ia")) => Mode::Ia,
+        Some(Some("mi")) => Mode::Mi,
+        _ => return err(&root.key("mode"), "mode must be \"ia\" or \"mi\""),
+    };
+    let fp = root.key("functions");
+    let ctx = Ctx { base_dir, compat: false };
+    let (functions, names) = match o.get("functions")? {
+        Value::String(file) => {
+            let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
+            let text =
+                std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+            let f = load_function_list(&text, &full.display().to_string(), full.parent())
+                .or_else(|e| err(&fp, e.to_string()))?;
+            let names = (0..f.len()).map(|i| i.to_string()).collect();
+            (f, names)
+        }
+        list => {
+            let a = array(list, &fp)?;
+            let mut names: Vec<String> = Vec::new();
+            let mut functions = Vec::new();
+            for (i, f) in a.iter().enumerate() {
+                let p = fp.index(i);
+                functions.push(primitive(f, &p, &ctx)?);
+                let name = match f.get("name") {
+                    None => i.to_string(),
+                    Some(Value::String(s)) => {
+                        let ok = !s.is_empty() && s.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '.');
+                        if !ok || (s.parse::<usize>().is_ok() && *s != i.to_string()) {
+                            return err(&p.key("name"), format!("bad function name `{s}` (letters, digits, `_`, `.`; a number only if it is the function's own index)"));
+                        }
+                        if names.contains(s) {
+                            return err(&p.key("name"), format!("duplicate function name `{s}`"));
+                        }
+                        s.clone()
+                    }
+                    Some(_) => return err(&p.key("name"), "a name is a string"),
+                };
+                names.push(name);
+            }
+            (functions, names)
+        }
+    };
+    if functions.is_empty() {
+        return err(&fp, "no functions");
+    }
+    let regions = match (o.map.get("regions"), o.map.get("solid")) {
+        (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
+        (Some(r), None) => rules(r, &root.key("regions"), &names)?,
+        (None, Some(s)) => RegionRule::solid(expr(s, &root.key("solid"), &names)?),
+        (None, None) => {
+            if mode == Mode::Ia && functions.len() > 62 {
+                return err(&fp, "more than 62 functions need a `regions` rule");
+            }
+            RegionRule::Identity
+        }
+    };
+    let known = match (&regions, mode) {
+        (RegionRule::Identity, Mode::Mi) => (0..functions.len() as RegionId).collect(),
+        _ => regions.regions(),
+    };
+    let surfaces = match o.map.get("surfaces") {
+        None => None,
+        Some(Value::String(s)) if s == "all" => None,
+        Some(s) => Some(tuples::<2>(s, &root.key("surfaces"), &known)?),
+    };
+    let curves = match o.map.get("curves") {
+        None => Vec::new(),
+        Some(c) => tuples::<3>(c, &root.key("curves"), &known)?,
+    };
+    Ok(Scene { grid, mode, names, functions, regions, interest: Interest::new(surfaces.as_deref(), &curves) })
+}
+
+/// A reference implementation config (`{"gridResolution": R, "gridBbox":
+/// [[..],[..]], "funcFile": PATH, ...}`): an IA scene over its grid with
+/// the function file's primitives and no region rule (callers switch the
+/// mode for the reference's `material_interface` runs). Its other keys
+/// (`outputDir`, `useLookup`, ...) are the reference's run options.
+fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> {
+    let root = JsonPath::default();
+    if o.has("tetMeshFile") {
+        return err(
+            &root.key("tetMeshFile"),
+            "a tet mesh config has no box grid; give the tet mesh to the IA / MI pipeline directly",
+        );
+    }
+    let r = o.get("gridResolution")?;
+    let rp = root.key("gridResolution");
+    let n = match r.as_i64() {
+        Some(n) if (1..=1 << 20).contains(&n) => n as usize,
+        _ => return err(&rp, format!("empty grid: resolution {r}")),
+    };
+    let bp = root.key("gridBbox");
+    let b = array(o.get("gridBbox")?, &bp)?;
+    if b.len() != 2 {
+        return err(&bp, "expected [[x0,y0,z0],[x1,y1,z1]]");
+    }
+    let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
+    if (0..3).any(|i| bounds[1][i] <= bounds[0][i]) {
+        return err(&bp, "empty grid: each max must exceed its min");
+    }
+    let file = o.str("funcFile")?;
+    let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
+    let fp = root.key("funcFile");
+    let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+    let functions =
+        load_function_list(&text, &full.display().to_string(), full.parent()).or_else(|e| err(&fp, e.to_string()))?;
+    if functions.is_empty() {
+        return err(&fp, "no functions");
+    }
+    Ok(Scene {
+        grid: GridSpec { resolution: [n; 3], bounds, split: 5 },
+        mode: Mode::Ia,
+        names: (0..functions.len()).map(|i| i.to_string()).collect(),
+        functions,
+        regions: RegionRule::Identity,
+        interest: Interest::all(),
+    })
+}
