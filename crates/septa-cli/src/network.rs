@@ -185,6 +185,6 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
     let b = bounds.unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
     let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
     let grid = Grid::Box(g);
-    let values = functions::sample(&funcs, &grid.vertices());
+    let values = functions::sample_grid(&funcs, &grid);
     Ok((grid, values, funcs.len()))
 }

@@ -404,3 +404,19 @@ fn three_coordinate_planes_through_grid_nodes() {
         );
     }
 }
+
+#[test]
+fn no_network_is_one_labelled_cell() {
+    let grid = box4(Split::Five);
+    let f = [sphere([5.0; 3], 0.5), sphere([0.0; 3], 9.0)];
+    let values = sample(&f, &grid.vertices());
+    for raytrace in [true, false] {
+        let mut o = NetworkOptions::new(Mode::Ia);
+        o.raytrace = raytrace;
+        let net = compute(&grid, &values, 2, &o).unwrap();
+        expect(&net, &[("cells", 1), ("faces", 0), ("shells", 0), ("patches", 0)], "empty");
+        assert_eq!(net.cells[0].label.to_vec(), vec![2u64], "f0 < 0, f1 > 0");
+        let net = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Mi)).unwrap();
+        assert_eq!(net.cells[0].label.to_vec(), vec![1u64], "material 1 wins everywhere");
+    }
+}

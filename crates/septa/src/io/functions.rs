@@ -131,6 +131,20 @@ pub fn read_functions(path: &Path) -> Result<Vec<Primitive>, RefError> {
     parse_functions(&text, &path.display().to_string())
 }
 
+/// Values `out[v * k + f]` of the functions at the vertices of `grid`,
+/// without materialising the vertex positions (memory: the values only).
+pub fn sample_grid(functions: &[Primitive], grid: &crate::grid::Grid) -> Vec<f64> {
+    let n = grid.num_vertices();
+    let mut out = Vec::with_capacity(n * functions.len());
+    for v in 0..n as u32 {
+        let p = grid.vertex(v);
+        for f in functions {
+            out.push(f.eval(&p));
+        }
+    }
+    out
+}
+
 /// Values `out[v * k + f]` of the functions at the given points.
 pub fn sample(functions: &[Primitive], points: &[[f64; 3]]) -> Vec<f64> {
     let mut out = Vec::with_capacity(points.len() * functions.len());

@@ -8,7 +8,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::{compute, Mode, Network, NetworkError, NetworkOptions};
 use crate::grid::{BoxGrid, Grid, Split};
-use crate::io::functions::{sample, Primitive};
+use crate::io::functions::{sample_grid, Primitive};
 
 /// A timed run on a box grid.
 #[derive(Debug)]
@@ -33,7 +33,7 @@ pub fn run_on_box(
     let g =
         BoxGrid::new([resolution; 3], bounds, Split::Five).map_err(|message| NetworkError::Tet { tet: 0, message })?;
     let grid = Grid::Box(g);
-    let values = sample(functions, &grid.vertices());
+    let values = sample_grid(functions, &grid);
     let sample_seconds = t0.elapsed().as_secs_f64();
     let network = compute(&grid, &values, functions.len(), options)?;
     Ok(GridRun { network, sample_seconds, total_seconds: t0.elapsed().as_secs_f64() })

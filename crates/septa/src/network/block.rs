@@ -162,6 +162,9 @@ impl Worker {
             Mode::Mi => self.active.len() < 2,
         };
         let volume = if ctx.volumes { ctx.grid.tet_volume(t) } else { 0.0 };
+        if empty && !st.grouping {
+            return Ok(()); // no polygon refers to an empty tet's region
+        }
         if empty {
             let label: Label = match ctx.mode {
                 Mode::Ia => ia_base_label(&tet, ctx),

@@ -122,6 +122,10 @@ impl Worker {
                         same &= vl[((i + a) * vn[1] + j + b) * vn[2] + k + c] == l0;
                     }
                     let cube = g.cube_index([lo[0] + i, lo[1] + j, lo[2] + k]);
+                    if same && !st.grouping {
+                        // Without grouping an empty cube is nobody's region: skip it.
+                        continue;
+                    }
                     if same {
                         let id = st.uf.push();
                         let l: Label = match ctx.mode {

@@ -249,7 +249,26 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
+    let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
+    // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
+    for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
+        let row = &values[..k];
+        cell.label = match options.mode {
+            Mode::Ia => {
+                let mut l: SmallVec<[u64; 2]> = SmallVec::from_elem(0, k.div_ceil(64));
+                for (f, &x) in row.iter().enumerate() {
+                    if x > 0.0 {
+                        l[f / 64] |= 1 << (f % 64);
+                    }
+                }
+                l
+            }
+            Mode::Mi => {
+                let m = (0..k).fold(0, |b, f| if row[f] > row[b] { f } else { b });
+                SmallVec::from_elem(m as u64, 1)
+            }
+        };
+    }
     let t3 = Instant::now();
     if !ctx.grouping && topo.cells_method != "raytrace" {
         // Cannot happen when the preconditions hold; never answer without cells.
