@@ -80,6 +80,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let t_read = t0.elapsed().as_secs_f64();
     let mut opts = NetworkOptions::new(mode);
     opts.float = args.float;
+    opts.lookup = !args.no_lookup;
     opts.block = args.block;
     opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
     let mut pool = rayon::ThreadPoolBuilder::new();

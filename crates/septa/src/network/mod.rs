@@ -92,6 +92,8 @@ pub struct NetworkOptions {
     pub mode: Mode,
     /// Naive floating-point predicates (for measuring only).
     pub float: bool,
+    /// Use the complex's look-up tables for few active functions (Sec. 6).
+    pub lookup: bool,
     /// Block edge in cubes.
     pub block: usize,
     /// Compute cell volumes (floating point, for invariant checks); they
@@ -106,7 +108,7 @@ pub struct NetworkOptions {
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions { mode, float: false, block: 16, volumes: false, raytrace: true }
+        NetworkOptions { mode, float: false, lookup: true, block: 16, volumes: false, raytrace: true }
     }
 }
 
@@ -239,7 +241,11 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         values,
         k,
         mode: options.mode,
-        options: Options::with_float(options.float),
+        options: {
+            let mut o = Options::with_float(options.float);
+            o.lookup = options.lookup;
+            o
+        },
         volumes: options.volumes,
         grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
     };
