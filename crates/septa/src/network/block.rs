@@ -82,6 +82,8 @@ pub(crate) struct Worker {
     tets: Vec<usize>,
     pairs: Vec<(u32, u32)>,
     edge_net: Vec<u32>,
+    /// IA: the active functions of the next tet as a bit mask, if known.
+    pub(crate) active_hint: Option<u64>,
     cell_labels: Vec<Label>,
 }
 
@@ -156,7 +158,16 @@ impl Worker {
         let tet = ctx.grid.tet(t);
         let k = ctx.k;
         let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
-        active_functions(ctx, t, &tet, &mut self.active)?;
+        match self.active_hint {
+            Some(mut mask) => {
+                self.active.clear();
+                while mask != 0 {
+                    self.active.push(mask.trailing_zeros() as u16);
+                    mask &= mask - 1;
+                }
+            }
+            None => active_functions(ctx, t, &tet, &mut self.active)?,
+        }
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),
             Mode::Mi => self.active.len() < 2,
@@ -301,11 +312,20 @@ impl Worker {
                 }
             }
         }
+        // A tet-edge segment can only lie in the network if a function vanishes
+        // (IA) or two tie for the maximum (MI) at a tet corner.
+        let corner_degenerate = (0..4).any(|i| match ctx.mode {
+            Mode::Ia => self.vals.iter().any(|r| r[i] == 0.0),
+            Mode::Mi => {
+                let m = self.vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max);
+                self.vals.iter().filter(|r| r[i] == m).count() >= 2
+            }
+        });
         for (ci, cell) in c.cells().iter().enumerate() {
             let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
             for &fi in &cell.faces {
                 for &e in &c.faces()[fi as usize].edges {
-                    if self.edge_net[e as usize] > 0 || on_tet_edge(c, e) {
+                    if self.edge_net[e as usize] > 0 || (corner_degenerate && on_tet_edge(c, e)) {
                         ef.push((e, fi));
                     }
                 }

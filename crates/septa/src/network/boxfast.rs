@@ -141,8 +141,26 @@ impl Worker {
                         node[local(i, j, k)] = id;
                     } else {
                         for t in cube * per..(cube + 1) * per {
+                            // IA: the active functions are the sign bits that differ
+                            // between the tet's corners (when none is zero).
+                            self.active_hint = None;
+                            if ctx.mode == Mode::Ia {
+                                let tet = g.tet(t);
+                                let (mut or, mut and, mut bad) = (0u64, u64::MAX, false);
+                                for v in tet {
+                                    let p = g.vertex_ijk(v);
+                                    let l = vl[((p[0] - lo[0]) * vn[1] + p[1] - lo[1]) * vn[2] + p[2] - lo[2]];
+                                    bad |= l == BAD;
+                                    or |= l;
+                                    and &= l;
+                                }
+                                if !bad {
+                                    self.active_hint = Some(or ^ and);
+                                }
+                            }
                             self.process_tet(ctx, st, t)?;
                         }
+                        self.active_hint = None;
                     }
                 }
             }
