@@ -420,3 +420,37 @@ fn no_network_is_one_labelled_cell() {
         assert_eq!(net.cells[0].label.to_vec(), vec![1u64], "material 1 wins everywhere");
     }
 }
+
+#[test]
+fn cyclic_order_of_patches_around_chains() {
+    let Some(dir) = data_dir() else { return };
+    // IA: two surfaces cross at a chain, 4 patches alternate between them;
+    // MI: 3 materials meet, 3 interface patches.
+    for (name, mode, around) in [("ia4_R20", Mode::Ia, 4), ("ia18_R20", Mode::Ia, 4), ("mi18_R20", Mode::Mi, 3)] {
+        let (grid, values, k) = load(&dir, name);
+        let net = run(&grid, &values, k, mode, 2);
+        let known: Vec<&Vec<u32>> = net.chain_patches.iter().filter(|c| !c.is_empty()).collect();
+        assert!(
+            known.len() * 10 >= net.chains.len() * 9,
+            "{name}: {} of {} chains ordered",
+            known.len(),
+            net.chains.len()
+        );
+        for c in known {
+            assert_eq!(c.len(), around, "{name}: {c:?}");
+            let mut sorted = c.clone();
+            sorted.sort();
+            sorted.dedup();
+            assert_eq!(sorted.len(), around, "{name}: a patch twice around a chain: {c:?}");
+            for i in 0..c.len() {
+                let (p, q) = (&net.patches[c[i] as usize], &net.patches[c[(i + 1) % c.len()] as usize]);
+                if mode == Mode::Ia {
+                    assert_ne!(p.label, q.label, "{name}: neighbours around a chain on one surface: {c:?}");
+                } else {
+                    // Consecutive MI interfaces share the material of the cell between them.
+                    assert!(p.label.iter().any(|m| q.label.contains(m)), "{name}: {c:?}");
+                }
+            }
+        }
+    }
+}

@@ -116,6 +116,13 @@ pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> 
             }
             list(w, c.iter())?;
         }
+        w.write_all(b"],\n\"chain_patches\":[")?;
+        for (i, c) in net.chain_patches.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            list(w, c.iter())?;
+        }
         w.write_all(b"],\n\"corners\":")?;
         list(w, net.corners.iter())?;
         w.write_all(b",\n\"shells\":[")?;

@@ -65,6 +65,8 @@ pub(crate) struct BlockOut {
     pub comp_volume: Vec<f64>,
     pub contacts: Vec<(FaceKey, Label, u32)>,
     pub unions: Vec<(SRef, SRef)>,
+    /// Wedges at chain edges inside tets: (edge, face side, face side).
+    pub wedges: Vec<([u32; 2], SRef, SRef)>,
     pub tnodes: u32,
     pub open_t: Vec<(OpenT, u32)>,
     pub active_tets: usize,
@@ -353,6 +355,18 @@ impl Worker {
                 let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
                 let r2 = self.face_ref(c, ctx, st, &tet, ci as u32, f2, u, w);
                 st.out.unions.push((r1, r2));
+                // Inside the tet, around an edge on 3+ network faces (a chain),
+                // the wedges give the cyclic order of faces (Sec. 7).
+                if !tet_edge
+                    && self.edge_net[e as usize] >= 3
+                    && c.edges()[e as usize].planes.iter().all(|p| p.is_network())
+                {
+                    if let (SRef::Side(..), SRef::Side(..)) = (r1, r2) {
+                        let a = vertex_id(self, c, ctx, st, &tet, u);
+                        let b = vertex_id(self, c, ctx, st, &tet, w);
+                        st.out.wedges.push(([a.min(b), a.max(b)], r1, r2));
+                    }
+                }
             }
         }
         self.complex = owned;

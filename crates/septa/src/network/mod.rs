@@ -160,6 +160,9 @@ pub struct Network {
     pub patches: Vec<Patch>,
     /// Chains as vertex paths (a closed chain repeats its first vertex).
     pub chains: Vec<Vec<u32>>,
+    /// Per chain, the patches around it in cyclic order (empty where the
+    /// chain's first edge lies on a tet face).
+    pub chain_patches: Vec<Vec<u32>>,
     /// Corner vertices.
     pub corners: Vec<u32>,
     /// Shells as lists of half-patches (`2p` positive side of patch `p`, `2p + 1` negative).
@@ -295,6 +298,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         edges: topo.edges,
         patches: topo.patches,
         chains: topo.chains,
+        chain_patches: topo.chain_patches,
         corners: topo.corners,
         shells: topo.shells,
         cells: topo.cells,

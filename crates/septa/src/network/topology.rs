@@ -18,6 +18,7 @@ pub(crate) struct Topology {
     pub cells: Vec<CellInfo>,
     pub face_cells: Vec<[u32; 2]>,
     pub cells_method: &'static str,
+    pub chain_patches: Vec<Vec<u32>>,
 }
 
 pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topology {
@@ -66,6 +67,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);
+    let chain_patches = cyclic_patches(m, &chains, &face_patch);
     let (vertex_comp, components) = vert_uf.components();
     // Shells: components of face sides joined around edges (block unions),
     // and every side of a half-patch together.
@@ -123,6 +125,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     if let Some((shell_cell, ncells)) = rays {
         return ray_topology(
             m,
+            chain_patches,
             edges,
             face_patch,
             patches,
@@ -173,6 +176,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         cells,
         face_cells,
         cells_method: "grouping",
+        chain_patches,
     }
 }
 
@@ -181,6 +185,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
 #[allow(clippy::too_many_arguments)]
 fn ray_topology(
     m: &Merged,
+    chain_patches: Vec<Vec<u32>>,
     edges: Vec<[u32; 2]>,
     face_patch: Vec<u32>,
     patches: Vec<Patch>,
@@ -221,6 +226,7 @@ fn ray_topology(
         cells,
         face_cells,
         cells_method: "raytrace",
+        chain_patches,
     }
 }
 
@@ -284,4 +290,47 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
         }
     }
     (out, corners)
+}
+
+/// The patches around each chain in cyclic order, read from the wedges of
+/// the per-tet complex at the chain's first edge (empty when that edge lies
+/// on a tet face, where no single complex sees the whole star).
+fn cyclic_patches(m: &Merged, chains: &[Vec<u32>], face_patch: &[u32]) -> Vec<Vec<u32>> {
+    let mut by_edge: rustc_hash::FxHashMap<[u32; 2], Vec<(u32, u32)>> = Default::default();
+    for &(e, x, y) in &m.wedges {
+        by_edge.entry(e).or_default().push((x, y));
+    }
+    chains
+        .iter()
+        .map(|c| {
+            let e = [c[0].min(c[1]), c[0].max(c[1])];
+            let Some(pairs) = by_edge.get(&e) else { return Vec::new() };
+            let start = pairs[0].0;
+            let mut cur = start;
+            let mut out = Vec::new();
+            for _ in 0..=pairs.len() {
+                // The next face around, facing the same cell as `cur`.
+                let next = pairs.iter().find_map(|&(x, y)| {
+                    if x == cur {
+                        Some(y)
+                    } else if y == cur {
+                        Some(x)
+                    } else {
+                        None
+                    }
+                });
+                let Some(next) = next else { return Vec::new() };
+                out.push(face_patch[next as usize / 2]);
+                cur = next ^ 1; // cross the face
+                if cur == start || next == start {
+                    break;
+                }
+            }
+            if cur == start {
+                out
+            } else {
+                Vec::new()
+            }
+        })
+        .collect()
 }
