@@ -37,6 +37,9 @@ pub struct Args {
     /// Box grid resolution (cubes per axis) for a function JSON input.
     #[arg(long)]
     grid: Option<usize>,
+    /// Tet mesh (Gmsh .msh 2.2/4.1, or the reference's tet-mesh .json) for a function JSON input.
+    #[arg(long)]
+    mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
     #[arg(long, num_args = 6, allow_negative_numbers = true)]
     bounds: Option<Vec<f64>>,
@@ -77,6 +80,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let t_read = t0.elapsed().as_secs_f64();
     let mut opts = NetworkOptions::new(mode);
     opts.float = args.float;
+    opts.lookup = !args.no_lookup;
     opts.block = args.block;
     opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
     let mut pool = rayon::ThreadPoolBuilder::new();
@@ -142,11 +146,46 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
         let mesh = TetMesh::new(input.vertices, &input.tets).map_err(|e| format!("{}: {e}", args.input.display()))?;
         return Ok((Grid::Mesh(mesh), input.values, input.k));
     }
-    let funcs = functions::read_functions(&args.input)?;
-    let n = args.grid.ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
-    let b = args.bounds.clone().unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
+    // A reference config JSON ({"funcFile", "tetMeshFile" | "gridResolution", "gridBbox"})
+    // or a function list.
+    let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{}: {e}", args.input.display()))?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", args.input.display()))?;
+    let (funcs, mesh, grid_res, bounds) = if let Some(cfg) = json.as_object() {
+        let dir = args.input.parent().unwrap_or(std::path::Path::new("."));
+        let file = cfg
+            .get("funcFile")
+            .and_then(|v| v.as_str())
+            .ok_or_else(|| format!("{}: config has no \"funcFile\"", args.input.display()))?;
+        let funcs = functions::read_functions(&dir.join(file))?;
+        let mesh = cfg.get("tetMeshFile").and_then(|v| v.as_str()).map(|m| dir.join(m));
+        let res = cfg.get("gridResolution").and_then(|v| v.as_u64()).map(|r| r as usize);
+        let bounds = cfg.get("gridBbox").and_then(|b| {
+            let b: Vec<f64> = b
+                .as_array()?
+                .iter()
+                .flat_map(|p| p.as_array().cloned().unwrap_or_default())
+                .filter_map(|x| x.as_f64())
+                .collect();
+            (b.len() == 6).then_some(b)
+        });
+        (funcs, mesh.or(args.mesh.clone()), res.or(args.grid), bounds.or(args.bounds.clone()))
+    } else {
+        let funcs = functions::parse_functions(&text, &args.input.display().to_string())?;
+        (funcs, args.mesh.clone(), args.grid, args.bounds.clone())
+    };
+    if let Some(mesh) = mesh {
+        let ext = mesh.extension().and_then(|e| e.to_str()).unwrap_or("");
+        let (vertices, tets) =
+            if ext == "msh" { septa::io::msh::read_msh(&mesh)? } else { functions::read_tet_mesh_json(&mesh)? };
+        let mesh = TetMesh::new(vertices, &tets).map_err(|e| format!("{}: {e}", mesh.display()))?;
+        let values = functions::sample(&funcs, &mesh.vertices);
+        return Ok((Grid::Mesh(mesh), values, funcs.len()));
+    }
+    let n = grid_res.ok_or("a function JSON input needs --grid N (and optionally --bounds) or --mesh FILE")?;
+    let b = bounds.unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
     let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
     let grid = Grid::Box(g);
-    let values = functions::sample(&funcs, &grid.vertices());
+    let values = functions::sample_grid(&funcs, &grid);
     Ok((grid, values, funcs.len()))
 }

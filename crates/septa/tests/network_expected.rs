@@ -41,7 +41,7 @@ fn box_grid_equals_input_tets() {
     }
 }
 
-fn check_case(dir: &Path, name: &str, expected: &serde_json::Value, mesh: bool) {
+fn check_case(dir: &Path, name: &str, expected: &serde_json::Value, mesh: bool, raytrace: bool) {
     let (grid, values, k, input) = box_grid(&dir.join(format!("{name}.npz")));
     let grid = if mesh { Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap()) } else { grid };
     let mode = match expected["mode"].as_str().unwrap() {
@@ -50,8 +50,9 @@ fn check_case(dir: &Path, name: &str, expected: &serde_json::Value, mesh: bool) 
     };
     let mut opts = NetworkOptions::new(mode);
     opts.block = 8;
+    opts.raytrace = raytrace;
     let net = compute(&grid, &values, k, &opts).unwrap();
-    eprintln!("{name}: {:?}", net.counts());
+    eprintln!("{name} ({}): {:?}", net.cells_method, net.counts());
     let mut wrong = Vec::new();
     for (key, got) in net.counts() {
         let want = expected[key].as_u64().unwrap() as usize;
@@ -69,9 +70,12 @@ fn counts_equal_reference() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
     let mut failures = Vec::new();
     for (name, exp) in expected.as_object().unwrap() {
-        let r = std::panic::catch_unwind(|| check_case(&dir, name, exp, false));
-        if let Err(e) = r {
-            failures.push(e.downcast_ref::<String>().cloned().unwrap_or_else(|| name.clone()));
+        // Ray shooting (or its fallback), cell grouping, and the input's tets as a mesh.
+        for (mesh, raytrace) in [(false, true), (false, false), (true, true)] {
+            let r = std::panic::catch_unwind(|| check_case(&dir, name, exp, mesh, raytrace));
+            if let Err(e) = r {
+                failures.push(e.downcast_ref::<String>().cloned().unwrap_or_else(|| name.clone()));
+            }
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));

@@ -17,12 +17,7 @@ fn data_dir() -> Option<PathBuf> {
 
 fn load(dir: &Path, name: &str) -> (Grid, Vec<f64>, usize) {
     let input = read_grid_input(&dir.join(format!("{name}.npz"))).unwrap();
-    let g = BoxGrid::new(
-        [input.grid_res.unwrap(); 3],
-        input.bbox.unwrap(),
-        Split::Five,
-    )
-    .unwrap();
+    let g = BoxGrid::new([input.grid_res.unwrap(); 3], input.bbox.unwrap(), Split::Five).unwrap();
     (Grid::Box(g), input.values, input.k)
 }
 
@@ -31,10 +26,7 @@ fn run(grid: &Grid, values: &[f64], k: usize, mode: Mode, threads: usize) -> Net
     o.block = 4;
     o.volumes = true;
     o.raytrace = false;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
     pool.install(|| compute(grid, values, k, &o)).unwrap()
 }
 
@@ -51,15 +43,8 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
         }
     }
     for (f, c) in net.face_cells.iter().enumerate() {
-        assert!(
-            c[0] != c[1],
-            "{name}: face {f} has cell {} on both sides",
-            c[0]
-        );
-        assert!(
-            c[0] != NONE || c[1] != NONE,
-            "{name}: face {f} bounds no cell"
-        );
+        assert!(c[0] != c[1], "{name}: face {f} has cell {} on both sides", c[0]);
+        assert!(c[0] != NONE || c[1] != NONE, "{name}: face {f} bounds no cell");
     }
     // Shell closure and Euler characteristic.
     let mut faces_of_patch: Vec<Vec<usize>> = vec![Vec::new(); net.patches.len()];
@@ -72,10 +57,7 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
             in_cell[s as usize] += 1;
         }
     }
-    assert!(
-        in_cell.iter().all(|&n| n == 1),
-        "{name}: a shell is not in exactly one cell"
-    );
+    assert!(in_cell.iter().all(|&n| n == 1), "{name}: a shell is not in exactly one cell");
     // Every side of every face in a shell faces that shell's cell.
     let mut cell_of_shell = vec![NONE; net.shells.len()];
     for (c, cell) in net.cells.iter().enumerate() {
@@ -86,10 +68,7 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
     let mut shell_of_hp = vec![NONE; 2 * net.patches.len()];
     for (s, hps) in net.shells.iter().enumerate() {
         for &hp in hps {
-            assert_eq!(
-                shell_of_hp[hp as usize], NONE,
-                "{name}: half-patch {hp} in two shells"
-            );
+            assert_eq!(shell_of_hp[hp as usize], NONE, "{name}: half-patch {hp} in two shells");
             shell_of_hp[hp as usize] = s as u32;
         }
     }
@@ -132,18 +111,12 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
         }
         if !open {
             let chi = verts.len() as i64 - edges.len() as i64 + nf;
-            assert!(
-                chi % 2 == 0 && chi <= 2,
-                "{name}: shell {s} has Euler characteristic {chi}"
-            );
+            assert!(chi % 2 == 0 && chi <= 2, "{name}: shell {s} has Euler characteristic {chi}");
         }
     }
     let vol: f64 = net.cells.iter().map(|c| c.volume).sum();
     let want = grid.volume();
-    assert!(
-        (vol - want).abs() <= 1e-9 * want,
-        "{name}: cell volumes {vol} vs grid {want}"
-    );
+    assert!((vol - want).abs() <= 1e-9 * want, "{name}: cell volumes {vol} vs grid {want}");
 }
 
 fn json_without_seconds(net: &Network, tag: &str) -> String {
@@ -169,25 +142,14 @@ fn invariants_threads_and_permutations_on_reference_cases() {
         "shifted4_ia_eps1e-7_R2_s0",
         "shifted4_mi_eps1e-7_R2_s0",
     ] {
-        let mode = if name.contains("mi") {
-            Mode::Mi
-        } else {
-            Mode::Ia
-        };
+        let mode = if name.contains("mi") { Mode::Mi } else { Mode::Ia };
         let (grid, values, k) = load(&dir, name);
         let one = run(&grid, &values, k, mode, 1);
         check_invariants(&one, &grid, name);
         let two = run(&grid, &values, k, mode, 2);
-        assert_eq!(
-            json_without_seconds(&one, "a"),
-            json_without_seconds(&two, "b"),
-            "{name}: 1 vs 2 threads"
-        );
+        assert_eq!(json_without_seconds(&one, "a"), json_without_seconds(&two, "b"), "{name}: 1 vs 2 threads");
         // Reverse the functions: same counts, same patch labels after mapping back.
-        let rev: Vec<f64> = values
-            .chunks(k)
-            .flat_map(|r| r.iter().rev().copied())
-            .collect();
+        let rev: Vec<f64> = values.chunks(k).flat_map(|r| r.iter().rev().copied()).collect();
         let back = run(&grid, &rev, k, mode, 2);
         assert_eq!(one.counts(), back.counts(), "{name}: reversed functions");
         let labels = |n: &Network, map: &dyn Fn(u16) -> u16| {
@@ -202,11 +164,7 @@ fn invariants_threads_and_permutations_on_reference_cases() {
             l.sort();
             l
         };
-        assert_eq!(
-            labels(&one, &|f| f),
-            labels(&back, &|f| k as u16 - 1 - f),
-            "{name}"
-        );
+        assert_eq!(labels(&one, &|f| f), labels(&back, &|f| k as u16 - 1 - f), "{name}");
     }
 }
 
@@ -238,10 +196,7 @@ fn expect(net: &Network, want: &[(&str, usize)], name: &str) {
 }
 
 fn plane(normal: [f64; 3]) -> Primitive {
-    Primitive::Plane {
-        point: [0.0; 3],
-        normal,
-    }
+    Primitive::Plane { point: [0.0; 3], normal }
 }
 
 fn sphere(center: [f64; 3], radius: f64) -> Primitive {
@@ -260,14 +215,7 @@ fn two_coordinate_planes_through_grid_nodes() {
         let net = run(&grid, &values, 2, Mode::Ia, 2);
         expect(
             &net,
-            &[
-                ("cells", 4),
-                ("patches", 4),
-                ("chains", 1),
-                ("corners", 2),
-                ("shells", 4),
-                ("components", 1),
-            ],
+            &[("cells", 4), ("patches", 4), ("chains", 1), ("corners", 2), ("shells", 4), ("components", 1)],
             &format!("{split:?}"),
         );
         check_invariants(&net, &grid, "two planes");
@@ -280,37 +228,11 @@ fn function_given_twice_and_sphere_through_grid_vertices() {
     // Radius 0.5 passes through the grid vertices (+-0.5, 0, 0) etc.
     let f = [sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.5)];
     let values = sample(&f, &grid.vertices());
-    let once = run(
-        &grid,
-        &values[..].chunks(2).map(|r| r[0]).collect::<Vec<_>>(),
-        1,
-        Mode::Ia,
-        1,
-    );
-    expect(
-        &once,
-        &[
-            ("cells", 2),
-            ("patches", 1),
-            ("shells", 2),
-            ("chains", 0),
-            ("components", 1),
-        ],
-        "sphere",
-    );
+    let once = run(&grid, &values[..].chunks(2).map(|r| r[0]).collect::<Vec<_>>(), 1, Mode::Ia, 1);
+    expect(&once, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0), ("components", 1)], "sphere");
     check_invariants(&once, &grid, "sphere");
     let twice = run(&grid, &values, 2, Mode::Ia, 2);
-    expect(
-        &twice,
-        &[
-            ("cells", 2),
-            ("patches", 1),
-            ("shells", 2),
-            ("chains", 0),
-            ("components", 1),
-        ],
-        "twice",
-    );
+    expect(&twice, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0), ("components", 1)], "twice");
     assert_eq!(once.num_faces(), twice.num_faces());
     check_invariants(&twice, &grid, "twice");
 }
@@ -323,17 +245,7 @@ fn spheres_tangent_at_a_grid_vertex() {
     let f = [sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 2, Mode::Ia, 2);
-    expect(
-        &net,
-        &[
-            ("cells", 3),
-            ("patches", 2),
-            ("shells", 4),
-            ("chains", 0),
-            ("components", 1),
-        ],
-        "tangent",
-    );
+    expect(&net, &[("cells", 3), ("patches", 2), ("shells", 4), ("chains", 0), ("components", 1)], "tangent");
     check_invariants(&net, &grid, "tangent");
 }
 
@@ -342,39 +254,17 @@ fn material_ties() {
     let grid = box4(Split::Five);
     // f0 = x, f1 = x (tied everywhere), f2 = -x: two materials meet on x = 0,
     // which lies on tet faces.
-    let f = [
-        plane([1.0, 0.0, 0.0]),
-        plane([1.0, 0.0, 0.0]),
-        plane([-1.0, 0.0, 0.0]),
-    ];
+    let f = [plane([1.0, 0.0, 0.0]), plane([1.0, 0.0, 0.0]), plane([-1.0, 0.0, 0.0])];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 3, Mode::Mi, 2);
-    expect(
-        &net,
-        &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0)],
-        "mi ties",
-    );
+    expect(&net, &[("cells", 2), ("patches", 1), ("shells", 2), ("chains", 0)], "mi ties");
     check_invariants(&net, &grid, "mi ties");
     // Three planes through the z axis meeting at 120 degrees, tied along a grid line.
     let s = 3f64.sqrt() / 2.0;
-    let f = [
-        plane([1.0, 0.0, 0.0]),
-        plane([-0.5, s, 0.0]),
-        plane([-0.5, -s, 0.0]),
-    ];
+    let f = [plane([1.0, 0.0, 0.0]), plane([-0.5, s, 0.0]), plane([-0.5, -s, 0.0])];
     let values = sample(&f, &grid.vertices());
     let net = run(&grid, &values, 3, Mode::Mi, 2);
-    expect(
-        &net,
-        &[
-            ("cells", 3),
-            ("patches", 3),
-            ("chains", 1),
-            ("corners", 2),
-            ("shells", 3),
-        ],
-        "mi tripod",
-    );
+    expect(&net, &[("cells", 3), ("patches", 3), ("chains", 1), ("corners", 2), ("shells", 3)], "mi tripod");
     check_invariants(&net, &grid, "mi tripod");
 }
 
@@ -384,17 +274,7 @@ fn bad_values_are_named() {
     let mut values = vec![1.0; grid.num_vertices() * 2];
     values[7 * 2 + 1] = f64::NAN;
     let e = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Ia)).unwrap_err();
-    assert!(
-        matches!(
-            e,
-            NetworkError::NonFinite {
-                vertex: 7,
-                function: 1,
-                ..
-            }
-        ),
-        "{e}"
-    );
+    assert!(matches!(e, NetworkError::NonFinite { vertex: 7, function: 1, .. }), "{e}");
     let e = compute(&grid, &values[1..], 2, &NetworkOptions::new(Mode::Ia)).unwrap_err();
     assert!(matches!(e, NetworkError::ValueCount { .. }), "{e}");
 }
@@ -420,42 +300,42 @@ fn raytrace_equals_grouping() {
     let expected: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
     for (name, exp) in expected.as_object().unwrap() {
-        let mode = if exp["mode"] == "mi" {
-            Mode::Mi
-        } else {
-            Mode::Ia
-        };
+        let mode = if exp["mode"] == "mi" { Mode::Mi } else { Mode::Ia };
         let (grid, values, k) = load(&dir, name);
         let grouping = run(&grid, &values, k, mode, 2);
         let mut o = NetworkOptions::new(mode);
         o.block = 4; // the same blocks as `run`, hence the same shell numbering
         let ray = compute(&grid, &values, k, &o).unwrap();
-        // Ray shooting needs every network vertex off the grid vertices.
-        let at_grid_vertex = ray.keys.iter().any(|k| k.grid[1] == u32::MAX);
-        let want = if at_grid_vertex {
-            "grouping"
-        } else {
-            "raytrace"
-        };
-        assert_eq!(ray.cells_method, want, "{name}");
+        assert_eq!(ray.cells_method, "raytrace", "{name}");
         assert_eq!(grouping.cells_method, "grouping", "{name}");
-        assert_eq!(
-            ray.cells.len(),
-            exp["cells"].as_u64().unwrap() as usize,
-            "{name}"
-        );
+        assert_eq!(ray.cells.len(), exp["cells"].as_u64().unwrap() as usize, "{name}");
         let (a, b) = (cell_partition(&ray), cell_partition(&grouping));
         if let Some(i) = (0..a.len()).find(|&i| a[i] != b[i]) {
             panic!("{name}: cell {i}: ray {:?} vs grouping {:?}", a[i], b[i]);
         }
     }
-    // Preconditions broken: a network vertex at a grid vertex, and a tet mesh.
-    let grid = box4(Split::Five);
-    let f = [sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)];
-    let values = sample(&f, &grid.vertices());
-    let net = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Ia)).unwrap();
+    // Network vertices at grid vertices: ray shooting or its fallback, same cells.
+    for split in [Split::Five, Split::Six] {
+        let grid = box4(split);
+        for f in [
+            vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)],
+            vec![plane([1.0, 0.0, 0.0]), plane([0.0, 1.0, 0.0]), plane([0.0, 0.0, 1.0])],
+            vec![sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.75), sphere([0.5, 0.5, 0.0], 0.25)],
+        ] {
+            let values = sample(&f, &grid.vertices());
+            let grouping = run(&grid, &values, f.len(), Mode::Ia, 1);
+            let mut o = NetworkOptions::new(Mode::Ia);
+            o.block = 4;
+            let ray = compute(&grid, &values, f.len(), &o).unwrap();
+            eprintln!("{split:?} {}: {} cells", ray.cells_method, ray.cells.len());
+            assert_eq!(cell_partition(&ray), cell_partition(&grouping), "{split:?} {f:?}");
+        }
+    }
+    // A tet mesh: grouping.
+    let input = read_grid_input(&dir.join("mi4_R20.npz")).unwrap();
+    let mesh = Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap());
+    let net = compute(&mesh, &input.values, input.k, &NetworkOptions::new(Mode::Mi)).unwrap();
     assert_eq!(net.cells_method, "grouping");
-    assert_eq!(net.cells.len(), 3);
 }
 
 #[test]
@@ -476,15 +356,101 @@ fn nested_spheres_off_grid_raytrace() {
     o.block = 4;
     let ray = compute(&grid, &values, 4, &o).unwrap();
     assert_eq!(ray.cells_method, "raytrace");
-    expect(
-        &ray,
-        &[
-            ("cells", 5),
-            ("shells", 8),
-            ("patches", 4),
-            ("components", 4),
-        ],
-        "nested",
-    );
+    expect(&ray, &[("cells", 5), ("shells", 8), ("patches", 4), ("components", 4)], "nested");
     assert_eq!(cell_partition(&ray), cell_partition(&grouping));
+}
+
+#[test]
+fn paper_pattern_from_bench_entry_point() {
+    // The 4-sphere IA pattern with a different jitter has the reference's
+    // combinatorics (ia4_R20: 32 patches, 24 chains, 8 corners, 16 cells).
+    let f = septa::network::bench::paper_spheres(Mode::Ia, 4, 7);
+    let run = septa::network::bench::run_on_box(&f, 20, [[-1.0; 3], [1.0; 3]], &NetworkOptions::new(Mode::Ia)).unwrap();
+    expect(
+        &run.network,
+        &[("patches", 32), ("chains", 24), ("corners", 8), ("shells", 16), ("cells", 16), ("components", 1)],
+        "paper 4",
+    );
+}
+
+#[test]
+fn three_coordinate_planes_through_grid_nodes() {
+    // Octants: 8 cells, 12 quarter-plane patches, 6 half-axis chains, and
+    // 7 corners (the centre, where 6 chains meet, and 6 on the boundary).
+    for split in [Split::Five, Split::Six] {
+        let grid = box4(split);
+        let f = [plane([1.0, 0.0, 0.0]), plane([0.0, 1.0, 0.0]), plane([0.0, 0.0, 1.0])];
+        let values = sample(&f, &grid.vertices());
+        let net = run(&grid, &values, 3, Mode::Ia, 2);
+        expect(
+            &net,
+            &[("cells", 8), ("patches", 12), ("chains", 6), ("corners", 7), ("shells", 8), ("components", 1)],
+            &format!("{split:?}"),
+        );
+        check_invariants(&net, &grid, "octants");
+        // The same planes off the grid nodes: the generic case, by ray shooting.
+        let f = [
+            Primitive::Plane { point: [0.013, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
+            Primitive::Plane { point: [0.0, 0.021, 0.0], normal: [0.0, 1.0, 0.0] },
+            Primitive::Plane { point: [0.0, 0.0, -0.017], normal: [0.0, 0.0, 1.0] },
+        ];
+        let values = sample(&f, &grid.vertices());
+        let net = compute(&grid, &values, 3, &NetworkOptions::new(Mode::Ia)).unwrap();
+        assert_eq!(net.cells_method, "raytrace");
+        expect(
+            &net,
+            &[("cells", 8), ("patches", 12), ("chains", 6), ("corners", 7), ("shells", 8), ("components", 1)],
+            "off-grid octants",
+        );
+    }
+}
+
+#[test]
+fn no_network_is_one_labelled_cell() {
+    let grid = box4(Split::Five);
+    let f = [sphere([5.0; 3], 0.5), sphere([0.0; 3], 9.0)];
+    let values = sample(&f, &grid.vertices());
+    for raytrace in [true, false] {
+        let mut o = NetworkOptions::new(Mode::Ia);
+        o.raytrace = raytrace;
+        let net = compute(&grid, &values, 2, &o).unwrap();
+        expect(&net, &[("cells", 1), ("faces", 0), ("shells", 0), ("patches", 0)], "empty");
+        assert_eq!(net.cells[0].label.to_vec(), vec![2u64], "f0 < 0, f1 > 0");
+        let net = compute(&grid, &values, 2, &NetworkOptions::new(Mode::Mi)).unwrap();
+        assert_eq!(net.cells[0].label.to_vec(), vec![1u64], "material 1 wins everywhere");
+    }
+}
+
+#[test]
+fn cyclic_order_of_patches_around_chains() {
+    let Some(dir) = data_dir() else { return };
+    // IA: two surfaces cross at a chain, 4 patches alternate between them;
+    // MI: 3 materials meet, 3 interface patches.
+    for (name, mode, around) in [("ia4_R20", Mode::Ia, 4), ("ia18_R20", Mode::Ia, 4), ("mi18_R20", Mode::Mi, 3)] {
+        let (grid, values, k) = load(&dir, name);
+        let net = run(&grid, &values, k, mode, 2);
+        let known: Vec<&Vec<u32>> = net.chain_patches.iter().filter(|c| !c.is_empty()).collect();
+        assert!(
+            known.len() * 10 >= net.chains.len() * 9,
+            "{name}: {} of {} chains ordered",
+            known.len(),
+            net.chains.len()
+        );
+        for c in known {
+            assert_eq!(c.len(), around, "{name}: {c:?}");
+            let mut sorted = c.clone();
+            sorted.sort();
+            sorted.dedup();
+            assert_eq!(sorted.len(), around, "{name}: a patch twice around a chain: {c:?}");
+            for i in 0..c.len() {
+                let (p, q) = (&net.patches[c[i] as usize], &net.patches[c[(i + 1) % c.len()] as usize]);
+                if mode == Mode::Ia {
+                    assert_ne!(p.label, q.label, "{name}: neighbours around a chain on one surface: {c:?}");
+                } else {
+                    // Consecutive MI interfaces share the material of the cell between them.
+                    assert!(p.label.iter().any(|m| q.label.contains(m)), "{name}: {c:?}");
+                }
+            }
+        }
+    }
 }

@@ -77,7 +77,8 @@ impl BoxGrid {
             if res[a] == 0 {
                 return Err(format!("grid resolution along axis {a} is 0"));
             }
-            if !(bounds[0][a] < bounds[1][a]) || !bounds[0][a].is_finite() || !bounds[1][a].is_finite() {
+            let increasing = bounds[0][a].partial_cmp(&bounds[1][a]) == Some(std::cmp::Ordering::Less);
+            if !increasing || !bounds[0][a].is_finite() || !bounds[1][a].is_finite() {
                 return Err(format!(
                     "grid bounds along axis {a} are not increasing finite numbers: {} .. {}",
                     bounds[0][a], bounds[1][a]

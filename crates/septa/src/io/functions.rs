@@ -29,14 +29,8 @@ pub enum RefError {
 
 fn read_json(path: &Path) -> Result<serde_json::Value, RefError> {
     let p = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| RefError::Io {
-        path: p.clone(),
-        source,
-    })?;
-    serde_json::from_str(&text).map_err(|e| RefError::Format {
-        path: p,
-        message: format!("not JSON: {e}"),
-    })
+    let text = std::fs::read_to_string(path).map_err(|source| RefError::Io { path: p.clone(), source })?;
+    serde_json::from_str(&text).map_err(|e| RefError::Format { path: p, message: format!("not JSON: {e}") })
 }
 
 fn vec3(v: &serde_json::Value) -> Option<[f64; 3]> {
@@ -47,38 +41,26 @@ fn vec3(v: &serde_json::Value) -> Option<[f64; 3]> {
     Some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?])
 }
 
+/// Vertex positions and tets (0-based vertex indices, as read).
+pub type MeshData = (Vec<[f64; 3]>, Vec<[i64; 4]>);
+
 /// Reads a tet-mesh JSON `[[[x,y,z], ...], [[v0,v1,v2,v3], ...]]` (0-based).
-pub fn read_tet_mesh_json(path: &Path) -> Result<(Vec<[f64; 3]>, Vec<[i64; 4]>), RefError> {
+pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
     let v = read_json(path)?;
-    let bad = |message: String| RefError::Format {
-        path: path.display().to_string(),
-        message,
-    };
-    let top = v
-        .as_array()
-        .filter(|a| a.len() == 2)
-        .ok_or_else(|| bad("expected [vertices, tets]".into()))?;
-    let verts = top[0]
-        .as_array()
-        .ok_or_else(|| bad("vertices is not a list".into()))?;
+    let bad = |message: String| RefError::Format { path: path.display().to_string(), message };
+    let top = v.as_array().filter(|a| a.len() == 2).ok_or_else(|| bad("expected [vertices, tets]".into()))?;
+    let verts = top[0].as_array().ok_or_else(|| bad("vertices is not a list".into()))?;
     let mut vertices = Vec::with_capacity(verts.len());
     for (i, p) in verts.iter().enumerate() {
         vertices.push(vec3(p).ok_or_else(|| bad(format!("vertex {i} is not [x, y, z]")))?);
     }
-    let tl = top[1]
-        .as_array()
-        .ok_or_else(|| bad("tets is not a list".into()))?;
+    let tl = top[1].as_array().ok_or_else(|| bad("tets is not a list".into()))?;
     let mut tets = Vec::with_capacity(tl.len());
     for (i, t) in tl.iter().enumerate() {
-        let a = t
-            .as_array()
-            .filter(|a| a.len() == 4)
-            .ok_or_else(|| bad(format!("tet {i} is not 4 indices")))?;
+        let a = t.as_array().filter(|a| a.len() == 4).ok_or_else(|| bad(format!("tet {i} is not 4 indices")))?;
         let mut out = [0i64; 4];
         for (j, x) in a.iter().enumerate() {
-            out[j] = x
-                .as_i64()
-                .ok_or_else(|| bad(format!("tet {i} index {j} is not an integer")))?;
+            out[j] = x.as_i64().ok_or_else(|| bad(format!("tet {i} index {j} is not an integer")))?;
         }
         tets.push(out);
     }
@@ -115,9 +97,7 @@ impl Primitive {
                 radius - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
             }
             Primitive::Plane { point, normal } => {
-                (p[0] - point[0]) * normal[0]
-                    + (p[1] - point[1]) * normal[1]
-                    + (p[2] - point[2]) * normal[2]
+                (p[0] - point[0]) * normal[0] + (p[1] - point[1]) * normal[1] + (p[2] - point[2]) * normal[2]
             }
             Primitive::Zero => 0.0,
         }
@@ -126,43 +106,19 @@ impl Primitive {
 
 /// Parses a function list (the reference's function JSON, or `spec_json` of the test inputs).
 pub fn parse_functions(text: &str, path: &str) -> Result<Vec<Primitive>, RefError> {
-    let bad = |message: String| RefError::Format {
-        path: path.to_string(),
-        message,
-    };
-    let v: serde_json::Value =
-        serde_json::from_str(text).map_err(|e| bad(format!("not JSON: {e}")))?;
-    let list = v
-        .as_array()
-        .ok_or_else(|| bad("expected a list of functions".into()))?;
+    let bad = |message: String| RefError::Format { path: path.to_string(), message };
+    let v: serde_json::Value = serde_json::from_str(text).map_err(|e| bad(format!("not JSON: {e}")))?;
+    let list = v.as_array().ok_or_else(|| bad("expected a list of functions".into()))?;
     let mut out = Vec::with_capacity(list.len());
     for (i, f) in list.iter().enumerate() {
-        let ty = f["type"]
-            .as_str()
-            .ok_or_else(|| bad(format!("function {i} has no \"type\"")))?;
-        let num = |k: &str| {
-            f[k].as_f64()
-                .ok_or_else(|| bad(format!("function {i} ({ty}): missing number \"{k}\"")))
-        };
-        let v3 = |k: &str| {
-            vec3(&f[k])
-                .ok_or_else(|| bad(format!("function {i} ({ty}): missing [x, y, z] \"{k}\"")))
-        };
+        let ty = f["type"].as_str().ok_or_else(|| bad(format!("function {i} has no \"type\"")))?;
+        let num = |k: &str| f[k].as_f64().ok_or_else(|| bad(format!("function {i} ({ty}): missing number \"{k}\"")));
+        let v3 = |k: &str| vec3(&f[k]).ok_or_else(|| bad(format!("function {i} ({ty}): missing [x, y, z] \"{k}\"")));
         out.push(match ty {
-            "sphere" => Primitive::Sphere {
-                center: v3("center")?,
-                radius: num("radius")?,
-            },
-            "plane" => Primitive::Plane {
-                point: v3("point")?,
-                normal: v3("normal")?,
-            },
+            "sphere" => Primitive::Sphere { center: v3("center")?, radius: num("radius")? },
+            "plane" => Primitive::Plane { point: v3("point")?, normal: v3("normal")? },
             "zero" => Primitive::Zero,
-            other => {
-                return Err(bad(format!(
-                    "function {i}: type \"{other}\" is not supported by this reader"
-                )))
-            }
+            other => return Err(bad(format!("function {i}: type \"{other}\" is not supported by this reader"))),
         });
     }
     Ok(out)
@@ -170,11 +126,23 @@ pub fn parse_functions(text: &str, path: &str) -> Result<Vec<Primitive>, RefErro
 
 /// Reads a function JSON file.
 pub fn read_functions(path: &Path) -> Result<Vec<Primitive>, RefError> {
-    let text = std::fs::read_to_string(path).map_err(|source| RefError::Io {
-        path: path.display().to_string(),
-        source,
-    })?;
+    let text =
+        std::fs::read_to_string(path).map_err(|source| RefError::Io { path: path.display().to_string(), source })?;
     parse_functions(&text, &path.display().to_string())
+}
+
+/// Values `out[v * k + f]` of the functions at the vertices of `grid`,
+/// without materialising the vertex positions (memory: the values only).
+pub fn sample_grid(functions: &[Primitive], grid: &crate::grid::Grid) -> Vec<f64> {
+    let n = grid.num_vertices();
+    let mut out = Vec::with_capacity(n * functions.len());
+    for v in 0..n as u32 {
+        let p = grid.vertex(v);
+        for f in functions {
+            out.push(f.eval(&p));
+        }
+    }
+    out
 }
 
 /// Values `out[v * k + f]` of the functions at the given points.

@@ -7,6 +7,7 @@ pub mod mesh_obj;
 pub mod mesh_off;
 pub mod mesh_ply;
 pub mod mesh_stl;
+pub mod msh;
 pub mod network_out;
 pub mod npz;
 pub mod planes;

@@ -17,10 +17,7 @@ pub fn write_atomic(
     write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
     let result = (|| {
         let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
@@ -34,10 +31,7 @@ pub fn write_atomic(
     result
 }
 
-fn list<W: Write, T: std::fmt::Display>(
-    w: &mut W,
-    xs: impl IntoIterator<Item = T>,
-) -> std::io::Result<()> {
+fn list<W: Write, T: std::fmt::Display>(w: &mut W, xs: impl IntoIterator<Item = T>) -> std::io::Result<()> {
     w.write_all(b"[")?;
     for (i, x) in xs.into_iter().enumerate() {
         if i > 0 {
@@ -62,13 +56,7 @@ fn cell_label(net: &Network, c: usize) -> String {
     match net.mode {
         Mode::Ia => {
             let bits: Vec<&str> = (0..net.functions)
-                .map(|f| {
-                    if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) {
-                        "true"
-                    } else {
-                        "false"
-                    }
-                })
+                .map(|f| if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) { "true" } else { "false" })
                 .collect();
             format!("[{}]", bits.join(","))
         }
@@ -78,21 +66,13 @@ fn cell_label(net: &Network, c: usize) -> String {
 
 /// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
 /// Everything but `"seconds"` (written last) depends only on the input.
-pub fn write_json(
-    net: &Network,
-    path: &Path,
-    extra_seconds: &[(&str, f64)],
-) -> std::io::Result<()> {
+pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
     write_atomic(path, |w| {
         let mode = match net.mode {
             Mode::Ia => "ia",
             Mode::Mi => "mi",
         };
-        write!(
-            w,
-            "{{\"mode\":\"{mode}\",\"functions\":{},\n\"points\":[",
-            net.functions
-        )?;
+        write!(w, "{{\"mode\":\"{mode}\",\"functions\":{},\n\"points\":[", net.functions)?;
         for (i, p) in net.points.iter().enumerate() {
             if i > 0 {
                 w.write_all(b",")?;
@@ -127,14 +107,17 @@ pub fn write_json(
             if i > 0 {
                 w.write_all(b",")?;
             }
-            write!(
-                w,
-                "{{\"label\":[{},{}],\"faces\":{}}}",
-                p.label[0], p.label[1], p.faces
-            )?;
+            write!(w, "{{\"label\":[{},{}],\"faces\":{}}}", p.label[0], p.label[1], p.faces)?;
         }
         w.write_all(b"],\n\"chains\":[")?;
         for (i, c) in net.chains.iter().enumerate() {
+            if i > 0 {
+                w.write_all(b",")?;
+            }
+            list(w, c.iter())?;
+        }
+        w.write_all(b"],\n\"chain_patches\":[")?;
+        for (i, c) in net.chain_patches.iter().enumerate() {
             if i > 0 {
                 w.write_all(b",")?;
             }
@@ -213,10 +196,7 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
         for f in 0..net.num_faces() {
             let vs = net.face(f);
             if vs.len() > 255 {
-                return Err(std::io::Error::other(format!(
-                    "face {f} has {} vertices; PLY lists hold 255",
-                    vs.len()
-                )));
+                return Err(std::io::Error::other(format!("face {f} has {} vertices; PLY lists hold 255", vs.len())));
             }
             w.write_all(&[vs.len() as u8])?;
             for &v in vs {
@@ -235,12 +215,7 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
 /// Writes an OBJ: a group `patch_<p>` per patch and an `l` polyline per chain.
 pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
     write_atomic(path, |w| {
-        writeln!(
-            w,
-            "# septa surface network: {} patches, {} chains",
-            net.patches.len(),
-            net.chains.len()
-        )?;
+        writeln!(w, "# septa surface network: {} patches, {} chains", net.patches.len(), net.chains.len())?;
         for p in &net.points {
             writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
         }
@@ -270,10 +245,81 @@ pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
     })
 }
 
-/// Writes `network.json`, `network.ply` and `network.obj` into `dir` (created if needed).
+/// Writes a VTK XML unstructured grid (`.vtu`, raw appended binary) of the
+/// polygons with cell data `patch`, `label` (2 components) and `cells`
+/// (the cells on the positive and negative side, -1 outside the grid).
+pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
+    write_atomic(path, |w| {
+        let nf = net.num_faces();
+        let np = net.points.len();
+        // Appended arrays, in order, each preceded by its UInt64 byte count.
+        let sizes = [
+            (np * 3 * 8, "Float64", "Points", 3),
+            (net.face_verts.len() * 4, "Int32", "connectivity", 1),
+            (nf * 4, "Int32", "offsets", 1),
+            (nf, "UInt8", "types", 1),
+            (nf * 4, "Int32", "patch", 1),
+            (nf * 2 * 4, "Int32", "label", 2),
+            (nf * 2 * 4, "Int32", "cells", 2),
+        ];
+        let mut offsets = Vec::new();
+        let mut off = 0usize;
+        for (n, ..) in &sizes {
+            offsets.push(off);
+            off += 8 + n;
+        }
+        let da = |i: usize| {
+            let (_, ty, name, comps) = sizes[i];
+            format!("<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>\n", offsets[i])
+        };
+        write!(
+            w,
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+             <UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nf}\">\n<Points>\n{}</Points>\n\
+             <Cells>\n{}{}{}</Cells>\n<CellData Scalars=\"patch\">\n{}{}{}</CellData>\n</Piece>\n</UnstructuredGrid>\n\
+             <AppendedData encoding=\"raw\">\n_",
+            da(0), da(1), da(2), da(3), da(4), da(5), da(6)
+        )?;
+        let head = |w: &mut BufWriter<File>, i: usize| w.write_all(&(sizes[i].0 as u64).to_le_bytes());
+        head(w, 0)?;
+        for p in &net.points {
+            for x in p {
+                w.write_all(&x.to_le_bytes())?;
+            }
+        }
+        head(w, 1)?;
+        for &v in &net.face_verts {
+            w.write_all(&(v as i32).to_le_bytes())?;
+        }
+        head(w, 2)?;
+        for f in 0..nf {
+            w.write_all(&(net.face_start[f + 1] as i32).to_le_bytes())?;
+        }
+        head(w, 3)?;
+        w.write_all(&vec![7u8; nf])?; // VTK_POLYGON
+        head(w, 4)?;
+        for &p in &net.face_patch {
+            w.write_all(&(p as i32).to_le_bytes())?;
+        }
+        head(w, 5)?;
+        for l in &net.face_label {
+            w.write_all(&(l[0] as i32).to_le_bytes())?;
+            w.write_all(&(l[1] as i32).to_le_bytes())?;
+        }
+        head(w, 6)?;
+        for c in &net.face_cells {
+            w.write_all(&(id(c[0]) as i32).to_le_bytes())?;
+            w.write_all(&(id(c[1]) as i32).to_le_bytes())?;
+        }
+        w.write_all(b"\n</AppendedData>\n</VTKFile>\n")
+    })
+}
+
+/// Writes `network.json`, `network.ply`, `network.obj` and `network.vtu` into `dir` (created if needed).
 pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     write_ply(net, &dir.join("network.ply"))?;
     write_obj(net, &dir.join("network.obj"))?;
+    write_vtu(net, &dir.join("network.vtu"))?;
     write_json(net, &dir.join("network.json"), extra_seconds)
 }

@@ -52,6 +52,9 @@ pub(crate) type OpenT = (FaceKey, Label, VKey, VKey);
 #[derive(Debug, Default)]
 pub(crate) struct BlockOut {
     pub keys: Vec<VKey>,
+    /// Per key: whether its grid element may be shared with another block
+    /// (lies on the block's boundary); the others need no global lookup.
+    pub shared: Vec<bool>,
     pub points: Vec<[f64; 3]>,
     pub poly_start: Vec<u32>,
     pub poly_verts: Vec<u32>,
@@ -62,6 +65,8 @@ pub(crate) struct BlockOut {
     pub comp_volume: Vec<f64>,
     pub contacts: Vec<(FaceKey, Label, u32)>,
     pub unions: Vec<(SRef, SRef)>,
+    /// Wedges at chain edges inside tets: (edge, face side, face side).
+    pub wedges: Vec<([u32; 2], SRef, SRef)>,
     pub tnodes: u32,
     pub open_t: Vec<(OpenT, u32)>,
     pub active_tets: usize,
@@ -79,6 +84,8 @@ pub(crate) struct Worker {
     tets: Vec<usize>,
     pairs: Vec<(u32, u32)>,
     edge_net: Vec<u32>,
+    /// IA: the active functions of the next tet as a bit mask, if known.
+    pub(crate) active_hint: Option<u64>,
     cell_labels: Vec<Label>,
 }
 
@@ -92,6 +99,10 @@ pub(crate) struct State {
     pub uf: UnionFind,
     pub node_label: Vec<Label>,
     pub node_volume: Vec<f64>,
+    /// Whether regions are joined across tet faces (cell grouping).
+    pub grouping: bool,
+    /// The cube range of a box block (`None`: a range of mesh tets).
+    pub block_box: Option<([usize; 3], [usize; 3])>,
 }
 
 /// Run-wide inputs.
@@ -102,6 +113,9 @@ pub(crate) struct Ctx<'a> {
     pub mode: Mode,
     pub options: Options,
     pub volumes: bool,
+    /// Join regions across tet faces (cell grouping); off when ray shooting
+    /// is sure to apply.
+    pub grouping: bool,
 }
 
 const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
@@ -115,12 +129,18 @@ fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
 impl Worker {
     /// Processes one block.
     pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
-        let mut st = State::default();
+        let mut st = State {
+            grouping: ctx.grouping,
+            block_box: match block {
+                Block::Cubes { lo, hi } => Some((*lo, *hi)),
+                Block::Tets(_) => None,
+            },
+            ..State::default()
+        };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
             if super::boxfast::applies(ctx) {
                 self.run_box(ctx, &mut st, g, *lo, *hi)?;
-                st.out.tets =
-                    (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
+                st.out.tets = (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
                 return Ok(finish(st));
             }
         }
@@ -136,25 +156,28 @@ impl Worker {
 
     /// The per-tet step (active functions, complex, extraction); look-up
     /// tables slot in at the `build` call.
-    pub(crate) fn process_tet(
-        &mut self,
-        ctx: &Ctx,
-        st: &mut State,
-        t: usize,
-    ) -> Result<(), NetworkError> {
+    pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
         let k = ctx.k;
         let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
-        active_functions(ctx, t, &tet, &mut self.active)?;
+        match self.active_hint {
+            Some(mut mask) => {
+                self.active.clear();
+                while mask != 0 {
+                    self.active.push(mask.trailing_zeros() as u16);
+                    mask &= mask - 1;
+                }
+            }
+            None => active_functions(ctx, t, &tet, &mut self.active)?,
+        }
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),
             Mode::Mi => self.active.len() < 2,
         };
-        let volume = if ctx.volumes {
-            ctx.grid.tet_volume(t)
-        } else {
-            0.0
-        };
+        let volume = if ctx.volumes { ctx.grid.tet_volume(t) } else { 0.0 };
+        if empty && !st.grouping {
+            return Ok(()); // no polygon refers to an empty tet's region
+        }
         if empty {
             let label: Label = match ctx.mode {
                 Mode::Ia => ia_base_label(&tet, ctx),
@@ -175,10 +198,7 @@ impl Worker {
         }
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
-            .map_err(|e| NetworkError::Tet {
-                tet: t,
-                message: e.to_string(),
-            })?;
+            .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
         // Degenerate tet faces: the network contains the whole face.
@@ -231,11 +251,7 @@ impl Worker {
                 Plane::TetFace(i) => {
                     let i = i as usize;
                     if let Some(z) = deg[i] {
-                        let verts = face
-                            .vertices
-                            .iter()
-                            .map(|&v| vertex_id(self, c, ctx, st, &tet, v))
-                            .collect();
+                        let verts = face.vertices.iter().map(|&v| vertex_id(self, c, ctx, st, &tet, v)).collect();
                         let h = st.out.halves.len() as u32;
                         st.out.halves.push(HalfPoly {
                             face: face_key(&tet, i),
@@ -267,9 +283,7 @@ impl Worker {
                     }
                     st.out.poly_start.push(st.out.poly_verts.len() as u32);
                     st.out.poly_label.push(label);
-                    st.out
-                        .poly_cells
-                        .push([base + face.cells[0], base + face.cells[1]]);
+                    st.out.poly_cells.push([base + face.cells[0], base + face.cells[1]]);
                     self.fref[fi] = Some(SRef::Side(p, 0));
                 }
             }
@@ -300,11 +314,20 @@ impl Worker {
                 }
             }
         }
+        // A tet-edge segment can only lie in the network if a function vanishes
+        // (IA) or two tie for the maximum (MI) at a tet corner.
+        let corner_degenerate = (0..4).any(|i| match ctx.mode {
+            Mode::Ia => self.vals.iter().any(|r| r[i] == 0.0),
+            Mode::Mi => {
+                let m = self.vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max);
+                self.vals.iter().filter(|r| r[i] == m).count() >= 2
+            }
+        });
         for (ci, cell) in c.cells().iter().enumerate() {
             let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
             for &fi in &cell.faces {
                 for &e in &c.faces()[fi as usize].edges {
-                    if self.edge_net[e as usize] > 0 || on_tet_edge(c, e) {
+                    if self.edge_net[e as usize] > 0 || (corner_degenerate && on_tet_edge(c, e)) {
                         ef.push((e, fi));
                     }
                 }
@@ -319,10 +342,7 @@ impl Worker {
                 let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
                 j += 2;
                 let [u, w] = c.edges()[e as usize].vertices;
-                let (n1, n2) = (
-                    self.fref[f1 as usize].is_some(),
-                    self.fref[f2 as usize].is_some(),
-                );
+                let (n1, n2) = (self.fref[f1 as usize].is_some(), self.fref[f2 as usize].is_some());
                 let tet_edge = on_tet_edge(c, e);
                 let needed = if tet_edge {
                     segment_on_network(ctx.mode, c, &self.vals, u, w)
@@ -335,6 +355,18 @@ impl Worker {
                 let r1 = self.face_ref(c, ctx, st, &tet, ci as u32, f1, u, w);
                 let r2 = self.face_ref(c, ctx, st, &tet, ci as u32, f2, u, w);
                 st.out.unions.push((r1, r2));
+                // Inside the tet, around an edge on 3+ network faces (a chain),
+                // the wedges give the cyclic order of faces (Sec. 7).
+                if !tet_edge
+                    && self.edge_net[e as usize] >= 3
+                    && c.edges()[e as usize].planes.iter().all(|p| p.is_network())
+                {
+                    if let (SRef::Side(..), SRef::Side(..)) = (r1, r2) {
+                        let a = vertex_id(self, c, ctx, st, &tet, u);
+                        let b = vertex_id(self, c, ctx, st, &tet, w);
+                        st.out.wedges.push(([a.min(b), a.max(b)], r1, r2));
+                    }
+                }
             }
         }
         self.complex = owned;
@@ -359,18 +391,11 @@ impl Worker {
             Some(SRef::Side(p, _)) => SRef::Side(p, if face.cells[0] == cell { 0 } else { 1 }),
             Some(r) => r,
             None => {
-                let Plane::TetFace(i) = face.plane else {
-                    unreachable!()
-                };
+                let Plane::TetFace(i) = face.plane else { unreachable!() };
                 let fk = face_key(tet, i as usize);
                 let a = vertex_id(self, c, ctx, st, tet, u);
                 let b = vertex_id(self, c, ctx, st, tet, w);
-                let key = (
-                    fk,
-                    self.cell_labels[cell as usize].clone(),
-                    a.min(b),
-                    a.max(b),
-                );
+                let key = (fk, self.cell_labels[cell as usize].clone(), a.min(b), a.max(b));
                 if let Some(t) = st.tmap.remove(&key) {
                     SRef::T(t)
                 } else {
@@ -397,17 +422,10 @@ fn zero_set(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> SmallVec<[u16
     }
     let corner = vert.simplex().trailing_zeros() as usize;
     match mode {
-        Mode::Ia => (0..vals.len() as u16)
-            .filter(|&f| vals[f as usize][corner] == 0.0)
-            .collect(),
+        Mode::Ia => (0..vals.len() as u16).filter(|&f| vals[f as usize][corner] == 0.0).collect(),
         Mode::Mi => {
-            let m = vals
-                .iter()
-                .map(|r| r[corner])
-                .fold(f64::NEG_INFINITY, f64::max);
-            (0..vals.len() as u16)
-                .filter(|&f| vals[f as usize][corner] == m)
-                .collect()
+            let m = vals.iter().map(|r| r[corner]).fold(f64::NEG_INFINITY, f64::max);
+            (0..vals.len() as u16).filter(|&f| vals[f as usize][corner] == m).collect()
         }
     }
 }
@@ -427,10 +445,7 @@ fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32
 /// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
 pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
     let vert = c.vertices()[v as usize];
-    let mut key = VKey {
-        grid: [u32::MAX; 4],
-        funcs: [u16::MAX; 4],
-    };
+    let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
     let mut n = 0;
     for i in 0..4 {
         if vert.simplex() >> i & 1 == 1 {
@@ -448,15 +463,20 @@ pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active
     key
 }
 
+/// Whether the grid element of `key` lies on the boundary of the box block
+/// `lo..hi` (all its grid vertices on one side plane), so that another block
+/// may produce the same vertex. Mesh blocks: always (conservative).
+fn on_block_boundary(ctx: &Ctx, block: Option<([usize; 3], [usize; 3])>, key: &VKey) -> bool {
+    let (Grid::Box(g), Some((lo, hi))) = (ctx.grid, block) else {
+        return true;
+    };
+    let verts = key.grid.iter().take_while(|&&v| v != u32::MAX);
+    let ijk: SmallVec<[[usize; 3]; 4]> = verts.map(|&v| g.vertex_ijk(v)).collect();
+    (0..3).any(|a| ijk.iter().all(|p| p[a] == lo[a]) || ijk.iter().all(|p| p[a] == hi[a]))
+}
+
 /// Block id of complex vertex `v`, creating its key and position on first use.
-fn vertex_id(
-    w: &mut Worker,
-    c: &Complex,
-    ctx: &Ctx,
-    st: &mut State,
-    tet: &[u32; 4],
-    v: u32,
-) -> u32 {
+fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32; 4], v: u32) -> u32 {
     if w.vid[v as usize] != NONE {
         return w.vid[v as usize];
     }
@@ -465,10 +485,9 @@ fn vertex_id(
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
         st.out.keys.push(key);
+        st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
         let corners = tet.map(|g| ctx.grid.vertex(g));
-        st.out
-            .points
-            .push(c.vertex_position(v as usize, &corners, &w.vals));
+        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
     }
     w.vid[v as usize] = id;
     id
@@ -484,6 +503,9 @@ pub(crate) fn face_key_pub(tet: &[u32; 4], i: usize) -> FaceKey {
 
 fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
     use std::collections::hash_map::Entry;
+    if !st.grouping {
+        return;
+    }
     match st.contacts.entry((face, label.clone())) {
         Entry::Occupied(o) => {
             let other = o.remove();
@@ -497,12 +519,7 @@ fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
 
 /// The active functions of tet `t` (ascending): IA, those with a sign change
 /// or a zero at its vertices; MI, those not strictly dominated at all 4.
-pub(crate) fn active_functions(
-    ctx: &Ctx,
-    t: usize,
-    tet: &[u32; 4],
-    out: &mut Vec<u16>,
-) -> Result<(), NetworkError> {
+pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Vec<u16>) -> Result<(), NetworkError> {
     out.clear();
     let k = ctx.k;
     match ctx.mode {
@@ -511,10 +528,7 @@ pub(crate) fn active_functions(
                 let r = tet.map(|v| ctx.values[v as usize * k + f]);
                 if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
                     if r.iter().all(|&x| x == 0.0) {
-                        return Err(NetworkError::VanishesOnTet {
-                            tet: t,
-                            function: f,
-                        });
+                        return Err(NetworkError::VanishesOnTet { tet: t, function: f });
                     }
                     out.push(f as u16);
                 }
@@ -558,22 +572,13 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
 /// Whether tet face `corners` lies in the network: IA, the smallest active
 /// function vanishing at its 3 corners; MI, two active functions tied for
 /// the maximum at all 3 corners (returns the first of them).
-fn degenerate_face(
-    mode: Mode,
-    vals: &[[f64; 4]],
-    active: &[u16],
-    corners: [usize; 3],
-) -> Option<u16> {
+fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
     match mode {
-        Mode::Ia => vals
-            .iter()
-            .position(|r| corners.iter().all(|&i| r[i] == 0.0))
-            .map(|f| active[f]),
+        Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
         Mode::Mi => {
             let max = corners.map(|i| vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max));
-            let tied: SmallVec<[usize; 4]> = (0..vals.len())
-                .filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j]))
-                .collect();
+            let tied: SmallVec<[usize; 4]> =
+                (0..vals.len()).filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j])).collect();
             (tied.len() >= 2).then(|| active[tied[0]])
         }
     }
@@ -581,12 +586,7 @@ fn degenerate_face(
 
 /// Volume of a convex cell (floating point; output and invariant checks only):
 /// sum of cones from its first vertex over its faces.
-fn cell_volume(
-    c: &Complex,
-    cell: &crate::complex::Cell,
-    corners: &[[f64; 3]; 4],
-    vals: &[[f64; 4]],
-) -> f64 {
+fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4], vals: &[[f64; 4]]) -> f64 {
     let pos = |v: u32| c.vertex_position(v as usize, corners, vals);
     let apex = pos(c.faces()[cell.faces[0] as usize].vertices[0]);
     let mut vol = 0.0;
@@ -620,11 +620,8 @@ fn finish(mut st: State) -> BlockOut {
     for h in &mut out.halves {
         h.cell = comp[h.cell as usize];
     }
-    let mut contacts: Vec<(FaceKey, Label, u32)> = st
-        .contacts
-        .into_iter()
-        .map(|((f, l), n)| (f, l, comp[n as usize]))
-        .collect();
+    let mut contacts: Vec<(FaceKey, Label, u32)> =
+        st.contacts.into_iter().map(|((f, l), n)| (f, l, comp[n as usize])).collect();
     contacts.sort_unstable();
     out.contacts = contacts;
     let mut open: Vec<(OpenT, u32)> = st

@@ -106,9 +106,7 @@ impl Worker {
         }
         let per = g.split.tets_per_cube();
         let cube_vol = if ctx.volumes {
-            (0..3)
-                .map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64)
-                .product()
+            (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product()
         } else {
             0.0
         };
@@ -124,6 +122,10 @@ impl Worker {
                         same &= vl[((i + a) * vn[1] + j + b) * vn[2] + k + c] == l0;
                     }
                     let cube = g.cube_index([lo[0] + i, lo[1] + j, lo[2] + k]);
+                    if same && !st.grouping {
+                        // Without grouping an empty cube is nobody's region: skip it.
+                        continue;
+                    }
                     if same {
                         let id = st.uf.push();
                         let l: Label = match ctx.mode {
@@ -139,11 +141,32 @@ impl Worker {
                         node[local(i, j, k)] = id;
                     } else {
                         for t in cube * per..(cube + 1) * per {
+                            // IA: the active functions are the sign bits that differ
+                            // between the tet's corners (when none is zero).
+                            self.active_hint = None;
+                            if ctx.mode == Mode::Ia {
+                                let tet = g.tet(t);
+                                let (mut or, mut and, mut bad) = (0u64, u64::MAX, false);
+                                for v in tet {
+                                    let p = g.vertex_ijk(v);
+                                    let l = vl[((p[0] - lo[0]) * vn[1] + p[1] - lo[1]) * vn[2] + p[2] - lo[2]];
+                                    bad |= l == BAD;
+                                    or |= l;
+                                    and &= l;
+                                }
+                                if !bad {
+                                    self.active_hint = Some(or ^ and);
+                                }
+                            }
                             self.process_tet(ctx, st, t)?;
                         }
+                        self.active_hint = None;
                     }
                 }
             }
+        }
+        if !st.grouping {
+            return Ok(());
         }
         // Join empty cubes to empty neighbours by index, the rest by contacts.
         let odd = [[0, 0, 1], [0, 1, 0], [1, 0, 0]]

@@ -26,6 +26,8 @@ pub(crate) struct Merged {
     /// Shell union-find over `2 * face + side` then extra nodes.
     pub shell_pairs: Vec<(u32, u32)>,
     pub shell_nodes: usize,
+    /// Wedges at chain edges: (edge, side `2f+s`, side `2g+t`) facing one cell.
+    pub wedges: Vec<([u32; 2], u32, u32)>,
     pub active_tets: usize,
 }
 
@@ -53,7 +55,8 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
             if remap[v as usize] == NONE {
                 let key = b.keys[v as usize];
                 let next = m.keys.len() as u32;
-                let id = *vmap.entry(key).or_insert(next);
+                // A vertex inside its block is unique: no global lookup.
+                let id = if b.shared[v as usize] { *vmap.entry(key).or_insert(next) } else { next };
                 if id == next {
                     m.keys.push(key);
                     m.points.push(b.points[v as usize]);
@@ -104,6 +107,12 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
             SRef::T(t) => Pre::T(t + t_base),
         };
         pre_unions.extend(b.unions.into_iter().map(|(a, c)| (conv(a), conv(c))));
+        for (e, r1, r2) in b.wedges {
+            if let (Pre::Side(x), Pre::Side(y)) = (conv(r1), conv(r2)) {
+                let (a, c) = (gid(e[0], &mut m), gid(e[1], &mut m));
+                m.wedges.push(([a.min(c), a.max(c)], x, y));
+            }
+        }
     }
     // Pair the halves of network faces lying on tet faces.
     let mut half_side: Vec<Option<u32>> = vec![None; halves.len()];

@@ -8,6 +8,7 @@
 //! Regions are joined across tet faces by (face, region label) keys, and
 //! shells by wedges around edges, so block summaries merge in any order.
 
+pub mod bench;
 mod block;
 mod boxfast;
 mod merge;
@@ -91,6 +92,8 @@ pub struct NetworkOptions {
     pub mode: Mode,
     /// Naive floating-point predicates (for measuring only).
     pub float: bool,
+    /// Use the complex's look-up tables for few active functions (Sec. 6).
+    pub lookup: bool,
     /// Block edge in cubes.
     pub block: usize,
     /// Compute cell volumes (floating point, for invariant checks); they
@@ -105,13 +108,7 @@ pub struct NetworkOptions {
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions {
-            mode,
-            float: false,
-            block: 16,
-            volumes: false,
-            raytrace: true,
-        }
+        NetworkOptions { mode, float: false, lookup: true, block: 16, volumes: false, raytrace: true }
     }
 }
 
@@ -163,6 +160,9 @@ pub struct Network {
     pub patches: Vec<Patch>,
     /// Chains as vertex paths (a closed chain repeats its first vertex).
     pub chains: Vec<Vec<u32>>,
+    /// Per chain, the patches around it in cyclic order (empty where the
+    /// chain's first edge lies on a tet face).
+    pub chain_patches: Vec<Vec<u32>>,
     /// Corner vertices.
     pub corners: Vec<u32>,
     /// Shells as lists of half-patches (`2p` positive side of patch `p`, `2p + 1` negative).
@@ -207,14 +207,24 @@ impl Network {
     }
 }
 
+/// Whether ray shooting is sure to apply: a box grid and no network vertex
+/// at a grid vertex (IA: no value is exactly 0; MI: no tie for the maximum).
+fn ray_applies(grid: &Grid, values: &[f64], k: usize, mode: Mode) -> bool {
+    if !matches!(grid, Grid::Box(_)) {
+        return false;
+    }
+    match mode {
+        Mode::Ia => values.iter().all(|&x| x != 0.0),
+        Mode::Mi => values.chunks_exact(k).all(|r| {
+            let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            r.iter().filter(|&&x| x == m).count() == 1
+        }),
+    }
+}
+
 /// Computes the IA or MI network of `k` functions given by their values at
 /// the grid vertices (`values[v * k + f]`), on the current rayon pool.
-pub fn compute(
-    grid: &Grid,
-    values: &[f64],
-    k: usize,
-    options: &NetworkOptions,
-) -> Result<Network, NetworkError> {
+pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) -> Result<Network, NetworkError> {
     let t0 = Instant::now();
     let n = grid.num_vertices();
     if k == 0 {
@@ -224,38 +234,57 @@ pub fn compute(
         return Err(NetworkError::TooManyFunctions(k));
     }
     if values.len() != n * k {
-        return Err(NetworkError::ValueCount {
-            expected: n * k,
-            vertices: n,
-            functions: k,
-            got: values.len(),
-        });
+        return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
     }
     if let Some(i) = values.iter().position(|x| !x.is_finite()) {
-        return Err(NetworkError::NonFinite {
-            vertex: i / k,
-            function: i % k,
-            value: values[i],
-        });
+        return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
     }
     let ctx = block::Ctx {
         grid,
         values,
         k,
         mode: options.mode,
-        options: Options::with_float(options.float),
+        options: {
+            let mut o = Options::with_float(options.float);
+            o.lookup = options.lookup;
+            o
+        },
         volumes: options.volumes,
+        grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
     };
     let blocks = grid.blocks(options.block);
-    let outs: Vec<block::BlockOut> = blocks
-        .par_iter()
-        .map_init(block::Worker::default, |w, b| w.run(&ctx, b))
-        .collect::<Result<_, _>>()?;
+    let outs: Vec<block::BlockOut> =
+        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     let t2 = Instant::now();
-    let topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
+    let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
+    // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
+    for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
+        let row = &values[..k];
+        cell.label = match options.mode {
+            Mode::Ia => {
+                let mut l: SmallVec<[u64; 2]> = SmallVec::from_elem(0, k.div_ceil(64));
+                for (f, &x) in row.iter().enumerate() {
+                    if x > 0.0 {
+                        l[f / 64] |= 1 << (f % 64);
+                    }
+                }
+                l
+            }
+            Mode::Mi => {
+                let m = (0..k).fold(0, |b, f| if row[f] > row[b] { f } else { b });
+                SmallVec::from_elem(m as u64, 1)
+            }
+        };
+    }
     let t3 = Instant::now();
+    if !ctx.grouping && topo.cells_method != "raytrace" {
+        // Cannot happen when the preconditions hold; never answer without cells.
+        let mut o = options.clone();
+        o.raytrace = false;
+        return compute(grid, values, k, &o);
+    }
     Ok(Network {
         mode: options.mode,
         functions: k,
@@ -269,6 +298,7 @@ pub fn compute(
         edges: topo.edges,
         patches: topo.patches,
         chains: topo.chains,
+        chain_patches: topo.chain_patches,
         corners: topo.corners,
         shells: topo.shells,
         cells: topo.cells,

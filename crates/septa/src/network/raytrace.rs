@@ -10,8 +10,10 @@
 //! come in order from the per-tet complex.
 //!
 //! Preconditions, checked: a box grid (convex boundary, no cavities or
-//! handles) and no network vertex at a grid vertex. Otherwise `None`, and the
-//! caller falls back to cell grouping.
+//! handles). Network vertices at grid vertices are points a ray can hit
+//! too; where the local picture is ambiguous (a ray segment lying in the
+//! network, a ray returning to its own component) the answer is `None` and
+//! the caller falls back to cell grouping.
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
@@ -46,9 +48,6 @@ struct TetView {
 /// preconditions do not hold.
 pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> {
     let Grid::Box(g) = ctx.grid else { return None };
-    if inp.keys.iter().any(|k| k.grid[1] == u32::MAX) {
-        return None; // a network vertex at a grid vertex
-    }
     // Vertex -> faces.
     let nv = inp.keys.len();
     let mut start = vec![0u32; nv + 1];
@@ -67,12 +66,7 @@ pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> 
             fill[v] += 1;
         }
     }
-    let vmap: FxHashMap<VKey, u32> = inp
-        .keys
-        .iter()
-        .enumerate()
-        .map(|(i, k)| (*k, i as u32))
-        .collect();
+    let vmap: FxHashMap<VKey, u32> = inp.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
     // Smallest grid edge (v, u) carrying an edge-point, per component.
     let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); inp.num_comps];
     for (v, k) in inp.keys.iter().enumerate() {
@@ -88,17 +82,19 @@ pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> 
             return None; // a component touching no grid edge (cannot happen on a proper network)
         }
         let view = tet_view(ctx, g, v, u)?;
-        let pts = edge_points(ctx, &view, v, u);
-        // The component's point closest to v on this edge.
-        let j = pts.iter().position(|&(_, key)| {
-            vmap.get(&key)
-                .is_some_and(|&id| inp.vertex_comp[id as usize] == c as u32)
-        })?;
-        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j + 1, true)?;
-        let end_shell = if j > 0 {
-            facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, false)?
-        } else {
-            walk(ctx, g, inp, &vmap, &start, &vf, v)?
+        let pts = edge_points(ctx, &view, v, u, &vmap);
+        // The component's point closest to v on this edge (never a corner).
+        let j = (1..pts.len().saturating_sub(1))
+            .find(|&j| pts[j].is_some_and(|id| inp.vertex_comp[id as usize] == c as u32))?;
+        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, true)?;
+        let end_shell = match (0..j).rev().find(|&k| pts[k].is_some()) {
+            Some(k) => {
+                if inp.vertex_comp[pts[k]? as usize] == c as u32 {
+                    return None;
+                }
+                facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, k, false)?
+            }
+            None => walk(ctx, g, inp, &vmap, &start, &vf, v, c as u32)?,
         };
         uf.union(start_shell, end_shell);
     }
@@ -118,6 +114,7 @@ fn walk(
     start: &[u32],
     vf: &[u32],
     from: u32,
+    comp: u32,
 ) -> Option<u32> {
     let mut cur = from;
     loop {
@@ -127,10 +124,14 @@ fn walk(
         let w = lowest_neighbour(g, cur);
         if edge_may_cross(ctx, w, cur) {
             let view = tet_view(ctx, g, w, cur)?;
-            let pts = edge_points(ctx, &view, w, cur);
-            if let Some(last) = pts.len().checked_sub(1) {
-                // The point closest to `cur`; the ray arrives from `cur`'s side.
-                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, last + 1, false);
+            let pts = edge_points(ctx, &view, w, cur, vmap);
+            // The network point closest to `cur` (possibly `w` itself); the ray
+            // arrives from `cur`'s side.
+            if let Some(k) = (0..pts.len().saturating_sub(1)).rev().find(|&k| pts[k].is_some()) {
+                if inp.vertex_comp[pts[k]? as usize] == comp {
+                    return None;
+                }
+                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, k, false);
             }
         }
         cur = w;
@@ -144,10 +145,7 @@ fn edge_may_cross(ctx: &Ctx, a: u32, b: u32) -> bool {
     let ra = &ctx.values[a as usize * k..(a as usize + 1) * k];
     let rb = &ctx.values[b as usize * k..(b as usize + 1) * k];
     match ctx.mode {
-        Mode::Ia => ra
-            .iter()
-            .zip(rb)
-            .any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
+        Mode::Ia => ra.iter().zip(rb).any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
         Mode::Mi => {
             let arg = |r: &[f64]| {
                 let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -219,10 +217,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     let mut active = Vec::new();
     active_functions(ctx, 0, &tet, &mut active).ok()?;
     let k = ctx.k;
-    let vals: Vec<[f64; 4]> = active
-        .iter()
-        .map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize]))
-        .collect();
+    let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize])).collect();
     let mut complex = Complex::new();
     let empty = match ctx.mode {
         Mode::Ia => active.is_empty(),
@@ -231,30 +226,22 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     if !empty {
         complex.build(ctx.mode, &vals, &ctx.options).ok()?;
     }
-    Some(TetView {
-        tet,
-        active,
-        complex,
-    })
+    Some(TetView { tet, active, complex })
 }
 
-/// Edge-points strictly inside grid edge `a b`, ordered from `a` to `b`:
-/// (complex vertex, key).
-fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32) -> SmallVec<[(u32, VKey); 8]> {
-    let mut out = SmallVec::new();
+/// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
+/// to `b` (corners included), each with its global id if it is a network vertex.
+fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &FxHashMap<VKey, u32>) -> SmallVec<[Option<u32>; 8]> {
     if view.complex.vertices().is_empty() {
-        return out;
+        return SmallVec::from_elem(None, 2);
     }
     let la = view.tet.iter().position(|&x| x == a).unwrap() as u8;
     let lb = view.tet.iter().position(|&x| x == b).unwrap() as u8;
-    let list = view.complex.tet_edge_points(la, lb);
-    for &cv in list.iter().skip(1).take(list.len().saturating_sub(2)) {
-        out.push((
-            cv,
-            vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active),
-        ));
-    }
-    out
+    view.complex
+        .tet_edge_points(la, lb)
+        .iter()
+        .map(|&cv| vmap.get(&vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)).copied())
+        .collect()
 }
 
 /// The shell on the side of the network, at the `j`-th point of the list
@@ -277,21 +264,18 @@ fn facing_shell(
     let la = view.tet.iter().position(|&x| x == a)? as u8;
     let lb = view.tet.iter().position(|&x| x == b)? as u8;
     let list = c.tet_edge_points(la, lb);
+    if list.len() < 2 {
+        return None;
+    }
     let p = list[j];
-    let q = if towards_a {
-        list[j - 1]
-    } else {
-        *list.get(j + 1)?
-    };
-    let edge = c
-        .edges()
-        .iter()
-        .position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
-    let cell = c.cells().iter().position(|cl| {
-        cl.faces
-            .iter()
-            .any(|&f| c.faces()[f as usize].edges.contains(&edge))
-    })? as u32;
+    let q = if towards_a { list[j - 1] } else { *list.get(j + 1)? };
+    let edge = c.edges().iter().position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
+    // A ray segment lying in the network has no side: ambiguous.
+    if c.faces().iter().any(|f| f.plane.is_network() && f.edges.contains(&edge)) {
+        return None;
+    }
+    let cell =
+        c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
     let gp = *vmap.get(&vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
     for &fi in &c.cells()[cell as usize].faces {
         let face = &c.faces()[fi as usize];
@@ -304,9 +288,8 @@ fn facing_shell(
         }
         keys.sort_unstable();
         for &gf in &vf[start[gp as usize] as usize..start[gp as usize + 1] as usize] {
-            let mut vs: SmallVec<[u32; 8]> = inp.face_verts
-                [inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize]
-                .into();
+            let mut vs: SmallVec<[u32; 8]> =
+                inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
             vs.sort_unstable();
             if vs == keys {
                 let side = if face.cells[0] == cell { 0 } else { 1 };

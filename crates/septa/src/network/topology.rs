@@ -18,18 +18,20 @@ pub(crate) struct Topology {
     pub cells: Vec<CellInfo>,
     pub face_cells: Vec<[u32; 2]>,
     pub cells_method: &'static str,
+    pub chain_patches: Vec<Vec<u32>>,
 }
 
 pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topology {
     let nf = m.face_label.len();
     let nv = m.points.len();
     // Edges: (a, b, face) sorted; a run of equal (a, b) is one edge.
-    let mut ef: Vec<(u32, u32, u32)> = Vec::with_capacity(m.face_verts.len());
+    // Edges: (a << 32 | b, face) sorted; a run of equal keys is one edge.
+    let mut ef: Vec<(u64, u32)> = Vec::with_capacity(m.face_verts.len());
     for f in 0..nf {
         let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
         for j in 0..vs.len() {
             let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
-            ef.push((a.min(b), a.max(b), f as u32));
+            ef.push(((a.min(b) as u64) << 32 | a.max(b) as u64, f as u32));
         }
     }
     ef.sort_unstable();
@@ -37,35 +39,35 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     let mut patch_uf = UnionFind::new(nf);
     let mut vert_uf = UnionFind::new(nv);
     let mut chain_edges = Vec::new();
+    let mut sheet_uf = UnionFind::new(nf);
     let mut i = 0;
     while i < ef.len() {
         let mut j = i;
-        while j < ef.len() && ef[j].0 == ef[i].0 && ef[j].1 == ef[i].1 {
+        while j < ef.len() && ef[j].0 == ef[i].0 {
             j += 1;
         }
-        let (a, b) = (ef[i].0, ef[i].1);
+        let (a, b) = ((ef[i].0 >> 32) as u32, ef[i].0 as u32);
         edges.push([a, b]);
         vert_uf.union(a, b);
+        for k in i + 1..j {
+            sheet_uf.union(ef[i].1, ef[k].1);
+        }
         match j - i {
-            2 => patch_uf.union(ef[i].2, ef[i + 1].2),
+            2 => patch_uf.union(ef[i].1, ef[i + 1].1),
             1 => {}
             _ => chain_edges.push([a, b]),
         }
         i = j;
     }
     let (face_patch, np) = patch_uf.components();
-    let mut patches: Vec<Patch> = (0..np)
-        .map(|_| Patch {
-            label: [0, 0],
-            faces: 0,
-        })
-        .collect();
+    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
     for f in 0..nf {
         let p = &mut patches[face_patch[f] as usize];
         p.label = m.face_label[f];
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);
+    let chain_patches = cyclic_patches(m, &chains, &face_patch);
     let (vertex_comp, components) = vert_uf.components();
     // Shells: components of face sides joined around edges (block unions),
     // and every side of a half-patch together.
@@ -102,7 +104,10 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         shell_of_hp[hp] = s;
     }
     // Cells: by ray shooting where it applies, else by region groups.
-    let rays = ray.and_then(|ctx| {
+    // Ray shooting assumes shells of one component meet along edges: two
+    // pieces touching only at points (tangent spheres) break it.
+    let edge_connected = sheet_uf.components().1 == components;
+    let rays = ray.filter(|_| edge_connected).and_then(|ctx| {
         super::raytrace::ray_cells(
             ctx,
             &super::raytrace::RayInput {
@@ -120,6 +125,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     if let Some((shell_cell, ncells)) = rays {
         return ray_topology(
             m,
+            chain_patches,
             edges,
             face_patch,
             patches,
@@ -133,13 +139,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         );
     }
     let (region_cell, ncells) = m.region_uf.components();
-    let mut cells: Vec<CellInfo> = (0..ncells)
-        .map(|_| CellInfo {
-            shells: Vec::new(),
-            label: Default::default(),
-            volume: 0.0,
-        })
-        .collect();
+    let mut cells: Vec<CellInfo> =
+        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
     for (r, &c) in region_cell.iter().enumerate() {
         let cell = &mut cells[c as usize];
         if cell.label.is_empty() {
@@ -147,19 +148,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         }
         cell.volume += m.region_volume[r];
     }
-    let face_cells: Vec<[u32; 2]> = m
-        .face_nodes
-        .iter()
-        .map(|n| {
-            n.map(|x| {
-                if x == NONE {
-                    NONE
-                } else {
-                    region_cell[x as usize]
-                }
-            })
-        })
-        .collect();
+    let face_cells: Vec<[u32; 2]> =
+        m.face_nodes.iter().map(|n| n.map(|x| if x == NONE { NONE } else { region_cell[x as usize] })).collect();
     let mut shell_cell = vec![NONE; shells.len()];
     for f in 0..nf {
         for s in 0..2 {
@@ -186,6 +176,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         cells,
         face_cells,
         cells_method: "grouping",
+        chain_patches,
     }
 }
 
@@ -194,6 +185,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
 #[allow(clippy::too_many_arguments)]
 fn ray_topology(
     m: &Merged,
+    chain_patches: Vec<Vec<u32>>,
     edges: Vec<[u32; 2]>,
     face_patch: Vec<u32>,
     patches: Vec<Patch>,
@@ -205,13 +197,8 @@ fn ray_topology(
     shell_cell: Vec<u32>,
     ncells: usize,
 ) -> Topology {
-    let mut cells: Vec<CellInfo> = (0..ncells)
-        .map(|_| CellInfo {
-            shells: Vec::new(),
-            label: Default::default(),
-            volume: 0.0,
-        })
-        .collect();
+    let mut cells: Vec<CellInfo> =
+        (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
     for (s, &c) in shell_cell.iter().enumerate() {
         cells[c as usize].shells.push(s as u32);
     }
@@ -239,6 +226,7 @@ fn ray_topology(
         cells,
         face_cells,
         cells_method: "raytrace",
+        chain_patches,
     }
 }
 
@@ -264,9 +252,7 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
         adj[fill[b as usize] as usize] = (a, e as u32);
         fill[b as usize] += 1;
     }
-    let corners: Vec<u32> = (0..nv as u32)
-        .filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2)
-        .collect();
+    let corners: Vec<u32> = (0..nv as u32).filter(|&v| deg[v as usize] != 0 && deg[v as usize] != 2).collect();
     let mut used = vec![false; chain_edges.len()];
     let mut out = Vec::new();
     let walk = |from: u32, e0: u32, used: &mut Vec<bool>| -> Vec<u32> {
@@ -304,4 +290,47 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
         }
     }
     (out, corners)
+}
+
+/// The patches around each chain in cyclic order, read from the wedges of
+/// the per-tet complex at the chain's first edge (empty when that edge lies
+/// on a tet face, where no single complex sees the whole star).
+fn cyclic_patches(m: &Merged, chains: &[Vec<u32>], face_patch: &[u32]) -> Vec<Vec<u32>> {
+    let mut by_edge: rustc_hash::FxHashMap<[u32; 2], Vec<(u32, u32)>> = Default::default();
+    for &(e, x, y) in &m.wedges {
+        by_edge.entry(e).or_default().push((x, y));
+    }
+    chains
+        .iter()
+        .map(|c| {
+            let e = [c[0].min(c[1]), c[0].max(c[1])];
+            let Some(pairs) = by_edge.get(&e) else { return Vec::new() };
+            let start = pairs[0].0;
+            let mut cur = start;
+            let mut out = Vec::new();
+            for _ in 0..=pairs.len() {
+                // The next face around, facing the same cell as `cur`.
+                let next = pairs.iter().find_map(|&(x, y)| {
+                    if x == cur {
+                        Some(y)
+                    } else if y == cur {
+                        Some(x)
+                    } else {
+                        None
+                    }
+                });
+                let Some(next) = next else { return Vec::new() };
+                out.push(face_patch[next as usize / 2]);
+                cur = next ^ 1; // cross the face
+                if cur == start || next == start {
+                    break;
+                }
+            }
+            if cur == start {
+                out
+            } else {
+                Vec::new()
+            }
+        })
+        .collect()
 }

@@ -1,0 +1,69 @@
+//! Output files round-trip: network.json parses to the same structure,
+//! the binary PLY and the OBJ hold the same polygons, the VTU has the
+//! announced sizes, and no temporary file is left behind.
+
+use std::path::PathBuf;
+
+use septa::grid::{BoxGrid, Grid, Split};
+use septa::io::functions::{sample, Primitive};
+use septa::io::network_out::write_all;
+use septa::network::{compute, Mode, NetworkOptions};
+
+#[test]
+fn outputs_round_trip() {
+    let grid = Grid::Box(BoxGrid::new([6, 5, 7], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap());
+    let f = [
+        Primitive::Sphere { center: [0.1, 0.05, 0.02], radius: 0.6 },
+        Primitive::Sphere { center: [0.4, 0.1, 0.03], radius: 0.5 },
+        Primitive::Sphere { center: [-0.3, -0.2, 0.1], radius: 0.45 },
+    ];
+    let values = sample(&f, &grid.vertices());
+    for mode in [Mode::Ia, Mode::Mi] {
+        let net = compute(&grid, &values, 3, &NetworkOptions::new(mode)).unwrap();
+        let dir: PathBuf = std::env::temp_dir().join(format!("septa-out-test-{}-{mode:?}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        write_all(&net, &dir, &[("read", 0.0)]).unwrap();
+        let names: Vec<String> =
+            std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+        assert_eq!(names.len(), 4, "{names:?}");
+        // JSON
+        let j: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("network.json")).unwrap()).unwrap();
+        assert_eq!(j["faces"].as_array().unwrap().len(), net.num_faces());
+        assert_eq!(j["points"].as_array().unwrap().len(), net.points.len());
+        assert_eq!(j["cells"].as_array().unwrap().len(), net.cells.len());
+        assert_eq!(j["shells"].as_array().unwrap().len(), net.shells.len());
+        assert_eq!(j["counts"]["patches"].as_u64().unwrap() as usize, net.patches.len());
+        for (f, face) in j["faces"].as_array().unwrap().iter().enumerate() {
+            let vs: Vec<u32> = face.as_array().unwrap().iter().map(|v| v.as_u64().unwrap() as u32).collect();
+            assert_eq!(vs, net.face(f));
+        }
+        // PLY
+        let ply = std::fs::read(dir.join("network.ply")).unwrap();
+        let end = ply.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+        let mut pos = end + net.points.len() * 24;
+        let int = |b: &[u8], p: usize| i32::from_le_bytes(b[p..p + 4].try_into().unwrap());
+        for f in 0..net.num_faces() {
+            let n = ply[pos] as usize;
+            pos += 1;
+            let vs: Vec<u32> = (0..n).map(|i| int(&ply, pos + 4 * i) as u32).collect();
+            assert_eq!(vs, net.face(f));
+            pos += 4 * n;
+            assert_eq!(int(&ply, pos) as u32, net.face_patch[f]);
+            pos += 12 + 3;
+        }
+        assert_eq!(pos, ply.len());
+        // OBJ
+        let obj = std::fs::read_to_string(dir.join("network.obj")).unwrap();
+        assert_eq!(obj.lines().filter(|l| l.starts_with("f ")).count(), net.num_faces());
+        assert_eq!(obj.lines().filter(|l| l.starts_with("l ")).count(), net.chains.len());
+        assert_eq!(obj.lines().filter(|l| l.starts_with("g patch_")).count(), net.patches.len());
+        // VTU: announced arrays fill the appended section exactly.
+        let vtu = std::fs::read(dir.join("network.vtu")).unwrap();
+        let start = vtu.windows(2).position(|w| w == b"\n_").unwrap() + 2;
+        let nf = net.num_faces();
+        let body = 7 * 8 + net.points.len() * 24 + net.face_verts.len() * 4 + nf * 4 + nf + nf * 4 + nf * 16;
+        assert_eq!(&vtu[start + body..], b"\n</AppendedData>\n</VTKFile>\n");
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
