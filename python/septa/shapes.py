@@ -11,8 +11,8 @@ array the jobs take.
 >>> s = sphere([0, 0, 0], 1.0)
 >>> s(np.array([[0, 0, 0], [2, 0, 0]])).tolist()
 [1.0, -1.0]
->>> box([0, 0, 0], [1, 1, 1])(np.array([0.5, 0, 0]))
-array(0.5)
+>>> float(box([0, 0, 0], [1, 1, 1])(np.array([0.5, 0, 0])))
+0.5
 """
 from __future__ import annotations
 
