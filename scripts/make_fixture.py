@@ -44,7 +44,7 @@ def two_planes(n=4):
     faces, face_patch, face_cells = [], [], []
     h = n // 2
     # Cells are the quadrants: id = 2*(x > 1/2) + (y > 1/2); sign vectors
-    # [sign f0, sign f1] as labels.
+    # [f0 > 0, f1 > 0] as labels (IA), patch labels [f, f], as the writer does.
     cell_of = lambda sx, sy: 2 * sx + sy  # noqa: E731
     # Patch 0: x = 1/2, y < 1/2; patch 1: x = 1/2, y > 1/2;
     # patch 2: y = 1/2, x < 1/2; patch 3: y = 1/2, x > 1/2.
@@ -68,7 +68,7 @@ def two_planes(n=4):
                 faces.append(f)
                 face_patch.append(p)
                 face_cells.append([c_pos, c_neg])
-    patches = [{"label": [p // 2, -1], "faces": face_patch.count(p)} for p in range(4)]
+    patches = [{"label": [p // 2, p // 2], "faces": face_patch.count(p)} for p in range(4)]
     chain = [pid(h / n, h / n, k / n) for k in range(n + 1)]
     corners = [chain[0], chain[-1]]
     # Shell of each cell: the half-patches facing it. Cell (sx, sy) sees
@@ -80,7 +80,7 @@ def two_planes(n=4):
             hp_a = 2 * (0 + sy) + (0 if sx else 1)
             hp_b = 2 * (2 + sx) + (0 if sy else 1)
             shells.append(sorted([hp_a, hp_b]))
-            cells.append({"shells": [len(shells) - 1], "label": [1 if sx else -1, 1 if sy else -1]})
+            cells.append({"shells": [len(shells) - 1], "label": [bool(sx), bool(sy)]})
     edges = set()
     for f in faces:
         for i in range(len(f)):
