@@ -20,7 +20,7 @@ fi
 .venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh
 rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stale one
 # CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
-CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .
+PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .
 
 step "Python: pytest"
 # Run from tests/python so `import septa` is the installed package, not python/septa.
