@@ -1,0 +1,30 @@
+//! `septa._septa`: the compiled core of the `septa` Python package.
+//!
+//! A thin layer (STYLE.md habit 12): one Rust file per idea, inputs coerced
+//! once to contiguous numpy arrays of fixed dtype, the GIL released around
+//! work, Rust errors raised as `septa.InputError` (a `ValueError`). The
+//! user-facing API, docstrings and result classes live in `python/septa/`.
+#![warn(missing_docs)]
+
+use pyo3::prelude::*;
+
+mod checks;
+mod viewer;
+
+pyo3::create_exception!(
+    _septa,
+    InputError,
+    pyo3::exceptions::PyValueError,
+    "Bad input: the message names what is wrong and where (array, vertex, function, file, line)."
+);
+
+/// The compiled core of the `septa` package.
+#[pymodule]
+fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("InputError", m.py().get_type::<InputError>())?;
+    m.add_function(wrap_pyfunction!(checks::check_values, m)?)?;
+    m.add_function(wrap_pyfunction!(checks::check_tets, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
+    Ok(())
+}

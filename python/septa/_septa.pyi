@@ -1,0 +1,12 @@
+"""Type stubs of the compiled core (crates/septa-py)."""
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+class InputError(ValueError):
+    """Bad input: the message names what is wrong and where."""
+
+def check_values(values: npt.NDArray[np.float64], name: str = "values") -> None: ...
+def check_tets(tets: npt.NDArray[np.int64], n_vertices: int) -> None: ...
+def viewer_assets() -> dict[str, bytes]: ...

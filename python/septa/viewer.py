@@ -1,0 +1,49 @@
+"""``septa.view``: the browser viewer for a result, as a self-contained
+folder (index.html, the bundled viewer.js with three.js, and data.js holding
+the result), exactly as ``septa view OUTDIR`` writes it."""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import webbrowser
+from pathlib import Path
+
+from . import _septa
+from .network import Network, load
+
+__all__ = ["view", "write_viewer"]
+
+
+def write_viewer(net: Network, folder, title: str = "Septa") -> Path:
+    """Writes the viewer folder for ``net``; returns the path of index.html."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    files = dict(_septa.viewer_assets())
+    payload = {"title": title, "network": net.data, "cut": None}
+    files["data.js"] = ("window.__SEPTA_DATA = " + json.dumps(payload, separators=(",", ":")) + ";\n").encode()
+    for name, data in files.items():
+        tmp = folder / (name + ".tmp-septa")
+        tmp.write_bytes(data)
+        os.replace(tmp, folder / name)
+    return (folder / "index.html").resolve()
+
+
+def view(result, folder=None, *, open: bool = True, title: str | None = None) -> Path:
+    """Writes a viewer for ``result`` (a :class:`Network` or a job output
+    folder) and opens it in a browser when there is one; returns index.html.
+
+    Without ``folder``, writes into ``<result folder>/viewer`` for loaded
+    results, else into a new temporary folder.
+    """
+    net = result if isinstance(result, Network) else load(result)
+    if folder is None:
+        src = getattr(net, "source", None)
+        folder = Path(src).parent / "viewer" if src else Path(tempfile.mkdtemp(prefix="septa-view-"))
+    index = write_viewer(net, folder, title or (Path(net.source).parent.name if getattr(net, "source", None) else "Septa"))
+    opened = False
+    if open and (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY") or os.name == "nt" or os.uname().sysname == "Darwin"):
+        opened = webbrowser.open(index.as_uri())
+    if not opened:
+        print(f"viewer: {index}")
+    return index

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Every test of the project (the README's test command): Rust, Python, viewer.
+# Works on a fresh Debian machine as root with only the package registries,
+# and is idempotent (re-running reuses .venv, node_modules and chromium).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ROOT=$PWD
+export CARGO_TERM_COLOR=never
+step() { printf '\n=== %s ===\n' "$*"; }
+
+step "Rust: cargo test --workspace --release"
+cargo test --workspace --release
+
+step "Python: virtual environment, pip install . (maturin builds the Rust core)"
+PY=${PYTHON:-python3}
+if [ ! -x .venv/bin/python ]; then
+  "$PY" -m venv .venv
+fi
+.venv/bin/python -m pip install -q --upgrade pip
+.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh
+rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stale one
+# CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
+PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .
+
+step "Python: pytest"
+# Run from tests/python so `import septa` is the installed package, not python/septa.
+set +e
+(cd tests/python && "$ROOT/.venv/bin/python" -m pytest -q . --doctest-modules --pyargs septa -p no:cacheprovider)
+rc=$?
+set -e
+if [ "$rc" -ne 0 ] && [ "$rc" -ne 5 ]; then  # 5 = no tests collected
+  echo "pytest failed ($rc)"; exit "$rc"
+fi
+
+step "Viewer: npm ci, bundle up to date"
+cd "$ROOT/viewer"
+# Reinstall only when the lock file changed since the last install.
+if ! cmp -s package-lock.json node_modules/.septa-lock 2>/dev/null; then
+  npm ci --no-audit --no-fund
+  cp package-lock.json node_modules/.septa-lock
+fi
+node build.mjs --check
+
+step "Viewer: headless Chromium"
+if ! command -v chromium >/dev/null 2>&1; then
+  apt-get update
+  DEBIAN_FRONTEND=noninteractive apt-get install -y chromium
+fi
+cd "$ROOT"
+ART="$ROOT/test-artifacts"
+rm -rf "$ART/two-planes"
+mkdir -p "$ART"
+cp -r tests/fixtures/two-planes "$ART/two-planes"
+"$ROOT/target/release/septa" view "$ART/two-planes" --no-open
+# Two labels (f0, f1) and four patches: see scripts/make_fixture.py.
+node viewer/test/browser.mjs "$ART/two-planes/viewer" "$ART" --label-colours 2 --patch-colours 4
+
+step "all tests passed"

@@ -1,0 +1,97 @@
+import json
+
+import numpy as np
+import pytest
+import septa
+from conftest import FIXTURE
+
+
+def test_fixture_counts_and_invariants(fixture_net):
+    net = fixture_net
+    s = net.summary()
+    # Two coordinate planes through the box centre (derived by hand).
+    assert {k: s[k] for k in ("patches", "chains", "corners", "shells", "cells")} == {
+        "patches": 4, "chains": 1, "corners": 2, "shells": 4, "cells": 4}
+    assert net.points.dtype == np.float64 and net.indices.dtype == np.int64
+    assert net.patch_labels.shape == (4, 2)
+    # Every face bounds two different cells; every cell's shell holds exactly
+    # the half-patches of the faces on its side.
+    assert np.all(net.face_cells[:, 0] != net.face_cells[:, 1])
+    for c, cell in enumerate(net.cells):
+        half = {int(h) for sh in cell["shells"] for h in net.shells[sh]}
+        faces_side = {2 * int(net.face_patch[f]) + (0 if net.face_cells[f, 0] == c else 1)
+                      for f in range(len(net)) if c in net.face_cells[f]}
+        assert half == faces_side
+    # Triangulated view covers each polygon with n - 2 triangles.
+    assert len(net.triangles) == int(np.sum(np.diff(net.offsets) - 2))
+
+
+def test_save_roundtrip(tmp_path, fixture_net):
+    meshio = pytest.importorskip("meshio")
+    trimesh = pytest.importorskip("trimesh")
+    net = fixture_net
+    ntri = len(net.triangles)
+    # PLY: polygons with a patch property.
+    # (meshio's PLY reader cannot read per-face properties, so trimesh reads it.)
+    net.save(tmp_path / "n.ply")
+    t = trimesh.load(tmp_path / "n.ply", process=False)
+    assert len(t.faces) == ntri and np.allclose(t.vertices, net.points)
+    raw = t.metadata["_ply_raw"]["face"]["data"]
+    assert np.array_equal(raw["patch"].ravel(), net.face_patch)
+    # The fixture's PLY (as the jobs write it) reads the same way.
+    ref = trimesh.load(FIXTURE / "network.ply", process=False)
+    assert np.array_equal(ref.faces, t.faces)
+    # OBJ: a group per patch.
+    net.save(tmp_path / "n.obj")
+    t = trimesh.load(tmp_path / "n.obj", process=False, force="mesh")
+    assert len(t.faces) == ntri
+    assert (tmp_path / "n.obj").read_text().count("\ng patch_") == 4
+    # VTU and MSH through meshio, with patch ids as cell data.
+    net.save(tmp_path / "n.vtu")
+    m = meshio.read(tmp_path / "n.vtu")
+    assert np.array_equal(m.cell_data["patch"][0], net.face_patch[net.triangle_face])
+    net.save(tmp_path / "n.msh")
+    m = meshio.read(tmp_path / "n.msh")
+    assert len(m.cells_dict["triangle"]) == ntri
+    # JSON: the network contract itself.
+    net.save(tmp_path / "n.json")
+    back = septa.load(tmp_path / "n.json")
+    assert back.summary() == net.summary()
+    assert not list(tmp_path.glob("*.tmp"))
+
+
+def test_converters(fixture_net):
+    pytest.importorskip("meshio")
+    pytest.importorskip("trimesh")
+    m = fixture_net.to_meshio()
+    assert m.cells[0].type == "triangle"
+    t = fixture_net.to_trimesh()
+    assert np.array_equal(t.faces, fixture_net.triangles)
+    assert set(np.unique(t.face_attributes["patch"])) == {0, 1, 2, 3}
+
+
+def test_to_pyvista_hint_or_mesh(fixture_net):
+    try:
+        import pyvista  # noqa: F401
+    except ImportError:
+        with pytest.raises(ImportError, match="pip install pyvista"):
+            fixture_net.to_pyvista()
+    else:
+        assert fixture_net.to_pyvista().n_cells == len(fixture_net)
+
+
+def test_load_errors(tmp_path):
+    with pytest.raises(septa.InputError, match="cannot read"):
+        septa.load(tmp_path)
+    (tmp_path / "network.json").write_text('{"points": [\n1,')
+    with pytest.raises(septa.InputError, match=r"network.json:2: invalid JSON"):
+        septa.load(tmp_path)
+    with pytest.raises(septa.InputError, match="unknown extension"):
+        septa.load(FIXTURE).save(tmp_path / "x.stl")
+
+
+def test_fixture_generator_reproduces_committed_fixture():
+    import make_fixture
+
+    committed = json.loads((FIXTURE / "network.json").read_text())
+    assert make_fixture.two_planes(4) == committed
