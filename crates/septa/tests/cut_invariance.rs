@@ -125,3 +125,24 @@ fn bad_input_is_named() {
     let e = cut_mesh(&v, &flipped, &p, &opts).unwrap_err().to_string();
     assert!(e.contains("triangle"), "{e}");
 }
+
+#[test]
+fn self_intersection_is_found() {
+    let (mut v, mut t) = tet();
+    // a second tetrahedron poking through the first one's slanted face
+    let off = v.len() as u32;
+    v.extend([
+        [0.2, 0.2, 0.2],
+        [1.2, 0.2, 0.2],
+        [0.2, 1.2, 0.2],
+        [0.2, 0.2, 1.2],
+    ]);
+    t.extend(tet().1.iter().map(|f| f.map(|k| k + off)));
+    let e = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap_err();
+    assert!(matches!(e, CutError::SelfIntersection { .. }), "{e}");
+    // apart, the two are fine
+    for p in v.iter_mut().skip(4) {
+        p[0] += 5.0;
+    }
+    cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
+}

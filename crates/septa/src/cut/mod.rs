@@ -24,6 +24,7 @@ pub mod lines;
 pub mod nodes;
 pub mod output;
 pub mod plane_graph;
+pub mod selfx;
 
 use cells::{FaceLoop, Support};
 use clip::EdgeLine;
@@ -108,6 +109,14 @@ pub enum CutError {
     InwardOrientation {
         /// The signed volume.
         volume: f64,
+    },
+    /// Two triangles meet away from their shared vertices.
+    #[error("triangles {first} and {second} intersect (the mesh self-intersects)")]
+    SelfIntersection {
+        /// Smaller triangle index.
+        first: usize,
+        /// Larger triangle index.
+        second: usize,
     },
     /// NaN or infinite plane coefficient.
     #[error("plane {plane} has a non-finite coefficient")]
@@ -296,7 +305,8 @@ impl CutCellMesh {
             volume_relative_error: err,
             min_cell_volume: min,
             domain_euler: self.mesh_euler / 2,
-            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - sum_chi,
             non_ball_cells: non_ball,
         })
     }
@@ -330,13 +340,24 @@ fn cut_impl(
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
     let mut clock = Instant::now();
+    let debug = std::env::var_os("SEPTA_DEBUG").is_some();
     let mut lap = |name: &str, stats: &mut CutStats| {
+        if debug {
+            let rss = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
+            eprintln!(
+                "stage {name}: {:.3}s statm {rss}",
+                clock.elapsed().as_secs_f64()
+            );
+        }
         stats
             .seconds
             .push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
+    lap("check_mesh", &mut stats);
+    selfx::check_self_intersections(vertices, triangles)?;
+    lap("self_intersection", &mut stats);
     let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
     let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
     let nv = vertices.len();
