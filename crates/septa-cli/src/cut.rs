@@ -120,6 +120,7 @@ pub fn run(a: Args) -> CliResult {
         "check": check_msg,
         "exact_fallbacks": out.stats.exact_fallbacks,
         "ordered_edges": out.stats.ordered_edges,
+        "moved_vertices": out.stats.moved_vertices,
         "dropped_planes": out.stats.dropped_planes.len(),
         "seconds": seconds,
     });

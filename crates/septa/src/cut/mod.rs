@@ -164,6 +164,9 @@ pub struct CutStats {
     pub holes: usize,
     /// Holes whose face needed an exact containment test.
     pub hole_containment_tests: usize,
+    /// Vertices whose rounded coordinates were nudged to keep the exact order
+    /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
+    pub moved_vertices: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
 }
@@ -539,6 +542,20 @@ fn cut_impl(
         }
     }
     out.vertices = out.vertex_defs.iter().map(|&d| c.approx(d)).collect();
+    // floating-point embedding: keep the exact order along every line
+    let mut moved: Vec<u32> = Vec::new();
+    let to_out = |n: &u32| used[cid(*n) as usize];
+    for chain in chains.iter() {
+        let l: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
+    }
+    for (_, pts) in &plines {
+        let l: Vec<u32> = pts.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
+    }
+    moved.sort_unstable();
+    moved.dedup();
+    stats.moved_vertices = moved.len();
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
     let nf = nface as usize;
