@@ -36,6 +36,9 @@ pub struct Args {
     /// Skip writing cells.vtu / cells.obj (cut.json is always written).
     #[arg(long)]
     pub no_mesh_output: bool,
+    /// Skip the exact self-intersection test of the input mesh.
+    #[arg(long)]
+    pub no_self_check: bool,
     /// Exploded view factor for cells.obj.
     #[arg(long, default_value_t = 0.0)]
     pub explode: f64,
@@ -62,7 +65,10 @@ pub fn run(a: Args) -> CliResult {
         &mesh.vertices,
         &mesh.triangles,
         &planes,
-        &CutOptions { threads: a.threads },
+        &CutOptions {
+            threads: a.threads,
+            skip_self_intersection_check: a.no_self_check,
+        },
     )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {

@@ -35,7 +35,16 @@ fn plane_order_scale_and_threads_do_not_matter() {
             eprintln!("no data, skipped");
             return;
         };
-        let base = cut_mesh(&v, &t, &p, &CutOptions { threads: 1 }).unwrap();
+        let base = cut_mesh(
+            &v,
+            &t,
+            &p,
+            &CutOptions {
+                threads: 1,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         base.validate().unwrap();
         // reversed, rotated order; scaled by a power of two and negated (same planes)
         let mut q: Vec<[f64; 4]> = p.iter().rev().copied().collect();
@@ -45,12 +54,30 @@ fn plane_order_scale_and_threads_do_not_matter() {
             .enumerate()
             .map(|(i, x)| if i % 2 == 0 { x.map(|c| -4.0 * c) } else { *x })
             .collect();
-        let other = cut_mesh(&v, &t, &q, &CutOptions { threads: 2 }).unwrap();
+        let other = cut_mesh(
+            &v,
+            &t,
+            &q,
+            &CutOptions {
+                threads: 2,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert_eq!(summary(&base), summary(&other), "{mesh} {planes}");
         // a duplicate plane is dropped with a note
         let mut d = p.clone();
         d.push(p[0].map(|c| 2.0 * c));
-        let dup = cut_mesh(&v, &t, &d, &CutOptions { threads: 2 }).unwrap();
+        let dup = cut_mesh(
+            &v,
+            &t,
+            &d,
+            &CutOptions {
+                threads: 2,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert_eq!(dup.stats.dropped_planes, vec![(p.len(), 0)]);
         assert_eq!(summary(&base), summary(&dup));
     }

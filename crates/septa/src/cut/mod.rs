@@ -25,6 +25,7 @@ pub mod nodes;
 pub mod output;
 pub mod plane_graph;
 pub mod selfx;
+pub mod triangulate;
 
 use cells::{FaceLoop, Support};
 use clip::EdgeLine;
@@ -40,6 +41,9 @@ use std::time::Instant;
 pub struct CutOptions {
     /// Worker threads (0: all available). The result does not depend on it.
     pub threads: usize,
+    /// Skip the exact self-intersection test of the input (for inputs known
+    /// to be clean; the reference implementation assumes it).
+    pub skip_self_intersection_check: bool,
 }
 
 /// Why a cut was refused.
@@ -201,6 +205,11 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// The cut planes used (after dropping duplicates); `Support::Plane(p)`
+    /// indexes this list.
+    pub planes: Vec<[f64; 4]>,
+    /// Outward normals of the input triangles (floating point, for output).
+    pub tri_normals: Vec<[f64; 3]>,
     /// Euler characteristic of the input surface (`V - E + T`).
     pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
@@ -230,6 +239,27 @@ pub struct Validation {
 }
 
 impl CutCellMesh {
+    /// The unit-free normal of a face's support (triangle outward normal or
+    /// plane normal), from the input data.
+    pub fn support_normal(&self, f: &CutFace) -> [f64; 3] {
+        match f.support {
+            Support::Plane(p) => {
+                let q = self.planes[p as usize];
+                [q[0], q[1], q[2]]
+            }
+            Support::Tri(t) => self.tri_normals[t as usize],
+        }
+    }
+
+    /// Triangles of each cut-face (no new vertices; holes bridged), for
+    /// output and rendering.
+    pub fn triangulate_faces(&self) -> Vec<Vec<[u32; 3]>> {
+        self.faces
+            .iter()
+            .map(|f| triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f)))
+            .collect()
+    }
+
     /// Checks: every cut-face bounds one (boundary) or two distinct
     /// (interior) cells, cell volumes are positive and sum to the mesh
     /// volume within `1e-9` relative.
@@ -324,14 +354,14 @@ pub fn cut_mesh(
     opts: &CutOptions,
 ) -> Result<CutCellMesh, CutError> {
     if opts.threads == 0 {
-        return cut_impl(vertices, triangles, planes);
+        return cut_impl(vertices, triangles, planes, opts);
     }
     match rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads)
         .build()
     {
-        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
-        Err(_) => cut_impl(vertices, triangles, planes),
+        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes, opts)),
+        Err(_) => cut_impl(vertices, triangles, planes, opts),
     }
 }
 
@@ -339,6 +369,7 @@ fn cut_impl(
     vertices: &[[f64; 3]],
     triangles: &[[u32; 3]],
     planes: &[[f64; 4]],
+    opts: &CutOptions,
 ) -> Result<CutCellMesh, CutError> {
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
@@ -359,7 +390,9 @@ fn cut_impl(
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
     lap("check_mesh", &mut stats);
-    selfx::check_self_intersections(vertices, triangles)?;
+    if !opts.skip_self_intersection_check {
+        selfx::check_self_intersections(vertices, triangles)?;
+    }
     lap("self_intersection", &mut stats);
     let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
     let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
@@ -546,7 +579,11 @@ fn cut_impl(
     let mut moved: Vec<u32> = Vec::new();
     let to_out = |n: &u32| used[cid(*n) as usize];
     for chain in chains.iter() {
-        let l: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        let l: Vec<u32> = chain
+            .iter()
+            .map(to_out)
+            .filter(|&v| v != u32::MAX)
+            .collect();
         output::enforce_line_order(&mut out.vertices, &l, &mut moved);
     }
     for (_, pts) in &plines {
@@ -585,6 +622,22 @@ fn cut_impl(
         cf.loops.push(verts);
     }
     out.mesh_volume = output::mesh_volume(vertices, triangles);
+    out.planes = planes.clone();
+    out.tri_normals = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, cc] = t.map(|i| vertices[i as usize]);
+            let (u, v) = (
+                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]],
+            );
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        })
+        .collect();
     out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;
     out.counts = CutCounts {
         cut_vertices: out.vertex_defs.len(),

@@ -44,7 +44,9 @@ pub fn enforce_line_order(x: &mut [[f64; 3]], line: &[u32], moved: &mut Vec<u32>
         return;
     }
     let t = [d[0] / n, d[1] / n, d[2] / n];
-    let dot = |p: [f64; 3], q: [f64; 3]| (q[0] - p[0]) * t[0] + (q[1] - p[1]) * t[1] + (q[2] - p[2]) * t[2];
+    let dot = |p: [f64; 3], q: [f64; 3]| {
+        (q[0] - p[0]) * t[0] + (q[1] - p[1]) * t[1] + (q[2] - p[2]) * t[2]
+    };
     for w in line.windows(2) {
         let p = x[w[0] as usize];
         let mut q = x[w[1] as usize];

@@ -53,31 +53,49 @@ fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
 }
 
 fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
-    fn f<R: Ring>(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> R {
+    fn f(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Interval {
         let p = |i: u32| {
             [
-                R::of(x[i as usize][0]),
-                R::of(x[i as usize][1]),
-                R::of(x[i as usize][2]),
+                Interval::point(x[i as usize][0]),
+                Interval::point(x[i as usize][1]),
+                Interval::point(x[i as usize][2]),
             ]
         };
         let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
-        let u: [R; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
-        let v: [R; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
-        let w: [R; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        let u: [Interval; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let v: [Interval; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [Interval; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
         u[0].mul(&v[1].mul(&w[2]).sub(&v[2].mul(&w[1])))
             .sub(&u[1].mul(&v[0].mul(&w[2]).sub(&v[2].mul(&w[0]))))
             .add(&u[2].mul(&v[0].mul(&w[1]).sub(&v[1].mul(&w[0]))))
     }
-    filtered_sign(
-        || f::<Interval>(x, a, b, c, d),
-        || f::<Exact>(x, a, b, c, d),
-    )
+    if let Some(s) = f(x, a, b, c, d).sign() {
+        return s;
+    }
+    // det(b - a, c - a, d - a), differences formed exactly inside septa-exact
+    let p = |i: u32| x[i as usize];
+    let pa = p(a);
+    septa_exact::det_sign_diff::<3>(&[p(b), p(c), p(d)], &[pa, pa, pa])
 }
 
 /// 2D orientation of points projected by dropping axis `k`.
 fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
     let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    // Shewchuk's static filter for orient2d (`ccwerrboundA` = (3u + 16u^2))
+    let (pa, pb, pc) = (&x[a as usize], &x[b as usize], &x[c as usize]);
+    let l = (pb[i] - pa[i]) * (pc[j] - pa[j]);
+    let r = (pb[j] - pa[j]) * (pc[i] - pa[i]);
+    let det = l - r;
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (3.0 * U + 16.0 * U * U) * (l.abs() + r.abs());
+    if det.is_finite() && (l.abs() + r.abs()) > 1e-280 {
+        if det > bound {
+            return Sign::Positive;
+        }
+        if -det > bound {
+            return Sign::Negative;
+        }
+    }
     fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
         let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
         let (pa, pb, pc) = (p(a), p(b), p(c));
@@ -161,8 +179,85 @@ fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
+/// Are `c` and `d` on the same side of the line `ab` (positive dot product
+/// of their components perpendicular to `ab`)?
+fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
+    fn f<R: Ring>(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> R {
+        let p = |i: u32| {
+            [
+                R::of(x[i as usize][0]),
+                R::of(x[i as usize][1]),
+                R::of(x[i as usize][2]),
+            ]
+        };
+        let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+        let e: [R; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let u: [R; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [R; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        let dot =
+            |p: &[R; 3], q: &[R; 3]| p[0].mul(&q[0]).add(&p[1].mul(&q[1])).add(&p[2].mul(&q[2]));
+        // (u.w)|e|^2 - (u.e)(w.e) = |e|^2 (u_perp . w_perp)
+        dot(&u, &w)
+            .mul(&dot(&e, &e))
+            .sub(&dot(&u, &e).mul(&dot(&w, &e)))
+    }
+    filtered_sign(
+        || f::<Interval>(x, a, b, c, d),
+        || f::<Exact>(x, a, b, c, d),
+    ) == Sign::Positive
+}
+
+/// Sufficient test that two triangles meet at most in shared vertices:
+/// their projections along a coordinate axis are separated by an edge line
+/// of one of them (all other corners strictly outside; shared corners on
+/// the line). Exact (2D orientations of input coordinates), and cheap where
+/// the 3D predicates are nearly degenerate (flat fans of nearly coplanar
+/// triangles).
+fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    let n = {
+        let (a, b, c) = (x[t1[0] as usize], x[t1[1] as usize], x[t1[2] as usize]);
+        let (u, v) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let k = (0..3)
+        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap();
+    for (ta, tb) in [(t1, t2), (t2, t1)] {
+        let inner = orient2(x, k, ta[0], ta[1], ta[2]);
+        if inner == Sign::Zero {
+            return false;
+        }
+        for e in 0..3 {
+            let (a, b) = (ta[e], ta[(e + 1) % 3]);
+            let sep = tb.iter().all(|&w| {
+                if w == a || w == b {
+                    return true;
+                }
+                if ta.contains(&w) {
+                    return false;
+                }
+                orient2(x, k, a, b, w) == inner.flip()
+            });
+            if sep {
+                return true;
+            }
+        }
+    }
+    false
+}
+
 /// Do two triangles meet anywhere besides their shared vertices?
 fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    if projections_separated(x, t1, t2) {
+        return false;
+    }
     let mut shared = [0u32; 3];
     let mut ns = 0;
     for &v in t1 {
@@ -208,10 +303,14 @@ fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
             false
         }
         2 => {
-            // folded onto each other: the other apex coplanar and on the same side
+            // folded onto each other: the other apex on the same side of the
+            // shared edge (checked first: it is rarely so) and coplanar
             let shared = [shared[0], shared[1]];
             let c = *t1.iter().find(|w| !shared.contains(w)).unwrap();
             let d = *t2.iter().find(|w| !shared.contains(w)).unwrap();
+            if !same_side_of_edge(x, shared[0], shared[1], c, d) {
+                return false;
+            }
             if orient(x, shared[0], shared[1], c, d) != Sign::Zero {
                 return false;
             }
