@@ -150,7 +150,12 @@ pub fn plane_lines(
             if !crosses[(p * np + q) as usize] {
                 continue;
             }
-            let mut pts = lines.remove(&(p, q)).unwrap_or_default();
+            // A line that meets no point of the mesh misses the bounded
+            // domain entirely: every point where it meets the surface was
+            // registered (vertex, edge crossing or triangle interior).
+            let Some(mut pts) = lines.remove(&(p, q)) else {
+                continue;
+            };
             for r in 0..np {
                 if r != p && r != q && c.det3(p, q, r) != Sign::Zero {
                     let mut k = [p, q, r];

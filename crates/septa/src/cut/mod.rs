@@ -3,18 +3,47 @@
 //! cut by planes into cut-cells whose combinatorics are those of exact
 //! rational arithmetic.
 //!
-//! Pipeline (paper sections):
-//! 1. [`input`]: input conditions (Sec. 2.1, App. A).
-//! 2. [`lines`]: cut-vertices as face triples on mesh edges and plane-plane
-//!    lines, exact line sorting, merging of equal triples (Sec. 3).
-//! 3. [`clip`]: cut-faces inside triangles (Sec. 4 for `H(t)`).
-//! 4. [`plane_graph`]: cut-faces inside planes, edge-cycle order, inside
-//!    loops (Sec. 4, App. C).
-//! 5. [`cells`]: half-faces joined around cut-edges into cut-cells (Sec. 5).
+//! Pipeline (paper sections in brackets):
+//! 1. [`input`], [`selfx`]: input conditions [Sec. 2.1, App. A], each
+//!    failure a [`CutError`] naming the element; duplicate planes dropped.
+//! 2. [`lines`]: cut-vertices as face triples ([`geom::Def`]) on mesh edges
+//!    and plane-plane lines, exact line sorting with a floating-point
+//!    pre-sort, merging of equal triples (union-find) [Sec. 3, App. B].
+//! 3. [`clip`]: cut-faces inside triangles: each triangle clipped by the
+//!    planes crossing it, in plane order; since every cut is a full plane the
+//!    pieces are convex and need no cycle ordering [Sec. 4, `H(t)`].
+//! 4. [`plane_graph`], [`holes`]: cut-faces inside planes: the half-edge
+//!    structure `H(p)` over all plane-plane lines and the boundary curves,
+//!    exact edge-cycle order at vertices, loops of `next`, inside/outside by
+//!    the boundary side tests [App. C] carried across plane-plane edges;
+//!    holes found exactly and joined to their face [Sec. 2.2, 6.1].
+//! 5. [`cells`]: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
+//!    an edge with two faces is joined topologically; others by exact
+//!    face-cycle order ([`CutStats::ordered_edges`]).
+//! 6. [`output`], [`triangulate`]: floating-point embedding that keeps the
+//!    order along every line (moved vertices counted) [Sec. 6.1], volumes,
+//!    triangulation of faces for output.
 //!
+//! Difference from the paper: TopoCut inserts planes one at a time into the
+//! half-face structure and infers most cycle orders topologically. Here all
+//! cut-faces are built first (triangles by clipping, planes from their whole
+//! line arrangement) and cells are assembled once; cycle orders are
+//! evaluated by filtered predicates (an interval filter decides almost all;
+//! [`CutStats::exact_fallbacks`] counts the rest), so the result is the
+//! exact one whatever the input degeneracy.
+//!
+//! Counting conventions (those of the reference implementation): a cut-face
+//! with holes counts once, and each hole adds one cut-edge (the edge that
+//! joins it to the outer boundary); a cell with a void would count once.
 //! Every sign deciding the combinatorics comes from a filtered exact
-//! predicate (`septa_exact::filtered_sign`).
+//! predicate (`septa_exact::filtered_sign` and Shewchuk-style static
+//! filters with stated bounds).
+//!
+//! Known limits: a mesh with several components where one lies entirely
+//! inside a single arrangement cell of another (a true void) is reported as
+//! an extra, negative-volume cell (caught by [`CutCellMesh::validate`]).
 
+pub mod bench;
 pub mod cells;
 pub mod clip;
 pub mod geom;
@@ -510,7 +539,14 @@ fn cut_impl(
         faces.push(fl);
     }
     for ((p, q), pts) in &plines {
-        for w in pts.windows(2) {
+        // before the first and after the last point on the mesh the line is
+        // outside the domain (a point's representative triple is (P,P,P)
+        // only when no mesh triple names it)
+        let on_mesh = |n: &u32| !matches!(rep[cid(*n) as usize], Def::PPP(..));
+        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh)) else {
+            continue;
+        };
+        for w in pts[i0..=i1].windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             let ge = GEdge {
                 a,
