@@ -20,12 +20,29 @@ pub struct CutTiming {
 }
 
 /// Reads `mesh` and `planes` and cuts with `threads` workers (0: all).
-pub fn time_case(mesh: &Path, planes: &Path, threads: usize) -> Result<CutTiming, Box<dyn std::error::Error + Send + Sync>> {
+pub fn time_case(
+    mesh: &Path,
+    planes: &Path,
+    threads: usize,
+) -> Result<CutTiming, Box<dyn std::error::Error + Send + Sync>> {
     let t0 = Instant::now();
     let m = read_mesh(mesh)?;
     let p = read_planes(planes)?;
     let read_seconds = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
-    let out = cut_mesh(&m.vertices, &m.triangles, &p, &CutOptions { threads, ..Default::default() })?;
-    Ok(CutTiming { counts: out.counts, read_seconds, cut_seconds: t1.elapsed().as_secs_f64(), stages: out.stats.seconds })
+    let out = cut_mesh(
+        &m.vertices,
+        &m.triangles,
+        &p,
+        &CutOptions {
+            threads,
+            ..Default::default()
+        },
+    )?;
+    Ok(CutTiming {
+        counts: out.counts,
+        read_seconds,
+        cut_seconds: t1.elapsed().as_secs_f64(),
+        stages: out.stats.seconds,
+    })
 }

@@ -46,6 +46,7 @@
 pub mod bench;
 pub mod cells;
 pub mod clip;
+mod error;
 pub mod geom;
 pub mod holes;
 pub mod input;
@@ -55,6 +56,10 @@ pub mod output;
 pub mod plane_graph;
 pub mod selfx;
 pub mod triangulate;
+mod validate;
+
+pub use error::CutError;
+pub use validate::Validation;
 
 use cells::{FaceLoop, Support};
 use clip::EdgeLine;
@@ -73,99 +78,6 @@ pub struct CutOptions {
     /// Skip the exact self-intersection test of the input (for inputs known
     /// to be clean; the reference implementation assumes it).
     pub skip_self_intersection_check: bool,
-}
-
-/// Why a cut was refused.
-#[derive(Debug, thiserror::Error)]
-pub enum CutError {
-    /// No triangles.
-    #[error("the mesh has no triangles")]
-    EmptyMesh,
-    /// A vertex coordinate is NaN or infinite.
-    #[error("vertex {vertex} has a non-finite coordinate")]
-    NonFiniteVertex {
-        /// Vertex index (0-based).
-        vertex: usize,
-    },
-    /// Two vertices at the same position.
-    #[error("vertices {first} and {second} are at the same position (duplicate vertex)")]
-    DuplicateVertex {
-        /// First vertex.
-        first: usize,
-        /// Its duplicate.
-        second: usize,
-    },
-    /// A triangle refers to a missing vertex.
-    #[error("triangle {triangle} refers to a vertex that does not exist")]
-    BadIndex {
-        /// Triangle index.
-        triangle: usize,
-    },
-    /// A triangle with collinear corners.
-    #[error("triangle {triangle} is degenerate (zero area, exactly)")]
-    DegenerateTriangle {
-        /// Triangle index.
-        triangle: usize,
-    },
-    /// An edge used twice in the same direction.
-    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle}: non-manifold edge or inconsistent orientation")]
-    NonManifoldOrFlipped {
-        /// Triangle index.
-        triangle: usize,
-        /// The other triangle.
-        other: usize,
-        /// Edge start vertex.
-        a: u32,
-        /// Edge end vertex.
-        b: u32,
-    },
-    /// An edge with only one triangle.
-    #[error(
-        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
-    )]
-    NotWatertight {
-        /// Triangle index.
-        triangle: usize,
-        /// Edge start.
-        a: u32,
-        /// Edge end.
-        b: u32,
-    },
-    /// The triangles around a vertex form more than one fan.
-    #[error("vertex {vertex} is non-manifold (its triangles form several fans)")]
-    NonManifoldVertex {
-        /// Vertex index.
-        vertex: usize,
-    },
-    /// Negative or zero signed volume.
-    #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]
-    InwardOrientation {
-        /// The signed volume.
-        volume: f64,
-    },
-    /// Two triangles meet away from their shared vertices.
-    #[error("triangles {first} and {second} intersect (the mesh self-intersects)")]
-    SelfIntersection {
-        /// Smaller triangle index.
-        first: usize,
-        /// Larger triangle index.
-        second: usize,
-    },
-    /// NaN or infinite plane coefficient.
-    #[error("plane {plane} has a non-finite coefficient")]
-    NonFinitePlane {
-        /// Plane index.
-        plane: usize,
-    },
-    /// `a = b = c = 0`.
-    #[error("plane {plane} has a zero-length normal")]
-    ZeroNormal {
-        /// Plane index.
-        plane: usize,
-    },
-    /// The result failed a consistency check (a bug, reported not hidden).
-    #[error("internal consistency check failed: {0}")]
-    Inconsistent(String),
 }
 
 /// Counts of the cut-cell mesh.
@@ -245,133 +157,6 @@ pub struct CutCellMesh {
     pub cell_volumes: Vec<f64>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
-}
-
-/// Results of [`CutCellMesh::validate`].
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct Validation {
-    /// `V - E + F - C`.
-    pub euler: i64,
-    /// `|sum of cell volumes - mesh volume| / mesh volume`.
-    pub volume_relative_error: f64,
-    /// Smallest cell volume.
-    pub min_cell_volume: f64,
-    /// Euler characteristic of the domain, `chi(mesh) / 2`.
-    pub domain_euler: i64,
-    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
-    /// counted on each cell's own boundary: equals `domain_euler` when
-    /// every cut-face is a disc (holes are joined by one edge each), whatever
-    /// the topology of the cells (a cell around a handle has `chi = 0`).
-    pub euler_by_cell: i64,
-    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
-    pub non_ball_cells: usize,
-}
-
-impl CutCellMesh {
-    /// The unit-free normal of a face's support (triangle outward normal or
-    /// plane normal), from the input data.
-    pub fn support_normal(&self, f: &CutFace) -> [f64; 3] {
-        match f.support {
-            Support::Plane(p) => {
-                let q = self.planes[p as usize];
-                [q[0], q[1], q[2]]
-            }
-            Support::Tri(t) => self.tri_normals[t as usize],
-        }
-    }
-
-    /// Triangles of each cut-face (no new vertices; holes bridged), for
-    /// output and rendering.
-    pub fn triangulate_faces(&self) -> Vec<Vec<[u32; 3]>> {
-        self.faces
-            .iter()
-            .map(|f| triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f)))
-            .collect()
-    }
-
-    /// Checks: every cut-face bounds one (boundary) or two distinct
-    /// (interior) cells, cell volumes are positive and sum to the mesh
-    /// volume within `1e-9` relative.
-    pub fn validate(&self) -> Result<Validation, CutError> {
-        for (i, f) in self.faces.iter().enumerate() {
-            match f.support {
-                Support::Tri(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
-                        return Err(CutError::Inconsistent(format!(
-                            "boundary face {i} does not bound exactly one cell"
-                        )));
-                    }
-                }
-                Support::Plane(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
-                    {
-                        return Err(CutError::Inconsistent(format!(
-                            "plane face {i} does not bound two distinct cells"
-                        )));
-                    }
-                }
-            }
-        }
-        let total: f64 = self.cell_volumes.iter().sum();
-        let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
-        let min = self
-            .cell_volumes
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        if err > 1e-9 {
-            return Err(CutError::Inconsistent(format!(
-                "cell volumes sum to {total}, mesh volume {}",
-                self.mesh_volume
-            )));
-        }
-        if min <= 0.0 {
-            return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
-        }
-        let c = &self.counts;
-        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
-        // faces and join edges (one per hole) per cell
-        let mut cv: Vec<(u32, u32)> = Vec::new();
-        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
-        let mut cf = vec![0i64; self.num_cells];
-        for f in &self.faces {
-            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
-                cf[cell as usize] += 1;
-                // a joined hole adds one edge and keeps one face: chi contribution 0
-                cf[cell as usize] -= f.loops.len() as i64 - 1;
-                for l in &f.loops {
-                    for (k, &v) in l.iter().enumerate() {
-                        let w = l[(k + 1) % l.len()];
-                        cv.push((cell, v));
-                        ce.push((cell, v.min(w), v.max(w)));
-                    }
-                }
-            }
-        }
-        cv.sort_unstable();
-        cv.dedup();
-        ce.sort_unstable();
-        ce.dedup();
-        let mut chi2 = cf;
-        for &(cell, _) in &cv {
-            chi2[cell as usize] += 1;
-        }
-        for &(cell, _, _) in &ce {
-            chi2[cell as usize] -= 1;
-        }
-        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
-        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
-        Ok(Validation {
-            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
-                - c.cut_cells as i64,
-            volume_relative_error: err,
-            min_cell_volume: min,
-            domain_euler: self.mesh_euler / 2,
-            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
-                - sum_chi,
-            non_ball_cells: non_ball,
-        })
-    }
 }
 
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
@@ -543,7 +328,8 @@ fn cut_impl(
         // outside the domain (a point's representative triple is (P,P,P)
         // only when no mesh triple names it)
         let on_mesh = |n: &u32| !matches!(rep[cid(*n) as usize], Def::PPP(..));
-        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh)) else {
+        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh))
+        else {
             continue;
         };
         for w in pts[i0..=i1].windows(2) {
