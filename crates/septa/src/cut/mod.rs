@@ -230,7 +230,12 @@ fn cut_impl(
         tri_edges,
         edge_tris,
         pv,
+        tn_iv: Vec::new(),
     };
+    let tn_iv: Vec<[septa_exact::Interval; 3]> = (0..triangles.len() as u32)
+        .map(|t| c.tn_compute::<septa_exact::Interval>(t))
+        .collect();
+    let c = Ctx { tn_iv, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {
