@@ -109,6 +109,18 @@ fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
     )
 }
 
+/// Sign of `(w - v) . (o - v)` in the projection dropping axis `k`.
+fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, v: u32, w: u32, o: u32) -> R {
+        let c = |t: u32, a: usize| R::of(x[t as usize][a]);
+        let (wi, wj) = (c(w, i).sub(&c(v, i)), c(w, j).sub(&c(v, j)));
+        let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
+        wi.mul(&oi).add(&wj.mul(&oj))
+    }
+    filtered_sign(|| f::<Interval>(x, i, j, v, w, o), || f::<Exact>(x, i, j, v, w, o))
+}
+
 /// An axis along which the plane of triangle `t` projects without collapse.
 fn proj_axis(x: &[[f64; 3]], t: &[u32; 3]) -> usize {
     (0..3)
@@ -297,6 +309,12 @@ fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
                         if s1 == inside && s2 == inside.flip() {
                             return true;
                         }
+                        // the edge v-w runs along an edge v-opp of t: overlap
+                        for (sk, o) in [(s1, opp[0]), (s2, opp[1])] {
+                            if sk == Sign::Zero && dot2(x, k, v, w, o) == Sign::Positive {
+                                return true;
+                            }
+                        }
                     }
                 }
             }
@@ -445,5 +463,23 @@ mod tests {
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod overlap_tests {
+    use super::*;
+
+    #[test]
+    fn coplanar_triangles_sharing_a_vertex() {
+        // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
+        let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
+        // edge 0-3 runs along edge 0-1: overlapping
+        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
+        // (0, 5, ..) pokes into t1's angle
+        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
+        // mirrored below the x axis: touch only at the shared vertex
+        let y = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.5, 0.0], [1.0, -1.0, 0.0]];
+        assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
     }
 }
