@@ -120,6 +120,7 @@ pub fn run(a: Args) -> CliResult {
         "volume_relative_error": vol_err,
         "min_cell_volume": min_vol,
         "holes": out.stats.holes,
+        "voids_attached": out.stats.voids_attached,
         "domain_euler": check.as_ref().map(|v| v.domain_euler).ok(),
         "euler_by_cell": check.as_ref().map(|v| v.euler_by_cell).ok(),
         "non_ball_cells": check.as_ref().map(|v| v.non_ball_cells).ok(),

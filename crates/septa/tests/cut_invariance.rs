@@ -173,3 +173,42 @@ fn self_intersection_is_found() {
     }
     cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
 }
+
+#[test]
+fn void_is_attached_to_its_cell() {
+    let (cv, ct) = {
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| [(i >> 2 & 1) as f64, (i >> 1 & 1) as f64, (i & 1) as f64])
+            .collect();
+        let t: Vec<[u32; 3]> = vec![
+            [1, 3, 0],
+            [4, 1, 0],
+            [0, 3, 2],
+            [2, 4, 0],
+            [1, 7, 3],
+            [5, 1, 4],
+            [5, 7, 1],
+            [3, 7, 2],
+            [6, 4, 2],
+            [2, 7, 6],
+            [6, 5, 4],
+            [7, 5, 6],
+        ];
+        (v, t)
+    };
+    // outer cube [0,3]^3, inner cube [1,2]^3 facing inwards (a void)
+    let mut v: Vec<[f64; 3]> = cv.iter().map(|p| p.map(|x| 3.0 * x)).collect();
+    v.extend(cv.iter().map(|p| p.map(|x| 1.0 + x)));
+    let mut t = ct.clone();
+    t.extend(ct.iter().map(|f| [f[0] + 8, f[2] + 8, f[1] + 8]));
+    let out = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
+    let check = out.validate().unwrap();
+    assert_eq!(out.counts.cut_cells, 2);
+    assert_eq!(out.stats.voids_attached, 1);
+    assert_eq!(check.euler_by_cell, check.domain_euler);
+    // a plane through the void: no void shell at all
+    let out = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -1.5]], &CutOptions::default()).unwrap();
+    out.validate().unwrap();
+    assert_eq!(out.counts.cut_cells, 2);
+    assert_eq!(out.stats.voids_attached, 0);
+}

@@ -39,9 +39,8 @@
 //! predicate (`septa_exact::filtered_sign` and Shewchuk-style static
 //! filters with stated bounds).
 //!
-//! Known limits: a mesh with several components where one lies entirely
-//! inside a single arrangement cell of another (a true void) is reported as
-//! an extra, negative-volume cell (caught by [`CutCellMesh::validate`]).
+//! Voids (a mesh component inside one open arrangement cell) are attached
+//! to their enclosing cell by exact plane-side signatures ([`voids`]).
 
 pub mod bench;
 pub mod cells;
@@ -57,6 +56,7 @@ pub mod plane_graph;
 pub mod selfx;
 pub mod triangulate;
 mod validate;
+pub mod voids;
 
 pub use error::CutError;
 pub use validate::Validation;
@@ -112,6 +112,11 @@ pub struct CutStats {
     /// Vertices whose rounded coordinates were nudged to keep the exact order
     /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
     pub moved_vertices: usize,
+    /// Void shells attached to their enclosing cell.
+    pub voids_attached: usize,
+    /// Void shells whose enclosing cell was not unique by plane sides
+    /// (left as separate, negative-volume cells).
+    pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
 }
@@ -448,6 +453,10 @@ fn cut_impl(
         cf.cells = [cneg, cpos];
         cf.loops.push(verts);
     }
+    out.num_cells = cells.count;
+    let (attached, unresolved) = voids::attach_voids(&c, &mut out);
+    stats.voids_attached = attached;
+    stats.voids_unresolved = unresolved;
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.planes = planes.clone();
     out.tri_normals = triangles
@@ -470,7 +479,7 @@ fn cut_impl(
         cut_vertices: out.vertex_defs.len(),
         cut_edges: cells.edges + nholes,
         cut_faces: nf,
-        cut_cells: cells.count,
+        cut_cells: out.num_cells,
     };
     lap("output", &mut stats);
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;

@@ -118,7 +118,10 @@ fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
         let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
         wi.mul(&oi).add(&wj.mul(&oj))
     }
-    filtered_sign(|| f::<Interval>(x, i, j, v, w, o), || f::<Exact>(x, i, j, v, w, o))
+    filtered_sign(
+        || f::<Interval>(x, i, j, v, w, o),
+        || f::<Exact>(x, i, j, v, w, o),
+    )
 }
 
 /// An axis along which the plane of triangle `t` projects without collapse.
@@ -473,13 +476,26 @@ mod overlap_tests {
     #[test]
     fn coplanar_triangles_sharing_a_vertex() {
         // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
-        let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
+        let x = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
         // edge 0-3 runs along edge 0-1: overlapping
         assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
         // (0, 5, ..) pokes into t1's angle
         assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
         // mirrored below the x axis: touch only at the shared vertex
-        let y = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.5, 0.0], [1.0, -1.0, 0.0]];
+        let y = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, -0.5, 0.0],
+            [1.0, -1.0, 0.0],
+        ];
         assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
     }
 }
