@@ -143,8 +143,8 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                     }
                     signs.push(s);
                 }
-                let pos = signs.iter().any(|&s| s == Sign::Positive);
-                let neg = signs.iter().any(|&s| s == Sign::Negative);
+                let pos = signs.contains(&Sign::Positive);
+                let neg = signs.contains(&Sign::Negative);
                 if !(pos && neg) {
                     next.push(poly);
                     continue;

@@ -40,7 +40,7 @@ pub fn enforce_line_order(x: &mut [[f64; 3]], line: &[u32], moved: &mut Vec<u32>
     let (a, b) = (x[line[0] as usize], x[line[line.len() - 1] as usize]);
     let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
     let n = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-    if !(n > 0.0) {
+    if n.is_nan() || n <= 0.0 {
         return;
     }
     let t = [d[0] / n, d[1] / n, d[2] / n];

@@ -426,7 +426,7 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
                     }
                     if pair_intersects(x, &tris[t1 as usize], &tris[t2 as usize]) {
                         let p = (t1.min(t2), t1.max(t2));
-                        if found.map_or(true, |f| p < f) {
+                        if found.is_none_or(|f| p < f) {
                             found = Some(p);
                         }
                     }
