@@ -36,6 +36,9 @@ pub struct Args {
     /// Skip writing cells.vtu / cells.obj (cut.json is always written).
     #[arg(long)]
     pub no_mesh_output: bool,
+    /// Skip the exact self-intersection test of the input mesh.
+    #[arg(long)]
+    pub no_self_check: bool,
     /// Exploded view factor for cells.obj.
     #[arg(long, default_value_t = 0.0)]
     pub explode: f64,
@@ -53,10 +56,20 @@ pub fn run(a: Args) -> CliResult {
     };
     let read_s = t0.elapsed().as_secs_f64();
     if a.threads > 0 {
-        let _ = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global();
+        let _ = rayon::ThreadPoolBuilder::new()
+            .num_threads(a.threads)
+            .build_global();
     }
     let t1 = Instant::now();
-    let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &CutOptions { threads: a.threads })?;
+    let out = cut_mesh(
+        &mesh.vertices,
+        &mesh.triangles,
+        &planes,
+        &CutOptions {
+            threads: a.threads,
+            skip_self_intersection_check: a.no_self_check,
+        },
+    )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
@@ -66,7 +79,10 @@ pub fn run(a: Args) -> CliResult {
     std::fs::create_dir_all(&a.out)?;
     if !a.no_mesh_output {
         cut_out::write_atomic(&a.out.join("cells.vtu"), cut_out::vtu(&out).as_bytes())?;
-        cut_out::write_atomic(&a.out.join("cells.obj"), cut_out::obj(&out, a.explode).as_bytes())?;
+        cut_out::write_atomic(
+            &a.out.join("cells.obj"),
+            cut_out::obj(&out, a.explode).as_bytes(),
+        )?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let c = out.counts;
@@ -79,7 +95,12 @@ pub fn run(a: Args) -> CliResult {
     seconds.insert("write".into(), write_s.into());
     seconds.insert("total".into(), t0.elapsed().as_secs_f64().into());
     let (euler, vol_err, min_vol, check_msg) = match &check {
-        Ok(v) => (v.euler, v.volume_relative_error, v.min_cell_volume, "ok".to_string()),
+        Ok(v) => (
+            v.euler,
+            v.volume_relative_error,
+            v.min_cell_volume,
+            "ok".to_string(),
+        ),
         Err(e) => (
             c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - c.cut_cells as i64,
             f64::NAN,
@@ -99,16 +120,21 @@ pub fn run(a: Args) -> CliResult {
         "volume_relative_error": vol_err,
         "min_cell_volume": min_vol,
         "holes": out.stats.holes,
+        "voids_attached": out.stats.voids_attached,
         "domain_euler": check.as_ref().map(|v| v.domain_euler).ok(),
         "euler_by_cell": check.as_ref().map(|v| v.euler_by_cell).ok(),
         "non_ball_cells": check.as_ref().map(|v| v.non_ball_cells).ok(),
         "check": check_msg,
         "exact_fallbacks": out.stats.exact_fallbacks,
         "ordered_edges": out.stats.ordered_edges,
+        "moved_vertices": out.stats.moved_vertices,
         "dropped_planes": out.stats.dropped_planes.len(),
         "seconds": seconds,
     });
-    cut_out::write_atomic(&a.out.join("cut.json"), serde_json::to_string_pretty(&j)?.as_bytes())?;
+    cut_out::write_atomic(
+        &a.out.join("cut.json"),
+        serde_json::to_string_pretty(&j)?.as_bytes(),
+    )?;
     if a.json {
         println!("{j}");
     } else {

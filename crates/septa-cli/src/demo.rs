@@ -132,6 +132,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
         threads: 0,
         json: false,
         no_mesh_output: false,
+        no_self_check: false,
         explode: 0.0,
     })?;
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("cut.json"))?)?;

@@ -38,7 +38,7 @@ pub fn fallback_count() -> u64 {
 
 /// The arithmetic a generic predicate needs: a commutative ring containing
 /// the doubles.
-pub trait Ring: Clone {
+pub trait Ring: Clone + 'static {
     /// The value of a double.
     fn of(x: f64) -> Self;
     /// `self + o`.

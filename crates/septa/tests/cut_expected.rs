@@ -71,10 +71,19 @@ fn counts_match_reference() {
             out.stats.exact_fallbacks,
             check
                 .as_ref()
-                .map(|v| (v.euler, v.euler_by_cell, v.domain_euler, v.non_ball_cells, v.volume_relative_error))
+                .map(|v| (
+                    v.euler,
+                    v.euler_by_cell,
+                    v.domain_euler,
+                    v.non_ball_cells,
+                    v.volume_relative_error
+                ))
                 .map_err(|e| e.to_string())
         );
-        let euler_ok = check.as_ref().map(|v| v.euler_by_cell == v.domain_euler).unwrap_or(false);
+        let euler_ok = check
+            .as_ref()
+            .map(|v| v.euler_by_cell == v.domain_euler)
+            .unwrap_or(false);
         if got != exp4 || !euler_ok {
             failures.push(name.clone());
         }

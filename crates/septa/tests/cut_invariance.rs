@@ -35,7 +35,16 @@ fn plane_order_scale_and_threads_do_not_matter() {
             eprintln!("no data, skipped");
             return;
         };
-        let base = cut_mesh(&v, &t, &p, &CutOptions { threads: 1 }).unwrap();
+        let base = cut_mesh(
+            &v,
+            &t,
+            &p,
+            &CutOptions {
+                threads: 1,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         base.validate().unwrap();
         // reversed, rotated order; scaled by a power of two and negated (same planes)
         let mut q: Vec<[f64; 4]> = p.iter().rev().copied().collect();
@@ -45,12 +54,30 @@ fn plane_order_scale_and_threads_do_not_matter() {
             .enumerate()
             .map(|(i, x)| if i % 2 == 0 { x.map(|c| -4.0 * c) } else { *x })
             .collect();
-        let other = cut_mesh(&v, &t, &q, &CutOptions { threads: 2 }).unwrap();
+        let other = cut_mesh(
+            &v,
+            &t,
+            &q,
+            &CutOptions {
+                threads: 2,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert_eq!(summary(&base), summary(&other), "{mesh} {planes}");
         // a duplicate plane is dropped with a note
         let mut d = p.clone();
         d.push(p[0].map(|c| 2.0 * c));
-        let dup = cut_mesh(&v, &t, &d, &CutOptions { threads: 2 }).unwrap();
+        let dup = cut_mesh(
+            &v,
+            &t,
+            &d,
+            &CutOptions {
+                threads: 2,
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert_eq!(dup.stats.dropped_planes, vec![(p.len(), 0)]);
         assert_eq!(summary(&base), summary(&dup));
     }
@@ -124,4 +151,64 @@ fn bad_input_is_named() {
     ));
     let e = cut_mesh(&v, &flipped, &p, &opts).unwrap_err().to_string();
     assert!(e.contains("triangle"), "{e}");
+}
+
+#[test]
+fn self_intersection_is_found() {
+    let (mut v, mut t) = tet();
+    // a second tetrahedron poking through the first one's slanted face
+    let off = v.len() as u32;
+    v.extend([
+        [0.2, 0.2, 0.2],
+        [1.2, 0.2, 0.2],
+        [0.2, 1.2, 0.2],
+        [0.2, 0.2, 1.2],
+    ]);
+    t.extend(tet().1.iter().map(|f| f.map(|k| k + off)));
+    let e = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap_err();
+    assert!(matches!(e, CutError::SelfIntersection { .. }), "{e}");
+    // apart, the two are fine
+    for p in v.iter_mut().skip(4) {
+        p[0] += 5.0;
+    }
+    cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
+}
+
+#[test]
+fn void_is_attached_to_its_cell() {
+    let (cv, ct) = {
+        let v: Vec<[f64; 3]> = (0..8)
+            .map(|i| [(i >> 2 & 1) as f64, (i >> 1 & 1) as f64, (i & 1) as f64])
+            .collect();
+        let t: Vec<[u32; 3]> = vec![
+            [1, 3, 0],
+            [4, 1, 0],
+            [0, 3, 2],
+            [2, 4, 0],
+            [1, 7, 3],
+            [5, 1, 4],
+            [5, 7, 1],
+            [3, 7, 2],
+            [6, 4, 2],
+            [2, 7, 6],
+            [6, 5, 4],
+            [7, 5, 6],
+        ];
+        (v, t)
+    };
+    // outer cube [0,3]^3, inner cube [1,2]^3 facing inwards (a void)
+    let mut v: Vec<[f64; 3]> = cv.iter().map(|p| p.map(|x| 3.0 * x)).collect();
+    v.extend(cv.iter().map(|p| p.map(|x| 1.0 + x)));
+    let mut t = ct.clone();
+    t.extend(ct.iter().map(|f| [f[0] + 8, f[2] + 8, f[1] + 8]));
+    let out = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
+    let check = out.validate().unwrap();
+    assert_eq!(out.counts.cut_cells, 2);
+    assert_eq!(out.stats.voids_attached, 1);
+    assert_eq!(check.euler_by_cell, check.domain_euler);
+    // a plane through the void: no void shell at all
+    let out = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -1.5]], &CutOptions::default()).unwrap();
+    out.validate().unwrap();
+    assert_eq!(out.counts.cut_cells, 2);
+    assert_eq!(out.stats.voids_attached, 0);
 }

@@ -107,7 +107,11 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
             let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
-            let class = |x: (Support, (LineDir, bool))| -> u8 {
+            let iws: Vec<V3<Interval>> = items
+                .iter()
+                .map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up)))
+                .collect();
+            let class = |x: (Support, (LineDir, bool)), iwx: &V3<Interval>| -> u8 {
                 fn b<R: Ring>(
                     c: &Ctx,
                     d: (LineDir, bool),
@@ -127,9 +131,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 ) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
-                let iw0 = wvec::<Interval>(c, w0.0, w0.1);
-                let iwx = wvec::<Interval>(c, x.0, x.1);
-                let sb = match dot3(&dv_i, &cross3(&iw0, &iwx)).sign() {
+                let sb = match dot3(&dv_i, &cross3(&iws[0], iwx)).sign() {
                     Some(s) => s,
                     None => {
                         filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x))
@@ -160,13 +162,9 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                         // the other side of the edge in the same plane or triangle: opposite to w0
                         2
                     } else {
-                        class((sup, hof(up)))
+                        class((sup, hof(up)), &iws[i])
                     }
                 })
-                .collect();
-            let iws: Vec<V3<Interval>> = items
-                .iter()
-                .map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up)))
                 .collect();
             let mut idx: Vec<usize> = (0..k).collect();
             idx.sort_by(|&x, &y| {

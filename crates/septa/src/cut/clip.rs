@@ -26,12 +26,18 @@ pub struct Piece {
     /// The triangle.
     pub tri: u32,
     /// Corners as face triples (merged into cut-vertices later).
-    pub nodes: SmallVec<[Def; 8]>,
+    pub nodes: SmallVec<[Def; 6]>,
     /// Line of the edge from corner `i` to corner `i + 1`.
-    pub lines: SmallVec<[EdgeLine; 8]>,
-    /// Interval coordinates of the corners (a filter for side tests), or
-    /// `None` when the filter could not bound them.
-    pub boxes: SmallVec<[Option<[Interval; 3]>; 8]>,
+    pub lines: SmallVec<[EdgeLine; 6]>,
+}
+
+/// A piece during clipping, with interval coordinates of its corners (a
+/// filter for side tests; `None` when the filter could not bound them).
+struct Work {
+    tri: u32,
+    nodes: SmallVec<[Def; 8]>,
+    lines: SmallVec<[EdgeLine; 8]>,
+    boxes: SmallVec<[Option<[Interval; 3]>; 8]>,
 }
 
 /// Interval coordinates of a cut-vertex.
@@ -91,8 +97,8 @@ pub fn clip_all(c: &Ctx) -> Clipped {
 
 fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
     let np = c.planes.len() as u32;
-    let mut polys: Vec<Piece> = Vec::new();
-    let mut next: Vec<Piece> = Vec::new();
+    let mut polys: Vec<Work> = Vec::new();
+    let mut next: Vec<Work> = Vec::new();
     let mut signs: Vec<Sign> = Vec::new();
     let tri = &c.tris[t as usize];
     {
@@ -106,7 +112,7 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                 coplanar.push(p);
             }
         }
-        let first = Piece {
+        let first = Work {
             tri: t,
             nodes: tri.iter().map(|&v| Def::V(v)).collect(),
             boxes: tri.iter().map(|_| None).collect(),
@@ -137,19 +143,19 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                     }
                     signs.push(s);
                 }
-                let pos = signs.iter().any(|&s| s == Sign::Positive);
-                let neg = signs.iter().any(|&s| s == Sign::Negative);
+                let pos = signs.contains(&Sign::Positive);
+                let neg = signs.contains(&Sign::Negative);
                 if !(pos && neg) {
                     next.push(poly);
                     continue;
                 }
-                let mut a = Piece {
+                let mut a = Work {
                     tri: t,
                     nodes: SmallVec::new(),
                     lines: SmallVec::new(),
                     boxes: SmallVec::new(),
                 };
-                let mut b = Piece {
+                let mut b = Work {
                     tri: t,
                     nodes: SmallVec::new(),
                     lines: SmallVec::new(),
@@ -224,6 +230,16 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
             z.extend(coplanar.iter().copied());
             interior.push((k, z));
         }
-        (polys, interior)
+        // a fresh, exactly sized vector (an in-place collect would keep the
+        // larger buffer of the work pieces alive)
+        let mut pieces = Vec::with_capacity(polys.len());
+        for w in polys {
+            pieces.push(Piece {
+                tri: w.tri,
+                nodes: w.nodes.into_iter().collect(),
+                lines: w.lines.into_iter().collect(),
+            });
+        }
+        (pieces, interior)
     }
 }

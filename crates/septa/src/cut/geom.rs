@@ -45,6 +45,9 @@ pub struct Ctx<'a> {
     pub edge_tris: Vec<[u32; 2]>,
     /// `pv[p * nv + v]`: sign of plane `p` at vertex `v` (App. B, eq. 13).
     pub pv: Vec<i8>,
+    /// Triangle normals in interval arithmetic (the filter's copy of
+    /// [`Ctx::tn`], computed once).
+    pub tn_iv: Vec<[Interval; 3]>,
 }
 
 /// A 3-vector over a ring.
@@ -107,6 +110,14 @@ impl Ctx<'_> {
     /// Outward (unnormalised) triangle normal `(b - a) x (c - a)`.
     #[inline]
     pub fn tn<R: Ring>(&self, t: u32) -> V3<R> {
+        if let Some(v) = (&self.tn_iv[t as usize] as &dyn std::any::Any).downcast_ref::<V3<R>>() {
+            return v.clone();
+        }
+        self.tn_compute(t)
+    }
+
+    /// Outward triangle normal computed from the vertices.
+    pub fn tn_compute<R: Ring>(&self, t: u32) -> V3<R> {
         let [a, b, c] = self.tris[t as usize];
         let a = v3::<R>(&self.verts[a as usize]);
         let b = v3::<R>(&self.verts[b as usize]);

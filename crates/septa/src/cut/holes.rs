@@ -25,7 +25,11 @@ fn coord_cmp(c: &Ctx, a: Def, b: Def, k: usize) -> Sign {
 /// Sign of `g . (b - a)` for a fixed direction `g` in general position with
 /// respect to axis-aligned data (so ties, which need the exact path, are rare).
 fn generic_cmp(c: &Ctx, a: Def, b: Def) -> Sign {
-    const G: [f64; 3] = [0.7548776662466927, 0.5698402909980532, 0.3247179572447460];
+    const G: [f64; 3] = [
+        0.7548776662466927,
+        0.5698402909980532,
+        0.324_717_957_244_746,
+    ];
     fn f<R: Ring>(c: &Ctx, a: Def, b: Def) -> R {
         let (ha, wa) = c.hom::<R>(a);
         let (hb, wb) = c.hom::<R>(b);

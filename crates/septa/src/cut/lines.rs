@@ -26,6 +26,7 @@ pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir) -
         .collect();
     let mut idx: Vec<usize> = (0..pts.len()).collect();
     let defs = &nodes.defs;
+    let memo: std::cell::RefCell<FxMap<(usize, usize), Sign>> = Default::default();
     let cmp = |&i: &usize, &j: &usize| -> Ordering {
         if i == j {
             return Ordering::Equal;
@@ -35,7 +36,25 @@ pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir) -
         let x = hb.mul(&wa).sub(&ha.mul(&wb)).mul(&wa).mul(&wb);
         let s = match x.sign() {
             Some(s) => s,
-            None => c.order(defs[pts[i] as usize], defs[pts[j] as usize], dir),
+            None => {
+                // exact results memoised: a pair of equal points is met again
+                // when merging
+                let key = (i.min(j), i.max(j));
+                let cached = memo.borrow().get(&key).copied();
+                let s = match cached {
+                    Some(s) => s,
+                    None => {
+                        let s = c.order(defs[pts[key.0] as usize], defs[pts[key.1] as usize], dir);
+                        memo.borrow_mut().insert(key, s);
+                        s
+                    }
+                };
+                if i < j {
+                    s
+                } else {
+                    s.flip()
+                }
+            }
         };
         match s {
             Sign::Positive => Ordering::Less,
@@ -150,7 +169,12 @@ pub fn plane_lines(
             if !crosses[(p * np + q) as usize] {
                 continue;
             }
-            let mut pts = lines.remove(&(p, q)).unwrap_or_default();
+            // A line that meets no point of the mesh misses the bounded
+            // domain entirely: every point where it meets the surface was
+            // registered (vertex, edge crossing or triangle interior).
+            let Some(mut pts) = lines.remove(&(p, q)) else {
+                continue;
+            };
             for r in 0..np {
                 if r != p && r != q && c.det3(p, q, r) != Sign::Zero {
                     let mut k = [p, q, r];

@@ -3,20 +3,49 @@
 //! cut by planes into cut-cells whose combinatorics are those of exact
 //! rational arithmetic.
 //!
-//! Pipeline (paper sections):
-//! 1. [`input`]: input conditions (Sec. 2.1, App. A).
-//! 2. [`lines`]: cut-vertices as face triples on mesh edges and plane-plane
-//!    lines, exact line sorting, merging of equal triples (Sec. 3).
-//! 3. [`clip`]: cut-faces inside triangles (Sec. 4 for `H(t)`).
-//! 4. [`plane_graph`]: cut-faces inside planes, edge-cycle order, inside
-//!    loops (Sec. 4, App. C).
-//! 5. [`cells`]: half-faces joined around cut-edges into cut-cells (Sec. 5).
+//! Pipeline (paper sections in brackets):
+//! 1. [`input`], [`selfx`]: input conditions [Sec. 2.1, App. A], each
+//!    failure a [`CutError`] naming the element; duplicate planes dropped.
+//! 2. [`lines`]: cut-vertices as face triples ([`geom::Def`]) on mesh edges
+//!    and plane-plane lines, exact line sorting with a floating-point
+//!    pre-sort, merging of equal triples (union-find) [Sec. 3, App. B].
+//! 3. [`clip`]: cut-faces inside triangles: each triangle clipped by the
+//!    planes crossing it, in plane order; since every cut is a full plane the
+//!    pieces are convex and need no cycle ordering [Sec. 4, `H(t)`].
+//! 4. [`plane_graph`], [`holes`]: cut-faces inside planes: the half-edge
+//!    structure `H(p)` over all plane-plane lines and the boundary curves,
+//!    exact edge-cycle order at vertices, loops of `next`, inside/outside by
+//!    the boundary side tests [App. C] carried across plane-plane edges;
+//!    holes found exactly and joined to their face [Sec. 2.2, 6.1].
+//! 5. [`cells`]: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
+//!    an edge with two faces is joined topologically; others by exact
+//!    face-cycle order ([`CutStats::ordered_edges`]).
+//! 6. [`output`], [`triangulate`]: floating-point embedding that keeps the
+//!    order along every line (moved vertices counted) [Sec. 6.1], volumes,
+//!    triangulation of faces for output.
 //!
+//! Difference from the paper: TopoCut inserts planes one at a time into the
+//! half-face structure and infers most cycle orders topologically. Here all
+//! cut-faces are built first (triangles by clipping, planes from their whole
+//! line arrangement) and cells are assembled once; cycle orders are
+//! evaluated by filtered predicates (an interval filter decides almost all;
+//! [`CutStats::exact_fallbacks`] counts the rest), so the result is the
+//! exact one whatever the input degeneracy.
+//!
+//! Counting conventions (those of the reference implementation): a cut-face
+//! with holes counts once, and each hole adds one cut-edge (the edge that
+//! joins it to the outer boundary); a cell with a void would count once.
 //! Every sign deciding the combinatorics comes from a filtered exact
-//! predicate (`septa_exact::filtered_sign`).
+//! predicate (`septa_exact::filtered_sign` and Shewchuk-style static
+//! filters with stated bounds).
+//!
+//! Voids (a mesh component inside one open arrangement cell) are attached
+//! to their enclosing cell by exact plane-side signatures ([`voids`]).
 
+pub mod bench;
 pub mod cells;
 pub mod clip;
+mod error;
 pub mod geom;
 pub mod holes;
 pub mod input;
@@ -24,6 +53,13 @@ pub mod lines;
 pub mod nodes;
 pub mod output;
 pub mod plane_graph;
+pub mod selfx;
+pub mod triangulate;
+mod validate;
+pub mod voids;
+
+pub use error::CutError;
+pub use validate::Validation;
 
 use cells::{FaceLoop, Support};
 use clip::EdgeLine;
@@ -39,91 +75,9 @@ use std::time::Instant;
 pub struct CutOptions {
     /// Worker threads (0: all available). The result does not depend on it.
     pub threads: usize,
-}
-
-/// Why a cut was refused.
-#[derive(Debug, thiserror::Error)]
-pub enum CutError {
-    /// No triangles.
-    #[error("the mesh has no triangles")]
-    EmptyMesh,
-    /// A vertex coordinate is NaN or infinite.
-    #[error("vertex {vertex} has a non-finite coordinate")]
-    NonFiniteVertex {
-        /// Vertex index (0-based).
-        vertex: usize,
-    },
-    /// Two vertices at the same position.
-    #[error("vertices {first} and {second} are at the same position (duplicate vertex)")]
-    DuplicateVertex {
-        /// First vertex.
-        first: usize,
-        /// Its duplicate.
-        second: usize,
-    },
-    /// A triangle refers to a missing vertex.
-    #[error("triangle {triangle} refers to a vertex that does not exist")]
-    BadIndex {
-        /// Triangle index.
-        triangle: usize,
-    },
-    /// A triangle with collinear corners.
-    #[error("triangle {triangle} is degenerate (zero area, exactly)")]
-    DegenerateTriangle {
-        /// Triangle index.
-        triangle: usize,
-    },
-    /// An edge used twice in the same direction.
-    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle}: non-manifold edge or inconsistent orientation")]
-    NonManifoldOrFlipped {
-        /// Triangle index.
-        triangle: usize,
-        /// The other triangle.
-        other: usize,
-        /// Edge start vertex.
-        a: u32,
-        /// Edge end vertex.
-        b: u32,
-    },
-    /// An edge with only one triangle.
-    #[error(
-        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
-    )]
-    NotWatertight {
-        /// Triangle index.
-        triangle: usize,
-        /// Edge start.
-        a: u32,
-        /// Edge end.
-        b: u32,
-    },
-    /// The triangles around a vertex form more than one fan.
-    #[error("vertex {vertex} is non-manifold (its triangles form several fans)")]
-    NonManifoldVertex {
-        /// Vertex index.
-        vertex: usize,
-    },
-    /// Negative or zero signed volume.
-    #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]
-    InwardOrientation {
-        /// The signed volume.
-        volume: f64,
-    },
-    /// NaN or infinite plane coefficient.
-    #[error("plane {plane} has a non-finite coefficient")]
-    NonFinitePlane {
-        /// Plane index.
-        plane: usize,
-    },
-    /// `a = b = c = 0`.
-    #[error("plane {plane} has a zero-length normal")]
-    ZeroNormal {
-        /// Plane index.
-        plane: usize,
-    },
-    /// The result failed a consistency check (a bug, reported not hidden).
-    #[error("internal consistency check failed: {0}")]
-    Inconsistent(String),
+    /// Skip the exact self-intersection test of the input (for inputs known
+    /// to be clean; the reference implementation assumes it).
+    pub skip_self_intersection_check: bool,
 }
 
 /// Counts of the cut-cell mesh.
@@ -155,6 +109,14 @@ pub struct CutStats {
     pub holes: usize,
     /// Holes whose face needed an exact containment test.
     pub hole_containment_tests: usize,
+    /// Vertices whose rounded coordinates were nudged to keep the exact order
+    /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
+    pub moved_vertices: usize,
+    /// Void shells attached to their enclosing cell.
+    pub voids_attached: usize,
+    /// Void shells whose enclosing cell was not unique by plane sides
+    /// (left as separate, negative-volume cells).
+    pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
 }
@@ -189,117 +151,17 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// The cut planes used (after dropping duplicates); `Support::Plane(p)`
+    /// indexes this list.
+    pub planes: Vec<[f64; 4]>,
+    /// Outward normals of the input triangles (floating point, for output).
+    pub tri_normals: Vec<[f64; 3]>,
     /// Euler characteristic of the input surface (`V - E + T`).
     pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
     pub cell_volumes: Vec<f64>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
-}
-
-/// Results of [`CutCellMesh::validate`].
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct Validation {
-    /// `V - E + F - C`.
-    pub euler: i64,
-    /// `|sum of cell volumes - mesh volume| / mesh volume`.
-    pub volume_relative_error: f64,
-    /// Smallest cell volume.
-    pub min_cell_volume: f64,
-    /// Euler characteristic of the domain, `chi(mesh) / 2`.
-    pub domain_euler: i64,
-    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
-    /// counted on each cell's own boundary: equals `domain_euler` when
-    /// every cut-face is a disc (holes are joined by one edge each), whatever
-    /// the topology of the cells (a cell around a handle has `chi = 0`).
-    pub euler_by_cell: i64,
-    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
-    pub non_ball_cells: usize,
-}
-
-impl CutCellMesh {
-    /// Checks: every cut-face bounds one (boundary) or two distinct
-    /// (interior) cells, cell volumes are positive and sum to the mesh
-    /// volume within `1e-9` relative.
-    pub fn validate(&self) -> Result<Validation, CutError> {
-        for (i, f) in self.faces.iter().enumerate() {
-            match f.support {
-                Support::Tri(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
-                        return Err(CutError::Inconsistent(format!(
-                            "boundary face {i} does not bound exactly one cell"
-                        )));
-                    }
-                }
-                Support::Plane(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
-                    {
-                        return Err(CutError::Inconsistent(format!(
-                            "plane face {i} does not bound two distinct cells"
-                        )));
-                    }
-                }
-            }
-        }
-        let total: f64 = self.cell_volumes.iter().sum();
-        let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
-        let min = self
-            .cell_volumes
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
-        if err > 1e-9 {
-            return Err(CutError::Inconsistent(format!(
-                "cell volumes sum to {total}, mesh volume {}",
-                self.mesh_volume
-            )));
-        }
-        if min <= 0.0 {
-            return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
-        }
-        let c = &self.counts;
-        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
-        // faces and join edges (one per hole) per cell
-        let mut cv: Vec<(u32, u32)> = Vec::new();
-        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
-        let mut cf = vec![0i64; self.num_cells];
-        for f in &self.faces {
-            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
-                cf[cell as usize] += 1;
-                // a joined hole adds one edge and keeps one face: chi contribution 0
-                cf[cell as usize] -= f.loops.len() as i64 - 1;
-                for l in &f.loops {
-                    for (k, &v) in l.iter().enumerate() {
-                        let w = l[(k + 1) % l.len()];
-                        cv.push((cell, v));
-                        ce.push((cell, v.min(w), v.max(w)));
-                    }
-                }
-            }
-        }
-        cv.sort_unstable();
-        cv.dedup();
-        ce.sort_unstable();
-        ce.dedup();
-        let mut chi2 = cf;
-        for &(cell, _) in &cv {
-            chi2[cell as usize] += 1;
-        }
-        for &(cell, _, _) in &ce {
-            chi2[cell as usize] -= 1;
-        }
-        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
-        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
-        Ok(Validation {
-            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
-                - c.cut_cells as i64,
-            volume_relative_error: err,
-            min_cell_volume: min,
-            domain_euler: self.mesh_euler / 2,
-            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
-            non_ball_cells: non_ball,
-        })
-    }
 }
 
 /// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
@@ -311,14 +173,14 @@ pub fn cut_mesh(
     opts: &CutOptions,
 ) -> Result<CutCellMesh, CutError> {
     if opts.threads == 0 {
-        return cut_impl(vertices, triangles, planes);
+        return cut_impl(vertices, triangles, planes, opts);
     }
     match rayon::ThreadPoolBuilder::new()
         .num_threads(opts.threads)
         .build()
     {
-        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes)),
-        Err(_) => cut_impl(vertices, triangles, planes),
+        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes, opts)),
+        Err(_) => cut_impl(vertices, triangles, planes, opts),
     }
 }
 
@@ -326,17 +188,31 @@ fn cut_impl(
     vertices: &[[f64; 3]],
     triangles: &[[u32; 3]],
     planes: &[[f64; 4]],
+    opts: &CutOptions,
 ) -> Result<CutCellMesh, CutError> {
     let fb0 = septa_exact::fallback_count();
     let mut stats = CutStats::default();
     let mut clock = Instant::now();
+    let debug = std::env::var_os("SEPTA_DEBUG").is_some();
     let mut lap = |name: &str, stats: &mut CutStats| {
+        if debug {
+            let rss = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
+            eprintln!(
+                "stage {name}: {:.3}s statm {rss}",
+                clock.elapsed().as_secs_f64()
+            );
+        }
         stats
             .seconds
             .push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
+    lap("check_mesh", &mut stats);
+    if !opts.skip_self_intersection_check {
+        selfx::check_self_intersections(vertices, triangles)?;
+    }
+    lap("self_intersection", &mut stats);
     let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
     let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
     let nv = vertices.len();
@@ -359,7 +235,12 @@ fn cut_impl(
         tri_edges,
         edge_tris,
         pv,
+        tn_iv: Vec::new(),
     };
+    let tn_iv: Vec<[septa_exact::Interval; 3]> = (0..triangles.len() as u32)
+        .map(|t| c.tn_compute::<septa_exact::Interval>(t))
+        .collect();
+    let c = Ctx { tn_iv, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {
@@ -453,7 +334,15 @@ fn cut_impl(
         faces.push(fl);
     }
     for ((p, q), pts) in &plines {
-        for w in pts.windows(2) {
+        // before the first and after the last point on the mesh the line is
+        // outside the domain (a point's representative triple is (P,P,P)
+        // only when no mesh triple names it)
+        let on_mesh = |n: &u32| !matches!(rep[cid(*n) as usize], Def::PPP(..));
+        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh))
+        else {
+            continue;
+        };
+        for w in pts[i0..=i1].windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             let ge = GEdge {
                 a,
@@ -518,6 +407,24 @@ fn cut_impl(
         }
     }
     out.vertices = out.vertex_defs.iter().map(|&d| c.approx(d)).collect();
+    // floating-point embedding: keep the exact order along every line
+    let mut moved: Vec<u32> = Vec::new();
+    let to_out = |n: &u32| used[cid(*n) as usize];
+    for chain in chains.iter() {
+        let l: Vec<u32> = chain
+            .iter()
+            .map(to_out)
+            .filter(|&v| v != u32::MAX)
+            .collect();
+        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
+    }
+    for (_, pts) in &plines {
+        let l: Vec<u32> = pts.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
+    }
+    moved.sort_unstable();
+    moved.dedup();
+    stats.moved_vertices = moved.len();
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
     let nf = nface as usize;
@@ -546,13 +453,33 @@ fn cut_impl(
         cf.cells = [cneg, cpos];
         cf.loops.push(verts);
     }
+    out.num_cells = cells.count;
+    let (attached, unresolved) = voids::attach_voids(&c, &mut out);
+    stats.voids_attached = attached;
+    stats.voids_unresolved = unresolved;
     out.mesh_volume = output::mesh_volume(vertices, triangles);
+    out.planes = planes.clone();
+    out.tri_normals = triangles
+        .iter()
+        .map(|t| {
+            let [a, b, cc] = t.map(|i| vertices[i as usize]);
+            let (u, v) = (
+                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+                [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]],
+            );
+            [
+                u[1] * v[2] - u[2] * v[1],
+                u[2] * v[0] - u[0] * v[2],
+                u[0] * v[1] - u[1] * v[0],
+            ]
+        })
+        .collect();
     out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;
     out.counts = CutCounts {
         cut_vertices: out.vertex_defs.len(),
         cut_edges: cells.edges + nholes,
         cut_faces: nf,
-        cut_cells: cells.count,
+        cut_cells: out.num_cells,
     };
     lap("output", &mut stats);
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;

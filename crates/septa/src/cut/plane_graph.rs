@@ -162,6 +162,11 @@ impl Ccw {
 /// Side status of the left of half-edge `h` in plane `p` for an edge inside
 /// triangle `t`: below the triangle is inside.
 fn gamma_status(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> Status {
+    // On the line t ^ p itself the side is known: with h = n_p x n_t,
+    // n_t . (n_p x h) = (n_p . n_t)^2 - |n_p|^2 |n_t|^2 < 0 (inside).
+    if h.0 == LineDir::TriPlane(t, p) {
+        return if h.1 { Status::Inside } else { Status::Outside };
+    }
     fn f<R: Ring>(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> R {
         let w = cross3(&c.pn::<R>(p), &dir_vec::<R>(c, h.0, h.1));
         dot3(&c.tn::<R>(t), &w)

@@ -21,17 +21,25 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     std::fs::rename(&tmp, path)
 }
 
-/// Boundary of each cell as `(face, loops oriented outwards)`.
+/// Boundary polygons of each cell, oriented outwards. A face with holes is
+/// written as its triangles (no new vertices), so every polygon is simple.
 pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
     let mut cells: Vec<Vec<Vec<Vec<u32>>>> = vec![Vec::new(); m.num_cells];
     for f in &m.faces {
+        let polys: Vec<Vec<u32>> = if f.loops.len() == 1 {
+            f.loops.clone()
+        } else {
+            crate::cut::triangulate::triangulate(&m.vertices, &f.loops, m.support_normal(f))
+                .iter()
+                .map(|t| t.to_vec())
+                .collect()
+        };
         // the face normal points away from cells[0] (negative side): outward for it
         if f.cells[0] != u32::MAX {
-            cells[f.cells[0] as usize].push(f.loops.clone());
+            cells[f.cells[0] as usize].push(polys.clone());
         }
         if f.cells[1] != u32::MAX {
-            let rev: Vec<Vec<u32>> = f
-                .loops
+            let rev: Vec<Vec<u32>> = polys
                 .iter()
                 .map(|l| l.iter().rev().copied().collect())
                 .collect();
@@ -41,8 +49,7 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
     cells
 }
 
-/// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell. Faces with
-/// holes are written one polygon per boundary loop.
+/// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell.
 pub fn vtu(m: &CutCellMesh) -> String {
     let cells = cell_faces(m);
     let mut s = String::new();

@@ -1,0 +1,94 @@
+//! Why a cut was refused: every input problem names its element.
+
+/// Why a cut was refused.
+#[derive(Debug, thiserror::Error)]
+pub enum CutError {
+    /// No triangles.
+    #[error("the mesh has no triangles")]
+    EmptyMesh,
+    /// A vertex coordinate is NaN or infinite.
+    #[error("vertex {vertex} has a non-finite coordinate")]
+    NonFiniteVertex {
+        /// Vertex index (0-based).
+        vertex: usize,
+    },
+    /// Two vertices at the same position.
+    #[error("vertices {first} and {second} are at the same position (duplicate vertex)")]
+    DuplicateVertex {
+        /// First vertex.
+        first: usize,
+        /// Its duplicate.
+        second: usize,
+    },
+    /// A triangle refers to a missing vertex.
+    #[error("triangle {triangle} refers to a vertex that does not exist")]
+    BadIndex {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// A triangle with collinear corners.
+    #[error("triangle {triangle} is degenerate (zero area, exactly)")]
+    DegenerateTriangle {
+        /// Triangle index.
+        triangle: usize,
+    },
+    /// An edge used twice in the same direction.
+    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle}: non-manifold edge or inconsistent orientation")]
+    NonManifoldOrFlipped {
+        /// Triangle index.
+        triangle: usize,
+        /// The other triangle.
+        other: usize,
+        /// Edge start vertex.
+        a: u32,
+        /// Edge end vertex.
+        b: u32,
+    },
+    /// An edge with only one triangle.
+    #[error(
+        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
+    )]
+    NotWatertight {
+        /// Triangle index.
+        triangle: usize,
+        /// Edge start.
+        a: u32,
+        /// Edge end.
+        b: u32,
+    },
+    /// The triangles around a vertex form more than one fan.
+    #[error("vertex {vertex} is non-manifold (its triangles form several fans)")]
+    NonManifoldVertex {
+        /// Vertex index.
+        vertex: usize,
+    },
+    /// Negative or zero signed volume.
+    #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]
+    InwardOrientation {
+        /// The signed volume.
+        volume: f64,
+    },
+    /// Two triangles meet away from their shared vertices.
+    #[error("triangles {first} and {second} intersect (the mesh self-intersects)")]
+    SelfIntersection {
+        /// Smaller triangle index.
+        first: usize,
+        /// Larger triangle index.
+        second: usize,
+    },
+    /// NaN or infinite plane coefficient.
+    #[error("plane {plane} has a non-finite coefficient")]
+    NonFinitePlane {
+        /// Plane index.
+        plane: usize,
+    },
+    /// `a = b = c = 0`.
+    #[error("plane {plane} has a zero-length normal")]
+    ZeroNormal {
+        /// Plane index.
+        plane: usize,
+    },
+    /// The result failed a consistency check (a bug, reported not hidden).
+    #[error("internal consistency check failed: {0}")]
+    Inconsistent(String),
+}

@@ -1,0 +1,501 @@
+//! Exact self-intersection test of the input mesh (TopoCut App. A): no
+//! edge may meet a triangle except at their shared vertices. Candidate
+//! pairs come from a uniform grid over the bounding box (each pair is
+//! tested once, in the grid cell holding the low corner of the overlap of
+//! their boxes); every decision is an exact orientation sign.
+
+use super::CutError;
+use rayon::prelude::*;
+use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+
+fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
+    // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
+    // permanent of absolute values of the same products.
+    let (pa, pb, pc, pd) = (
+        &x[a as usize],
+        &x[b as usize],
+        &x[c as usize],
+        &x[d as usize],
+    );
+    let adx = pa[0] - pd[0];
+    let bdx = pb[0] - pd[0];
+    let cdx = pc[0] - pd[0];
+    let ady = pa[1] - pd[1];
+    let bdy = pb[1] - pd[1];
+    let cdy = pc[1] - pd[1];
+    let adz = pa[2] - pd[2];
+    let bdz = pb[2] - pd[2];
+    let cdz = pc[2] - pd[2];
+    let bdxcdy = bdx * cdy;
+    let cdxbdy = cdx * bdy;
+    let cdxady = cdx * ady;
+    let adxcdy = adx * cdy;
+    let adxbdy = adx * bdy;
+    let bdxady = bdx * ady;
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let perm = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (7.0 * U + 56.0 * U * U) * perm;
+    if det.is_finite() && perm.is_finite() && perm > 1e-280 {
+        // orient3d(a,b,c,d) with d as origin equals -det(a-d, b-d, c-d) ... sign
+        // convention fixed below against the generic version
+        if det > bound {
+            return Sign::Negative;
+        }
+        if -det > bound {
+            return Sign::Positive;
+        }
+    }
+    orient_exact(x, a, b, c, d)
+}
+
+fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    fn f(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Interval {
+        let p = |i: u32| {
+            [
+                Interval::point(x[i as usize][0]),
+                Interval::point(x[i as usize][1]),
+                Interval::point(x[i as usize][2]),
+            ]
+        };
+        let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+        let u: [Interval; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let v: [Interval; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [Interval; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        u[0].mul(&v[1].mul(&w[2]).sub(&v[2].mul(&w[1])))
+            .sub(&u[1].mul(&v[0].mul(&w[2]).sub(&v[2].mul(&w[0]))))
+            .add(&u[2].mul(&v[0].mul(&w[1]).sub(&v[1].mul(&w[0]))))
+    }
+    if let Some(s) = f(x, a, b, c, d).sign() {
+        return s;
+    }
+    // det(b - a, c - a, d - a), differences formed exactly inside septa-exact
+    let p = |i: u32| x[i as usize];
+    let pa = p(a);
+    septa_exact::det_sign_diff::<3>(&[p(b), p(c), p(d)], &[pa, pa, pa])
+}
+
+/// 2D orientation of points projected by dropping axis `k`.
+fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    // Shewchuk's static filter for orient2d (`ccwerrboundA` = (3u + 16u^2))
+    let (pa, pb, pc) = (&x[a as usize], &x[b as usize], &x[c as usize]);
+    let l = (pb[i] - pa[i]) * (pc[j] - pa[j]);
+    let r = (pb[j] - pa[j]) * (pc[i] - pa[i]);
+    let det = l - r;
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (3.0 * U + 16.0 * U * U) * (l.abs() + r.abs());
+    if det.is_finite() && (l.abs() + r.abs()) > 1e-280 {
+        if det > bound {
+            return Sign::Positive;
+        }
+        if -det > bound {
+            return Sign::Negative;
+        }
+    }
+    fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
+        let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
+        let (pa, pb, pc) = (p(a), p(b), p(c));
+        pb.0.sub(&pa.0)
+            .mul(&pc.1.sub(&pa.1))
+            .sub(&pb.1.sub(&pa.1).mul(&pc.0.sub(&pa.0)))
+    }
+    filtered_sign(
+        || f::<Interval>(x, i, j, a, b, c),
+        || f::<Exact>(x, i, j, a, b, c),
+    )
+}
+
+/// Sign of `(w - v) . (o - v)` in the projection dropping axis `k`.
+fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, v: u32, w: u32, o: u32) -> R {
+        let c = |t: u32, a: usize| R::of(x[t as usize][a]);
+        let (wi, wj) = (c(w, i).sub(&c(v, i)), c(w, j).sub(&c(v, j)));
+        let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
+        wi.mul(&oi).add(&wj.mul(&oj))
+    }
+    filtered_sign(
+        || f::<Interval>(x, i, j, v, w, o),
+        || f::<Exact>(x, i, j, v, w, o),
+    )
+}
+
+/// An axis along which the plane of triangle `t` projects without collapse.
+fn proj_axis(x: &[[f64; 3]], t: &[u32; 3]) -> usize {
+    (0..3)
+        .find(|&k| {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let _ = (i, j);
+            orient2(x, k, t[0], t[1], t[2]) != Sign::Zero
+        })
+        .unwrap_or(2)
+}
+
+/// Closed 2D segment-segment intersection (coplanar points, axis `k` dropped).
+fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
+    let (o1, o2) = (orient2(x, k, p, q, a), orient2(x, k, p, q, b));
+    let (o3, o4) = (orient2(x, k, a, b, p), orient2(x, k, a, b, q));
+    if o1 != Sign::Zero && o1 == o2 || o3 != Sign::Zero && o3 == o4 {
+        return false;
+    }
+    if o1 == Sign::Zero && o2 == Sign::Zero {
+        // collinear: overlap of projections on the axis with most spread
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let ax = if x[p as usize][i] != x[q as usize][i] {
+            i
+        } else {
+            j
+        };
+        let (l1, h1) = (
+            x[p as usize][ax].min(x[q as usize][ax]),
+            x[p as usize][ax].max(x[q as usize][ax]),
+        );
+        let (l2, h2) = (
+            x[a as usize][ax].min(x[b as usize][ax]),
+            x[a as usize][ax].max(x[b as usize][ax]),
+        );
+        return l1 <= h2 && l2 <= h1;
+    }
+    true
+}
+
+/// Closed 2D point-in-triangle (coplanar, axis `k` dropped).
+fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
+    let s = [
+        orient2(x, k, t[0], t[1], p),
+        orient2(x, k, t[1], t[2], p),
+        orient2(x, k, t[2], t[0], p),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Closed segment `pq` against closed triangle `t`.
+fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
+    let o1 = orient(x, t[0], t[1], t[2], p);
+    let o2 = orient(x, t[0], t[1], t[2], q);
+    if o1 != Sign::Zero && o1 == o2 {
+        return false;
+    }
+    if o1 == Sign::Zero && o2 == Sign::Zero {
+        let k = proj_axis(x, t);
+        return in_tri2(x, k, p, t)
+            || in_tri2(x, k, q, t)
+            || (0..3).any(|e| seg_seg2(x, k, p, q, t[e], t[(e + 1) % 3]));
+    }
+    let s = [
+        orient(x, p, q, t[0], t[1]),
+        orient(x, p, q, t[1], t[2]),
+        orient(x, p, q, t[2], t[0]),
+    ];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Are `c` and `d` on the same side of the line `ab` (positive dot product
+/// of their components perpendicular to `ab`)?
+fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
+    fn f<R: Ring>(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> R {
+        let p = |i: u32| {
+            [
+                R::of(x[i as usize][0]),
+                R::of(x[i as usize][1]),
+                R::of(x[i as usize][2]),
+            ]
+        };
+        let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+        let e: [R; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let u: [R; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [R; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        let dot =
+            |p: &[R; 3], q: &[R; 3]| p[0].mul(&q[0]).add(&p[1].mul(&q[1])).add(&p[2].mul(&q[2]));
+        // (u.w)|e|^2 - (u.e)(w.e) = |e|^2 (u_perp . w_perp)
+        dot(&u, &w)
+            .mul(&dot(&e, &e))
+            .sub(&dot(&u, &e).mul(&dot(&w, &e)))
+    }
+    filtered_sign(
+        || f::<Interval>(x, a, b, c, d),
+        || f::<Exact>(x, a, b, c, d),
+    ) == Sign::Positive
+}
+
+/// Sufficient test that two triangles meet at most in shared vertices:
+/// their projections along a coordinate axis are separated by an edge line
+/// of one of them (all other corners strictly outside; shared corners on
+/// the line). Exact (2D orientations of input coordinates), and cheap where
+/// the 3D predicates are nearly degenerate (flat fans of nearly coplanar
+/// triangles).
+fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    let n = {
+        let (a, b, c) = (x[t1[0] as usize], x[t1[1] as usize], x[t1[2] as usize]);
+        let (u, v) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let k = (0..3)
+        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap();
+    for (ta, tb) in [(t1, t2), (t2, t1)] {
+        let inner = orient2(x, k, ta[0], ta[1], ta[2]);
+        if inner == Sign::Zero {
+            return false;
+        }
+        for e in 0..3 {
+            let (a, b) = (ta[e], ta[(e + 1) % 3]);
+            let sep = tb.iter().all(|&w| {
+                if w == a || w == b {
+                    return true;
+                }
+                if ta.contains(&w) {
+                    return false;
+                }
+                orient2(x, k, a, b, w) == inner.flip()
+            });
+            if sep {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Do two triangles meet anywhere besides their shared vertices?
+fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    if projections_separated(x, t1, t2) {
+        return false;
+    }
+    let mut shared = [0u32; 3];
+    let mut ns = 0;
+    for &v in t1 {
+        if t2.contains(&v) {
+            shared[ns] = v;
+            ns += 1;
+        }
+    }
+    match ns {
+        0 => {
+            (0..3).any(|e| seg_tri(x, t1[e], t1[(e + 1) % 3], t2))
+                || (0..3).any(|e| seg_tri(x, t2[e], t2[(e + 1) % 3], t1))
+        }
+        1 => {
+            let v = shared[0];
+            let other = |t: &[u32; 3]| -> [u32; 2] {
+                let k = t.iter().position(|&w| w == v).unwrap();
+                [t[(k + 1) % 3], t[(k + 2) % 3]]
+            };
+            let (o1, o2) = (other(t1), other(t2));
+            if seg_tri(x, o1[0], o1[1], t2) || seg_tri(x, o2[0], o2[1], t1) {
+                return true;
+            }
+            // an edge from v lying in the other triangle's plane may run into it
+            for (os, t) in [(&o1, t2), (&o2, t1)] {
+                for &w in os.iter() {
+                    if orient(x, t[0], t[1], t[2], w) == Sign::Zero {
+                        let k = proj_axis(x, t);
+                        let opp = other(t);
+                        if in_tri2(x, k, w, t) || seg_seg2(x, k, v, w, opp[0], opp[1]) {
+                            return true;
+                        }
+                        // the edge v-w starts inside the angle of t at v
+                        let s1 = orient2(x, k, v, opp[0], w);
+                        let s2 = orient2(x, k, v, opp[1], w);
+                        let inside = orient2(x, k, v, opp[0], opp[1]);
+                        if s1 == inside && s2 == inside.flip() {
+                            return true;
+                        }
+                        // the edge v-w runs along an edge v-opp of t: overlap
+                        for (sk, o) in [(s1, opp[0]), (s2, opp[1])] {
+                            if sk == Sign::Zero && dot2(x, k, v, w, o) == Sign::Positive {
+                                return true;
+                            }
+                        }
+                    }
+                }
+            }
+            false
+        }
+        2 => {
+            // folded onto each other: the other apex on the same side of the
+            // shared edge (checked first: it is rarely so) and coplanar
+            let shared = [shared[0], shared[1]];
+            let c = *t1.iter().find(|w| !shared.contains(w)).unwrap();
+            let d = *t2.iter().find(|w| !shared.contains(w)).unwrap();
+            if !same_side_of_edge(x, shared[0], shared[1], c, d) {
+                return false;
+            }
+            if orient(x, shared[0], shared[1], c, d) != Sign::Zero {
+                return false;
+            }
+            let k = proj_axis(x, t1);
+            orient2(x, k, shared[0], shared[1], c) == orient2(x, k, shared[0], shared[1], d)
+        }
+        _ => true,
+    }
+}
+
+/// Fails with the first intersecting pair (by triangle index).
+pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(), CutError> {
+    let n = tris.len();
+    if n < 2 {
+        return Ok(());
+    }
+    let boxes: Vec<([f64; 3], [f64; 3])> = tris
+        .iter()
+        .map(|t| {
+            let mut lo = [f64::INFINITY; 3];
+            let mut hi = [f64::NEG_INFINITY; 3];
+            for &v in t {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(x[v as usize][k]);
+                    hi[k] = hi[k].max(x[v as usize][k]);
+                }
+            }
+            (lo, hi)
+        })
+        .collect();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for b in &boxes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(b.0[k]);
+            hi[k] = hi[k].max(b.1[k]);
+        }
+    }
+    // cells about the size of a triangle: a surface mesh then puts a few
+    // triangles in each occupied cell
+    let mean: f64 = boxes
+        .iter()
+        .map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max))
+        .sum::<f64>()
+        / n as f64;
+    let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let res = ((ext / (1.5 * mean).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
+    let size: [f64; 3] =
+        std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
+    let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
+    let key = |c: [usize; 3]| ((c[0] as u64 * res as u64 + c[1] as u64) * res as u64) + c[2] as u64;
+    let mut entries: Vec<(u64, u32)> = Vec::new();
+    for (t, b) in boxes.iter().enumerate() {
+        let (c0, c1) = (
+            [0, 1, 2].map(|k| cell(b.0[k], k)),
+            [0, 1, 2].map(|k| cell(b.1[k], k)),
+        );
+        for i in c0[0]..=c1[0] {
+            for j in c0[1]..=c1[1] {
+                for l in c0[2]..=c1[2] {
+                    entries.push((key([i, j, l]), t as u32));
+                }
+            }
+        }
+    }
+    entries.sort_unstable();
+    let mut groups: Vec<(usize, usize)> = Vec::new();
+    let mut s = 0;
+    while s < entries.len() {
+        let mut e = s + 1;
+        while e < entries.len() && entries[e].0 == entries[s].0 {
+            e += 1;
+        }
+        groups.push((s, e));
+        s = e;
+    }
+    let bad = groups
+        .par_iter()
+        .filter_map(|&(s, e)| {
+            let here = entries[s].0;
+            let mut found: Option<(u32, u32)> = None;
+            for a in s..e {
+                for b in a + 1..e {
+                    let (t1, t2) = (entries[a].1, entries[b].1);
+                    let (b1, b2) = (&boxes[t1 as usize], &boxes[t2 as usize]);
+                    if (0..3).any(|k| b1.0[k] > b2.1[k] || b2.0[k] > b1.1[k]) {
+                        continue;
+                    }
+                    // test each pair once: in the cell of the overlap's low corner
+                    let low = key([0, 1, 2].map(|k| cell(b1.0[k].max(b2.0[k]), k)));
+                    if low != here {
+                        continue;
+                    }
+                    if pair_intersects(x, &tris[t1 as usize], &tris[t2 as usize]) {
+                        let p = (t1.min(t2), t1.max(t2));
+                        if found.is_none_or(|f| p < f) {
+                            found = Some(p);
+                        }
+                    }
+                }
+            }
+            found
+        })
+        .min();
+    match bad {
+        Some((a, b)) => Err(CutError::SelfIntersection {
+            first: a as usize,
+            second: b as usize,
+        }),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn static_filter_agrees_with_exact_orientation() {
+        let x = [
+            [0.1, 0.2, 0.3],
+            [1.7, -0.4, 0.2],
+            [0.3, 2.1, -0.6],
+            [0.5, 0.5, 1.9],
+            [0.9, 0.7, 0.05],
+        ];
+        for a in 0..5u32 {
+            for b in 0..5u32 {
+                for c in 0..5u32 {
+                    for d in 0..5u32 {
+                        assert_eq!(orient(&x, a, b, c, d), orient_exact(&x, a, b, c, d));
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod overlap_tests {
+    use super::*;
+
+    #[test]
+    fn coplanar_triangles_sharing_a_vertex() {
+        // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
+        let x = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        // edge 0-3 runs along edge 0-1: overlapping
+        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
+        // (0, 5, ..) pokes into t1's angle
+        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
+        // mirrored below the x axis: touch only at the shared vertex
+        let y = [
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, -0.5, 0.0],
+            [1.0, -1.0, 0.0],
+        ];
+        assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
+    }
+}

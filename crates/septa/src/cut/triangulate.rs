@@ -1,0 +1,149 @@
+//! Triangulation of cut-faces without new vertices, for output (TopoCut
+//! Sec. 6.3 "Trian"). Works on the floating-point embedding: holes are
+//! joined to the outer boundary by a bridge edge (as in the paper's
+//! multi-boundary post-processing), then ears are clipped. This only shapes
+//! output files; no combinatorial decision depends on it.
+
+/// Triangles (vertex ids) covering a planar face given by its loops (outer
+/// first, counter-clockwise about `normal`; holes clockwise).
+pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<[u32; 3]> {
+    if loops.len() == 1 && loops[0].len() == 3 {
+        let l = &loops[0];
+        return vec![[l[0], l[1], l[2]]];
+    }
+    // project dropping the dominant normal axis, keeping orientation
+    let k = (0..3)
+        .max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))
+        .unwrap();
+    let (i, j) = if normal[k] >= 0.0 {
+        ((k + 1) % 3, (k + 2) % 3)
+    } else {
+        ((k + 2) % 3, (k + 1) % 3)
+    };
+    let p = |v: u32| [x[v as usize][i], x[v as usize][j]];
+    let mut poly: Vec<u32> = loops[0].clone();
+    let mut holes: Vec<&Vec<u32>> = loops[1..].iter().collect();
+    // bridge holes from the rightmost one inwards
+    let maxx = |l: &Vec<u32>| l.iter().map(|&v| p(v)[0]).fold(f64::NEG_INFINITY, f64::max);
+    holes.sort_by(|a, b| maxx(b).total_cmp(&maxx(a)));
+    for h in holes {
+        let (mi, &m) = h
+            .iter()
+            .enumerate()
+            .max_by(|a, b| p(*a.1)[0].total_cmp(&p(*b.1)[0]))
+            .unwrap();
+        let pm = p(m);
+        // candidate outer vertices by distance; take the first visible one
+        let mut cands: Vec<usize> = (0..poly.len()).collect();
+        let d2 = |v: u32| {
+            let q = p(v);
+            (q[0] - pm[0]).powi(2) + (q[1] - pm[1]).powi(2)
+        };
+        cands.sort_by(|&a, &b| d2(poly[a]).total_cmp(&d2(poly[b])));
+        let visible = |c: usize| {
+            let pc = p(poly[c]);
+            let n = poly.len();
+            !(0..n).any(|e| {
+                let (a, b) = (poly[e], poly[(e + 1) % n]);
+                a != poly[c] && b != poly[c] && proper_cross(pm, pc, p(a), p(b))
+            }) && !(0..h.len()).any(|e| {
+                let (a, b) = (h[e], h[(e + 1) % h.len()]);
+                a != m && b != m && proper_cross(pm, pc, p(a), p(b))
+            })
+        };
+        let c = cands
+            .iter()
+            .copied()
+            .find(|&c| visible(c))
+            .unwrap_or(cands[0]);
+        let mut merged = Vec::with_capacity(poly.len() + h.len() + 2);
+        merged.extend_from_slice(&poly[..=c]);
+        for s in 0..=h.len() {
+            merged.push(h[(mi + s) % h.len()]);
+        }
+        merged.extend_from_slice(&poly[c..]);
+        poly = merged;
+    }
+    ear_clip(&poly, &p)
+}
+
+fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+}
+
+fn proper_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
+    let (o1, o2) = (cross(a, b, c), cross(a, b, d));
+    let (o3, o4) = (cross(c, d, a), cross(c, d, b));
+    o1 * o2 < 0.0 && o3 * o4 < 0.0
+}
+
+fn ear_clip(poly: &[u32], p: &dyn Fn(u32) -> [f64; 2]) -> Vec<[u32; 3]> {
+    let mut idx: Vec<u32> = poly.to_vec();
+    let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
+    while idx.len() > 3 {
+        let n = idx.len();
+        let mut cut = None;
+        for pass in 0..2 {
+            for a in 0..n {
+                let (u, v, w) = (idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]);
+                let (pu, pv, pw) = (p(u), p(v), p(w));
+                let c = cross(pu, pv, pw);
+                if c < 0.0 || (pass == 0 && c == 0.0) {
+                    continue;
+                }
+                // no other corner strictly inside the candidate ear
+                let blocked = pass == 0
+                    && idx.iter().any(|&o| {
+                        if o == u || o == v || o == w {
+                            return false;
+                        }
+                        let q = p(o);
+                        cross(pu, pv, q) > 0.0 && cross(pv, pw, q) > 0.0 && cross(pw, pu, q) > 0.0
+                    });
+                if !blocked {
+                    cut = Some(a);
+                    break;
+                }
+            }
+            if cut.is_some() {
+                break;
+            }
+        }
+        let a = cut.unwrap_or(0);
+        out.push([idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]]);
+        idx.remove(a);
+    }
+    if idx.len() == 3 {
+        out.push([idx[0], idx[1], idx[2]]);
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_with_square_hole() {
+        let x = [
+            [0.0, 0.0, 0.0],
+            [4.0, 0.0, 0.0],
+            [4.0, 4.0, 0.0],
+            [0.0, 4.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [1.0, 3.0, 0.0],
+            [3.0, 3.0, 0.0],
+            [3.0, 1.0, 0.0],
+        ];
+        let t = triangulate(&x, &[vec![0, 1, 2, 3], vec![4, 5, 6, 7]], [0.0, 0.0, 1.0]);
+        assert_eq!(t.len(), 8);
+        let area: f64 = t
+            .iter()
+            .map(|f| {
+                let p = |v: u32| [x[v as usize][0], x[v as usize][1]];
+                cross(p(f[0]), p(f[1]), p(f[2])) / 2.0
+            })
+            .sum();
+        assert!((area - 12.0).abs() < 1e-12, "{area}");
+    }
+}

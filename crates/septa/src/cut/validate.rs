@@ -1,0 +1,132 @@
+//! Checks of a cut-cell mesh (TopoCut Sec. 6.2): faces bound one or two
+//! cells, volumes add up, Euler characteristic accounted per cell.
+
+use super::{CutCellMesh, CutError, CutFace, Support};
+use crate::cut::triangulate;
+
+/// Results of [`CutCellMesh::validate`].
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Validation {
+    /// `V - E + F - C`.
+    pub euler: i64,
+    /// `|sum of cell volumes - mesh volume| / mesh volume`.
+    pub volume_relative_error: f64,
+    /// Smallest cell volume.
+    pub min_cell_volume: f64,
+    /// Euler characteristic of the domain, `chi(mesh) / 2`.
+    pub domain_euler: i64,
+    /// `V - E + F - sum_c chi(c)` with `chi(c) = chi(boundary of c) / 2`
+    /// counted on each cell's own boundary: equals `domain_euler` when
+    /// every cut-face is a disc (holes are joined by one edge each), whatever
+    /// the topology of the cells (a cell around a handle has `chi = 0`).
+    pub euler_by_cell: i64,
+    /// Cells whose boundary is not a sphere (`chi(c) != 1`).
+    pub non_ball_cells: usize,
+}
+
+impl CutCellMesh {
+    /// The unit-free normal of a face's support (triangle outward normal or
+    /// plane normal), from the input data.
+    pub fn support_normal(&self, f: &CutFace) -> [f64; 3] {
+        match f.support {
+            Support::Plane(p) => {
+                let q = self.planes[p as usize];
+                [q[0], q[1], q[2]]
+            }
+            Support::Tri(t) => self.tri_normals[t as usize],
+        }
+    }
+
+    /// Triangles of each cut-face (no new vertices; holes bridged), for
+    /// output and rendering.
+    pub fn triangulate_faces(&self) -> Vec<Vec<[u32; 3]>> {
+        self.faces
+            .iter()
+            .map(|f| triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f)))
+            .collect()
+    }
+
+    /// Checks: every cut-face bounds one (boundary) or two distinct
+    /// (interior) cells, cell volumes are positive and sum to the mesh
+    /// volume within `1e-9` relative.
+    pub fn validate(&self) -> Result<Validation, CutError> {
+        for (i, f) in self.faces.iter().enumerate() {
+            match f.support {
+                Support::Tri(_) => {
+                    if f.cells[0] == u32::MAX || f.cells[1] != u32::MAX {
+                        return Err(CutError::Inconsistent(format!(
+                            "boundary face {i} does not bound exactly one cell"
+                        )));
+                    }
+                }
+                Support::Plane(_) => {
+                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
+                    {
+                        return Err(CutError::Inconsistent(format!(
+                            "plane face {i} does not bound two distinct cells"
+                        )));
+                    }
+                }
+            }
+        }
+        let total: f64 = self.cell_volumes.iter().sum();
+        let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
+        let min = self
+            .cell_volumes
+            .iter()
+            .copied()
+            .fold(f64::INFINITY, f64::min);
+        if err > 1e-9 {
+            return Err(CutError::Inconsistent(format!(
+                "cell volumes sum to {total}, mesh volume {}",
+                self.mesh_volume
+            )));
+        }
+        if min <= 0.0 {
+            return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
+        }
+        let c = &self.counts;
+        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
+        // faces and join edges (one per hole) per cell
+        let mut cv: Vec<(u32, u32)> = Vec::new();
+        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
+        let mut cf = vec![0i64; self.num_cells];
+        for f in &self.faces {
+            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
+                cf[cell as usize] += 1;
+                // a joined hole adds one edge and keeps one face: chi contribution 0
+                cf[cell as usize] -= f.loops.len() as i64 - 1;
+                for l in &f.loops {
+                    for (k, &v) in l.iter().enumerate() {
+                        let w = l[(k + 1) % l.len()];
+                        cv.push((cell, v));
+                        ce.push((cell, v.min(w), v.max(w)));
+                    }
+                }
+            }
+        }
+        cv.sort_unstable();
+        cv.dedup();
+        ce.sort_unstable();
+        ce.dedup();
+        let mut chi2 = cf;
+        for &(cell, _) in &cv {
+            chi2[cell as usize] += 1;
+        }
+        for &(cell, _, _) in &ce {
+            chi2[cell as usize] -= 1;
+        }
+        let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
+        let non_ball = chi2.iter().filter(|&&x| x != 2).count();
+        Ok(Validation {
+            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - c.cut_cells as i64,
+            volume_relative_error: err,
+            min_cell_volume: min,
+            domain_euler: self.mesh_euler / 2,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
+                - sum_chi,
+            non_ball_cells: non_ball,
+        })
+    }
+}
