@@ -1,15 +1,19 @@
 //! The cut does not depend on plane order, plane scaling, duplicate planes
 //! or thread count; bad input gives typed errors naming the element.
 
+mod common;
+
 use septa::cut::{cut_mesh, CutCellMesh, CutError, CutOptions};
 use septa::io::{mesh::read_mesh, planes::read_planes};
 use std::path::Path;
 
-const DATA: &str = "/work/shared/data";
+fn data() -> String {
+    common::shared_data().display().to_string()
+}
 
 fn load(mesh: &str, planes: &str) -> Option<(Vec<[f64; 3]>, Vec<[u32; 3]>, Vec<[f64; 4]>)> {
-    let m = read_mesh(Path::new(&format!("{DATA}/meshes/{mesh}"))).ok()?;
-    let p = read_planes(Path::new(&format!("{DATA}/topocut/{planes}"))).ok()?;
+    let m = read_mesh(Path::new(&format!("{}/meshes/{mesh}", data()))).unwrap();
+    let p = read_planes(Path::new(&format!("{}/topocut/{planes}", data()))).unwrap();
     Some((m.vertices, m.triangles, p))
 }
 

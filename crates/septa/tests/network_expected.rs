@@ -2,6 +2,8 @@
 //! implementation's (expected.json), on the built-in box grid, and the box
 //! grid's tets equal to the input's.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
@@ -9,9 +11,7 @@ use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, NetworkOptions};
 
 fn data_dir() -> Option<PathBuf> {
-    let d = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../../shared/data/isn");
-    let d = if d.exists() { d } else { PathBuf::from("/work/shared/data/isn") };
-    d.join("expected.json").exists().then_some(d)
+    Some(common::shared_data().join("isn"))
 }
 
 fn box_grid(path: &Path) -> (Grid, Vec<f64>, usize, septa::io::npz::GridInput) {

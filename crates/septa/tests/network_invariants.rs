@@ -1,6 +1,8 @@
 //! Invariants of every output, determinism across thread counts, function
 //! permutations, tet-mesh input, and exactly degenerate hand-derived cases.
 
+mod common;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -11,8 +13,7 @@ use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};
 
 fn data_dir() -> Option<PathBuf> {
-    let d = PathBuf::from("/work/shared/data/isn");
-    d.join("expected.json").exists().then_some(d)
+    Some(common::shared_data().join("isn"))
 }
 
 fn load(dir: &Path, name: &str) -> (Grid, Vec<f64>, usize) {
