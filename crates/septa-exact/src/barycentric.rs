@@ -15,7 +15,7 @@
 //! Here both determinants are signed exactly by [`det_sign`] /
 //! [`det_sign_diff`], so the result is exact for the given doubles.
 
-use crate::{det_sign, det_sign_diff, Sign};
+use crate::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive, Sign};
 
 /// IA form: `g[i][j]` is the value of function `g_{i+1}` at vertex `j` of
 /// the element `e` holding `v` (`N = d + 1` rows and vertices). Rows
@@ -86,4 +86,29 @@ pub fn barycentric_sign_mi<const N: usize>(f: &[[f64; N]; N], h: &[[f64; N]; N])
         return Sign::Zero;
     }
     det_sign_diff(f, h) * sa
+}
+
+/// [`barycentric_sign_ia`] with the naive floating-point determinant signs
+/// ([`det_sign_f64_naive`]). **Not exact**: the paper's floating-point
+/// baseline for the `--float` variant of the stress test (Sec. 8.1).
+#[inline]
+pub fn barycentric_sign_ia_f64_naive<const N: usize>(g: &[[f64; N]; N]) -> Sign {
+    if N == 1 {
+        return det_sign_f64_naive(g);
+    }
+    let a: [[f64; N]; N] = std::array::from_fn(|i| if i + 1 == N { [1.0; N] } else { g[i] });
+    det_sign_f64_naive(g) * det_sign_f64_naive(&a)
+}
+
+/// [`barycentric_sign_mi`] with the naive floating-point determinant signs
+/// (differences rounded first). **Not exact**; see
+/// [`barycentric_sign_ia_f64_naive`].
+#[inline]
+pub fn barycentric_sign_mi_f64_naive<const N: usize>(f: &[[f64; N]; N], h: &[[f64; N]; N]) -> Sign {
+    if N == 1 {
+        return det_sign_diff_f64_naive(f, h);
+    }
+    let af: [[f64; N]; N] = std::array::from_fn(|i| if i + 1 == N { [1.0; N] } else { f[i] });
+    let ah: [[f64; N]; N] = std::array::from_fn(|i| if i + 1 == N { [0.0; N] } else { h[i] });
+    det_sign_diff_f64_naive(f, h) * det_sign_diff_f64_naive(&af, &ah)
 }

@@ -1,14 +1,18 @@
 //! Exact signs of small determinants (N = 1..=4) of `f64` data, in three
-//! tiers: a floating-point filter with a proven bound (`filter.rs`), an
-//! allocation-free expansion tier (`expansion_det.rs`) inside an exponent
-//! window, and a bignum tier ([`Exact`](crate::Exact)) for everything else.
+//! tiers: a floating-point filter with a proven bound (`filter.rs`); an
+//! allocation-free exact tier, first `i128` arithmetic for low-precision rows
+//! (`integer_det.rs`, any magnitude), then expansions (`expansion_det.rs`)
+//! inside an exponent window; and a bignum tier ([`Exact`](crate::Exact))
+//! for everything else.
 //! Each call bumps exactly one per-thread counter in [`crate::stats`].
 //!
 //! Inputs must be finite (see [`crate::check_finite`]); a NaN or infinity
-//! yields an unspecified sign, never a panic.
+//! is a precondition violation: an unspecified sign in release builds, a
+//! debug assertion in [`Exact::from_f64`](crate::Exact::from_f64) in debug
+//! builds if it reaches the bignum tier.
 
-use crate::filter::{self, fix, Outcome};
-use crate::{bignum, expansion_det, stats, Sign};
+use crate::filter::{self, flat, Outcome};
+use crate::{bignum, expansion_det, integer_det, stats, Sign};
 
 /// Sign of `det(m)` for an `N x N` matrix of input values, `N` in `1..=4`
 /// (larger `N` works too, on the slow exact tier only).
@@ -27,17 +31,17 @@ pub fn det_sign<const N: usize>(m: &[[f64; N]; N]) -> Sign {
             Sign::of_f64(m[0][0])
         }
         2 => {
-            let m2: [[f64; 2]; 2] = fix(m);
-            match filter::ia2(&m2) {
+            let m2: &[f64; 4] = flat(m);
+            match filter::ia2(m2) {
                 Some(s) => {
                     stats::count_filter();
                     s
                 }
-                None => finish_ia(filter::ia2_tie(&m2), m),
+                None => finish_ia(filter::ia2_tie(m2), m),
             }
         }
-        3 => finish_ia(filter::ia3(&fix(m)), m),
-        4 => finish_ia(filter::ia4(&fix(m)), m),
+        3 => finish_ia(filter::ia3(flat(m)), m),
+        4 => finish_ia(filter::ia4(flat(m)), m),
         _ => {
             stats::count_bignum();
             bignum::det_sign(m)
@@ -47,29 +51,34 @@ pub fn det_sign<const N: usize>(m: &[[f64; N]; N]) -> Sign {
 
 #[inline(always)]
 fn finish_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Decided(s) => {
+    match o.sign() {
+        Some(s) => {
             stats::count_filter();
             s
         }
-        _ => slow_ia(o, m),
+        None => slow_ia(o, m),
     }
 }
 
 #[cold]
 #[inline(never)]
 fn slow_ia<const N: usize>(o: Outcome, m: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Decided(s) => s,
-        Outcome::Expansion => {
-            stats::count_expansion();
-            if N == 2 {
-                expansion_det::ia2_tie_sign(&fix(m))
-            } else {
-                expansion_det::det_sign_ia(m)
-            }
+    let exact = match o {
+        Outcome::Expansion if N == 2 => Some(expansion_det::ia2_tie_sign(flat(m))),
+        Outcome::Expansion => integer_det::det_sign_ia(m).or_else(|| expansion_det::det_sign_ia(m)),
+        Outcome::Bignum => integer_det::det_sign_ia(m),
+        decided => {
+            // A zero proven on the tie path of N = 2.
+            stats::count_filter();
+            return decided.sign().unwrap_or(Sign::Zero);
         }
-        Outcome::Bignum => {
+    };
+    match exact {
+        Some(s) => {
+            stats::count_expansion();
+            s
+        }
+        None => {
             stats::count_bignum();
             bignum::det_sign(m)
         }
@@ -105,30 +114,36 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
                 Sign::Zero
             };
         }
-        2 => filter::mi2(&fix(a), &fix(b)),
-        3 => filter::mi3(&fix(a), &fix(b)),
-        4 => filter::mi4(&fix(a), &fix(b)),
+        2 => filter::mi2(flat(a), flat(b)),
+        3 => filter::mi3(flat(a), flat(b)),
+        4 => filter::mi4(flat(a), flat(b)),
         _ => Outcome::Bignum,
     };
-    match o {
-        Outcome::Decided(s) => {
+    match o.sign() {
+        Some(s) => {
             stats::count_filter();
             s
         }
-        _ => slow_mi(o, a, b),
+        None => slow_mi(o, a, b),
     }
 }
 
 #[cold]
 #[inline(never)]
 fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
-    match o {
-        Outcome::Decided(s) => s,
+    let exact = match o {
         Outcome::Expansion => {
-            stats::count_expansion();
-            expansion_det::det_sign_mi(a, b)
+            integer_det::det_sign_mi(a, b).or_else(|| expansion_det::det_sign_mi(a, b))
         }
-        Outcome::Bignum => {
+        Outcome::Bignum => integer_det::det_sign_mi(a, b),
+        decided => return decided.sign().unwrap_or(Sign::Zero),
+    };
+    match exact {
+        Some(s) => {
+            stats::count_expansion();
+            s
+        }
+        None => {
             stats::count_bignum();
             bignum::det_sign_diff(a, b)
         }

@@ -8,18 +8,19 @@
 //! component `c[n-1]` (the rest sum to less than that component in
 //! magnitude), and the empty expansion is zero.
 //!
-//! ## Why expansions and not fixed-width integers
+//! ## Why expansions as well as fixed-width integers
 //!
-//! Fixed-width integers would have to hold every input scaled to a common
-//! unit, so their width grows with the *exponent range* of the data: a
-//! 4x4 determinant whose entries span `2^-180 .. 2^180` would need products
-//! of ~1650 bits. Expansions only store the significant bits that are
-//! actually present (a handful of doubles for typical data, whatever the
-//! exponents), need no scaling step, and reuse the hardware's floating-point
-//! unit. They are exact only while no intermediate underflows or overflows,
-//! which the caller guarantees with an exponent window on the inputs (see
-//! `window` in `filter.rs`); outside it the bignum tier ([`crate::Exact`])
-//! takes over.
+//! Fixed-width integers must hold every entry of a row scaled to a common
+//! unit, so their width grows with the *exponent range* within a row: a
+//! 4x4 determinant whose rows mix `2^-180` and `2^180` would need products
+//! of ~1650 bits. The integer tier (`integer_det.rs`) therefore only takes
+//! rows spanning at most 62 bits, where it is fastest. Expansions store only
+//! the significant bits actually present (a handful of doubles whatever the
+//! exponents), need no scaling, and run on the floating-point unit, so they
+//! cover the wide rows. They are exact only while no intermediate underflows
+//! or overflows, which the caller guarantees with an exponent window on the
+//! inputs (see `window` in `filter.rs`); outside it the bignum tier
+//! ([`crate::Exact`]) takes over.
 //!
 //! ## Exactness argument under the window
 //!
@@ -159,84 +160,172 @@ pub(crate) fn scale(e: &[f64], b: f64, h: &mut [f64]) -> usize {
     len
 }
 
-/// An expansion with capacity `C` on the stack.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Expansion<const C: usize> {
+/// A run of components inside an [`Arena`]: `buf[start .. start + len]`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Ex {
+    start: usize,
     len: usize,
-    c: [f64; C],
 }
 
-impl<const C: usize> Expansion<C> {
-    /// The empty expansion (zero).
-    #[inline]
-    pub(crate) fn zero() -> Self {
-        Expansion { len: 0, c: [0.0; C] }
+impl Ex {
+    fn end(self) -> usize {
+        self.start + self.len
     }
+}
 
-    /// One input value (needs `C >= 1`).
+/// A stack-allocated bump arena of `CAP` doubles holding expansions with
+/// their *actual* lengths (zero elimination keeps them short), so one small
+/// buffer replaces worst-case-sized arrays per intermediate. Every operation
+/// checks capacity first and returns `None` if the arena would overflow;
+/// callers then fall back to the bignum tier, so a too-small arena costs
+/// speed, never correctness.
+pub(crate) struct Arena<const CAP: usize> {
+    buf: [f64; CAP],
+    top: usize,
+}
+
+impl<const CAP: usize> Arena<CAP> {
+    /// An empty arena.
     #[inline]
-    pub(crate) fn from_f64(x: f64) -> Self {
-        let mut r = Self::zero();
-        if x != 0.0 {
-            r.c[0] = x;
-            r.len = 1;
+    pub(crate) fn new() -> Self {
+        Arena {
+            buf: [0.0; CAP],
+            top: 0,
         }
-        r
     }
 
-    /// The exact difference `a - b` of two inputs (needs `C >= 2`).
-    #[inline]
-    pub(crate) fn from_diff(a: f64, b: f64) -> Self {
-        let (x, y) = two_sum(a, -b);
-        let mut r = Self::zero();
-        if y != 0.0 {
-            r.c[r.len] = y;
-            r.len += 1;
-        }
-        if x != 0.0 {
-            r.c[r.len] = x;
-            r.len += 1;
-        }
-        r
+    /// The components of `e`, smallest first.
+    #[cfg(test)]
+    pub(crate) fn slice(&self, e: Ex) -> &[f64] {
+        &self.buf[e.start..e.end()]
     }
 
-    /// The components, smallest first.
+    /// Exact sign of `e`: that of its largest component.
     #[inline]
-    pub(crate) fn as_slice(&self) -> &[f64] {
-        &self.c[..self.len]
-    }
-
-    /// Exact sign: that of the largest component.
-    #[inline]
-    pub(crate) fn sign(&self) -> crate::Sign {
-        match self.len {
+    pub(crate) fn sign(&self, e: Ex) -> crate::Sign {
+        match e.len {
             0 => crate::Sign::Zero,
-            n => crate::Sign::of_f64(self.c[n - 1]),
+            n => crate::Sign::of_f64(self.buf[e.start + n - 1]),
         }
     }
 
-    /// `a + s * b` for `s` in `{1, -1}`.
     #[inline]
-    pub(crate) fn sum_of<const A: usize, const B: usize>(a: &Expansion<A>, b: &Expansion<B>, s: f64) -> Self {
-        let mut r = Self::zero();
-        r.len = sum(a.as_slice(), b.as_slice(), s, &mut r.c);
-        r
+    fn room(&self, n: usize) -> Option<()> {
+        (self.top + n <= CAP).then_some(())
     }
 
-    /// `a * b`: one scaled copy of `a` per component of `b`, summed.
-    pub(crate) fn product_of<const A: usize, const B: usize>(a: &Expansion<A>, b: &Expansion<B>) -> Self {
-        let mut bufs = [[0.0f64; C]; 2];
-        let mut lens = [0usize; 2];
-        let mut cur = 0;
-        let mut scaled = [0.0f64; C];
-        for &bj in b.as_slice() {
-            let k = scale(a.as_slice(), bj, &mut scaled);
-            let (lo, hi) = bufs.split_at_mut(1);
-            let (src, dst) = if cur == 0 { (&lo[0], &mut hi[0]) } else { (&hi[0], &mut lo[0]) };
-            lens[1 - cur] = sum(&src[..lens[cur]], &scaled[..k], 1.0, dst);
-            cur = 1 - cur;
+    /// Appends one input value.
+    #[inline]
+    pub(crate) fn push(&mut self, x: f64) -> Option<Ex> {
+        self.room(1)?;
+        let start = self.top;
+        if x != 0.0 {
+            self.buf[start] = x;
+            self.top += 1;
         }
-        Expansion { len: lens[cur], c: bufs[cur] }
+        Some(Ex {
+            start,
+            len: self.top - start,
+        })
+    }
+
+    /// Appends the exact difference `a - b` of two inputs.
+    #[inline]
+    pub(crate) fn push_diff(&mut self, a: f64, b: f64) -> Option<Ex> {
+        self.room(2)?;
+        let (x, y) = two_sum(a, -b);
+        let start = self.top;
+        for c in [y, x] {
+            if c != 0.0 {
+                self.buf[self.top] = c;
+                self.top += 1;
+            }
+        }
+        Some(Ex {
+            start,
+            len: self.top - start,
+        })
+    }
+
+    /// Appends `e + s f`.
+    #[inline]
+    pub(crate) fn sum(&mut self, e: Ex, f: Ex, s: f64) -> Option<Ex> {
+        self.room(e.len + f.len)?;
+        let start = self.top;
+        let (lo, hi) = self.buf.split_at_mut(start);
+        let len = sum(&lo[e.start..e.end()], &lo[f.start..f.end()], s, hi);
+        self.top += len;
+        Some(Ex { start, len })
+    }
+
+    /// Replaces the two runs `acc`, `t` (adjacent, at the top of the arena,
+    /// `acc` first) by `acc + s t`, stored where `acc` began.
+    #[inline]
+    pub(crate) fn fold(&mut self, acc: Ex, t: Ex, s: f64) -> Option<Ex> {
+        debug_assert!(acc.end() == t.start && t.end() == self.top);
+        let r = self.sum(acc, t, s)?;
+        self.buf.copy_within(r.start..r.end(), acc.start);
+        self.top = acc.start + r.len;
+        Some(Ex {
+            start: acc.start,
+            len: r.len,
+        })
+    }
+
+    /// Moves the top run `t` down to where `over` begins (discarding
+    /// `over` and anything between).
+    #[inline]
+    pub(crate) fn lower(&mut self, t: Ex, over: Ex) -> Ex {
+        let to = over.start;
+        debug_assert!(t.end() == self.top && to <= t.start);
+        self.buf.copy_within(t.start..t.end(), to);
+        self.top = to + t.len;
+        Ex {
+            start: to,
+            len: t.len,
+        }
+    }
+
+    /// Appends `e * f`: one scaled copy of `e` per component of `f`, folded
+    /// into a running sum that stays at the top of the arena.
+    pub(crate) fn product(&mut self, e: Ex, f: Ex) -> Option<Ex> {
+        // Make `f` the shorter factor: fewer scaled copies to merge.
+        let (e, f) = if f.len > e.len { (f, e) } else { (e, f) };
+        let start = self.top;
+        if f.len == 0 {
+            return Some(Ex { start, len: 0 });
+        }
+        self.room(2 * e.len)?;
+        if e.len == 1 {
+            // The common case of two single components: one Two-Product.
+            let (x, y) = two_product(self.buf[e.start], self.buf[f.start]);
+            for c in [y, x] {
+                if c != 0.0 {
+                    self.buf[self.top] = c;
+                    self.top += 1;
+                }
+            }
+            return Some(Ex {
+                start,
+                len: self.top - start,
+            });
+        }
+        let (lo, hi) = self.buf.split_at_mut(start);
+        self.top += scale(&lo[e.start..e.end()], lo[f.start], hi);
+        let mut acc = Ex {
+            start,
+            len: self.top - start,
+        };
+        for k in 1..f.len {
+            let b = self.buf[f.start + k];
+            self.room(2 * e.len)?;
+            let t = self.top;
+            let (lo, hi) = self.buf.split_at_mut(t);
+            let len = scale(&lo[e.start..e.end()], b, hi);
+            self.top += len;
+            acc = self.fold(acc, Ex { start: t, len }, 1.0)?;
+        }
+        Some(acc)
     }
 }
 
@@ -255,20 +344,30 @@ mod tests {
 
     #[test]
     fn sum_cancels_to_empty() {
-        let a: Expansion<4> = Expansion::from_diff(1.0, 1e-30);
-        let d: Expansion<8> = Expansion::sum_of(&a, &a, -1.0);
-        assert_eq!(d.as_slice().len(), 0);
-        assert_eq!(d.sign(), crate::Sign::Zero);
+        let mut ar = Arena::<16>::new();
+        let a = ar.push_diff(1.0, 1e-30).unwrap();
+        let d = ar.sum(a, a, -1.0).unwrap();
+        assert_eq!(ar.slice(d).len(), 0);
+        assert_eq!(ar.sign(d), crate::Sign::Zero);
     }
 
     #[test]
     fn product_keeps_tiny_tail_sign() {
         // (1 + 2^-60) * (1 - 2^-60) - 1 = -2^-120 < 0.
-        let a: Expansion<2> = Expansion::from_diff(1.0, -(2f64.powi(-60)));
-        let b: Expansion<2> = Expansion::from_diff(1.0, 2f64.powi(-60));
-        let p: Expansion<8> = Expansion::product_of(&a, &b);
-        let one: Expansion<1> = Expansion::from_f64(1.0);
-        let d: Expansion<9> = Expansion::sum_of(&p, &one, -1.0);
-        assert_eq!(d.as_slice(), &[-(2f64.powi(-120))]);
+        let mut ar = Arena::<32>::new();
+        let a = ar.push_diff(1.0, -(2f64.powi(-60))).unwrap();
+        let b = ar.push_diff(1.0, 2f64.powi(-60)).unwrap();
+        let one = ar.push(1.0).unwrap();
+        let p = ar.product(a, b).unwrap();
+        let d = ar.sum(p, one, -1.0).unwrap();
+        assert_eq!(ar.slice(d), &[-(2f64.powi(-120))]);
+    }
+
+    #[test]
+    fn full_arena_reports_overflow() {
+        let mut ar = Arena::<4>::new();
+        let a = ar.push_diff(1.0, 1e-30).unwrap();
+        let b = ar.push_diff(3.0, 1e-31).unwrap();
+        assert!(ar.product(a, b).is_none());
     }
 }

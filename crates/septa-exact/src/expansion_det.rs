@@ -1,129 +1,144 @@
 //! Exact determinant signs on stack expansions (the middle tier).
 //!
 //! Same Laplace schemes as the filters, but every entry, product and sum is
-//! an exact [`Expansion`]. Capacities are worst cases: with entries of at
-//! most `E` components, a product of two entries has at most `2E^2`, a 2x2
-//! minor `4E^2`, and so on (Scale-Expansion doubles, Expansion-Sum adds).
-//! IA entries are single doubles (`E = 1`); MI entries are the exact
-//! difference `a - b` as a two-component expansion (`E = 2`). Valid only
-//! inside the exponent window (see `expansion.rs`).
+//! an exact expansion in a stack [`Arena`]. IA entries are single doubles;
+//! MI entries are the exact difference `a - b` as a two-component
+//! expansion (one component when the subtraction was exact, as it is for
+//! nearby or integer values). Valid only inside the exponent window (see
+//! `expansion.rs`). Returns `None` only if the arena is too small for the
+//! data (possible for MI with N = 4 and long expansions), in which case the
+//! caller uses the bignum tier.
 
-use crate::expansion::{two_product, Expansion};
+use crate::expansion::{two_product, Arena, Ex};
 use crate::Sign;
 
-/// Ping-pong accumulator for a signed sum of expansions.
-struct Acc<const D: usize> {
-    bufs: [[f64; D]; 2],
-    len: usize,
-    cur: usize,
-}
+/// Arena size per N, ample for IA (worst case about 500 doubles at N = 4)
+/// and for all but pathological MI data.
+const CAP2: usize = 64;
+const CAP3: usize = 256;
+const CAP4: usize = 512;
+/// Second attempt for long MI expansions before resorting to bignums.
+const CAP_BIG: usize = 4096;
 
-impl<const D: usize> Acc<D> {
-    fn new() -> Self {
-        Acc { bufs: [[0.0; D]; 2], len: 0, cur: 0 }
-    }
+/// Column pairs `(i, j)`, `i < j`, indexing the 2x2 minors of rows 2,3.
+const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
 
-    fn add<const T: usize>(&mut self, t: &Expansion<T>, s: f64) {
-        let (lo, hi) = self.bufs.split_at_mut(1);
-        let (src, dst) = if self.cur == 0 { (&lo[0], &mut hi[0]) } else { (&hi[0], &mut lo[0]) };
-        self.len = crate::expansion::sum(&src[..self.len], t.as_slice(), s, dst);
-        self.cur = 1 - self.cur;
-    }
-
-    fn sign(&self) -> Sign {
-        match self.len {
-            0 => Sign::Zero,
-            n => Sign::of_f64(self.bufs[self.cur][n - 1]),
-        }
-    }
-}
-
-/// `a d - b c` on expansions; `P` bounds one product, `M` the minor.
+/// `x[i0] x[i3] - x[i1] x[i2]` for entries `x` already in the arena.
 #[inline]
-fn minor2<const E: usize, const P: usize, const M: usize>(
-    a: &Expansion<E>,
-    d: &Expansion<E>,
-    b: &Expansion<E>,
-    c: &Expansion<E>,
-) -> Expansion<M> {
-    let ad: Expansion<P> = Expansion::product_of(a, d);
-    let bc: Expansion<P> = Expansion::product_of(b, c);
-    Expansion::sum_of(&ad, &bc, -1.0)
+fn minor<const C: usize>(ar: &mut Arena<C>, a: Ex, d: Ex, b: Ex, c: Ex) -> Option<Ex> {
+    let ad = ar.product(a, d)?;
+    let bc = ar.product(b, c)?;
+    ar.sum(ad, bc, -1.0)
 }
 
-fn det2<const E: usize, const P: usize, const M: usize>(e: &[[Expansion<E>; 2]; 2]) -> Sign {
-    minor2::<E, P, M>(&e[0][0], &e[1][1], &e[0][1], &e[1][0]).sign()
-}
-
-fn det3<const E: usize, const P: usize, const M: usize, const T: usize, const D: usize>(
-    e: &[[Expansion<E>; 3]; 3],
-) -> Sign {
-    let m0: Expansion<M> = minor2::<E, P, M>(&e[1][1], &e[2][2], &e[1][2], &e[2][1]);
-    let m1: Expansion<M> = minor2::<E, P, M>(&e[1][0], &e[2][2], &e[1][2], &e[2][0]);
-    let m2: Expansion<M> = minor2::<E, P, M>(&e[1][0], &e[2][1], &e[1][1], &e[2][0]);
-    let mut acc = Acc::<D>::new();
-    acc.add(&Expansion::<T>::product_of(&e[0][0], &m0), 1.0);
-    acc.add(&Expansion::<T>::product_of(&e[0][1], &m1), -1.0);
-    acc.add(&Expansion::<T>::product_of(&e[0][2], &m2), 1.0);
-    acc.sign()
-}
-
-fn det4<const E: usize, const P: usize, const M: usize, const T: usize, const D: usize>(
-    e: &[[Expansion<E>; 4]; 4],
-) -> Sign {
-    // Column pairs (i, j), i < j, and the complementary pair's index.
-    const PAIRS: [(usize, usize); 6] = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)];
-    const SIGNS: [f64; 6] = [1.0, -1.0, 1.0, 1.0, -1.0, 1.0];
-    let s: [Expansion<M>; 6] = PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[0][i], &e[1][j], &e[0][j], &e[1][i]));
-    let c: [Expansion<M>; 6] = PAIRS.map(|(i, j)| minor2::<E, P, M>(&e[2][i], &e[3][j], &e[2][j], &e[3][i]));
-    let mut acc = Acc::<D>::new();
-    for k in 0..6 {
-        if s[k].as_slice().is_empty() || c[5 - k].as_slice().is_empty() {
-            continue;
+/// Exact `det` of the `n x n` matrix of arena entries `e` (row-major).
+fn det<const C: usize>(ar: &mut Arena<C>, e: &[Ex], n: usize) -> Option<Sign> {
+    match n {
+        1 => Some(ar.sign(e[0])),
+        2 => {
+            let m = minor(ar, e[0], e[3], e[1], e[2])?;
+            Some(ar.sign(m))
         }
-        acc.add(&Expansion::<T>::product_of(&s[k], &c[5 - k]), SIGNS[k]);
+        3 => {
+            let m0 = minor(ar, e[4], e[8], e[5], e[7])?;
+            let m1 = minor(ar, e[3], e[8], e[5], e[6])?;
+            let m2 = minor(ar, e[3], e[7], e[4], e[6])?;
+            let t = ar.product(e[0], m0)?;
+            let mut acc = t;
+            for (k, m, s) in [(1, m1, -1.0), (2, m2, 1.0)] {
+                let t = ar.product(e[k], m)?;
+                acc = ar.fold(acc, t, s)?;
+            }
+            Some(ar.sign(acc))
+        }
+        4 => {
+            // Cofactors along row 0; 3x3 minors of rows 1..3 along row 1,
+            // from the 2x2 minors of rows 2,3 (as in Shewchuk's exact
+            // insphere): scaling by single entries needs no merging.
+            let mut c = [Ex::default(); 6];
+            for (k, &(i, j)) in PAIRS.iter().enumerate() {
+                c[k] = minor(ar, e[8 + i], e[12 + j], e[8 + j], e[12 + i])?;
+            }
+            let pair = |i: usize, j: usize| c[PAIRS.iter().position(|&p| p == (i, j)).unwrap_or(0)];
+            let mut acc = ar.push(0.0)?;
+            for k in 0..4 {
+                let [p, q, r] = match k {
+                    0 => [1, 2, 3],
+                    1 => [0, 2, 3],
+                    2 => [0, 1, 3],
+                    _ => [0, 1, 2],
+                };
+                let m0 = ar.product(e[4 + p], pair(q, r))?;
+                let mut m = m0;
+                for (col, cof, s) in [(q, pair(p, r), -1.0), (r, pair(p, q), 1.0)] {
+                    let t = ar.product(e[4 + col], cof)?;
+                    m = ar.fold(m, t, s)?;
+                }
+                let t = ar.product(e[k], m)?;
+                // t sits above m; fold needs acc directly below t, so move
+                // t down over m first.
+                let t = ar.lower(t, m);
+                acc = ar.fold(acc, t, if k % 2 == 0 { 1.0 } else { -1.0 })?;
+            }
+            Some(ar.sign(acc))
+        }
+        _ => None,
     }
-    acc.sign()
 }
 
-/// Exact sign of `det(m)`, inputs inside the window.
-pub(crate) fn det_sign_ia<const N: usize>(m: &[[f64; N]; N]) -> Sign {
-    let e: [[Expansion<1>; N]; N] = m.map(|r| r.map(Expansion::from_f64));
+#[inline(never)]
+fn ia_in<const C: usize, const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
+    let mut ar = Arena::<C>::new();
+    let mut e = [Ex::default(); 16];
+    for (k, &x) in m.as_flattened().iter().enumerate() {
+        e[k] = ar.push(x)?;
+    }
+    det(&mut ar, &e[..N * N], N)
+}
+
+#[inline(never)]
+fn mi_in<const C: usize, const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Option<Sign> {
+    let mut ar = Arena::<C>::new();
+    let mut e = [Ex::default(); 16];
+    for (k, (&x, &y)) in a.as_flattened().iter().zip(b.as_flattened()).enumerate() {
+        e[k] = ar.push_diff(x, y)?;
+    }
+    det(&mut ar, &e[..N * N], N)
+}
+
+/// Exact sign of `det(m)`, inputs inside the window; `None` if the arena
+/// overflowed (then use the bignum tier).
+pub(crate) fn det_sign_ia<const N: usize>(m: &[[f64; N]; N]) -> Option<Sign> {
     match N {
-        0 => Sign::Positive,
-        1 => e[0][0].sign(),
-        2 => det2::<1, 2, 4>(&fix(&e)),
-        3 => det3::<1, 2, 4, 8, 24>(&fix(&e)),
-        4 => det4::<1, 2, 4, 32, 192>(&fix(&e)),
-        _ => unreachable!("expansion tier is only used for N <= 4"),
+        1 | 2 => ia_in::<CAP2, N>(m),
+        3 => ia_in::<CAP3, N>(m).or_else(|| ia_in::<CAP_BIG, N>(m)),
+        4 => ia_in::<CAP4, N>(m).or_else(|| ia_in::<CAP_BIG, N>(m)),
+        _ => None,
     }
 }
 
-/// Exact sign of `det(a - b)`, inputs inside the window.
-pub(crate) fn det_sign_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
-    let e: [[Expansion<2>; N]; N] =
-        std::array::from_fn(|i| std::array::from_fn(|j| Expansion::from_diff(a[i][j], b[i][j])));
+/// Exact sign of `det(a - b)`, inputs inside the window; `None` if the
+/// arena overflowed (then use the bignum tier).
+pub(crate) fn det_sign_mi<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Option<Sign> {
     match N {
-        0 => Sign::Positive,
-        1 => e[0][0].sign(),
-        2 => det2::<2, 8, 16>(&fix(&e)),
-        3 => det3::<2, 8, 16, 64, 192>(&fix(&e)),
-        4 => det4::<2, 8, 16, 512, 3072>(&fix(&e)),
-        _ => unreachable!("expansion tier is only used for N <= 4"),
+        1 | 2 => mi_in::<CAP2, N>(a, b),
+        3 => mi_in::<CAP3, N>(a, b).or_else(|| mi_in::<CAP_BIG, N>(a, b)),
+        4 => mi_in::<CAP4, N>(a, b).or_else(|| mi_in::<CAP_BIG, N>(a, b)),
+        _ => None,
     }
 }
 
 /// IA, N = 2, when `fl(ad) == fl(bc)`: `ad - bc` equals the difference of
 /// the exact product tails.
 #[inline]
-pub(crate) fn ia2_tie_sign(m: &[[f64; 2]; 2]) -> Sign {
-    let (p, ep) = two_product(m[0][0], m[1][1]);
-    let (q, eq) = two_product(m[0][1], m[1][0]);
+pub(crate) fn ia2_tie_sign(m: &[f64; 4]) -> Sign {
+    let (p, ep) = two_product(m[0], m[3]);
+    let (q, eq) = two_product(m[1], m[2]);
     debug_assert_eq!(p, q);
     // Rounding preserves the sign of a difference (and its zero).
     Sign::of_f64(ep - eq)
 }
 
-fn fix<T: Copy, const N: usize, const K: usize>(m: &[[T; N]; N]) -> [[T; K]; K] {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[i][j]))
-}
+#[cfg(test)]
+#[path = "expansion_det_tests.rs"]
+mod tests;

@@ -16,13 +16,8 @@ impl Sign {
     /// The sign of an `f64` taken at face value (no error analysis).
     #[inline]
     pub fn of_f64(x: f64) -> Sign {
-        if x > 0.0 {
-            Sign::Positive
-        } else if x < 0.0 {
-            Sign::Negative
-        } else {
-            Sign::Zero
-        }
+        // Branch-free: predicates sit in hot loops with unpredictable signs.
+        Sign::from_i8((x > 0.0) as i8 - (x < 0.0) as i8)
     }
 
     /// `-1`, `0` or `1`.
@@ -34,7 +29,11 @@ impl Sign {
     /// Inverse of [`Sign::as_i8`] on the signum of `v`.
     #[inline]
     pub fn from_i8(v: i8) -> Sign {
-        Sign::of_f64(v as f64)
+        match v.signum() {
+            1 => Sign::Positive,
+            -1 => Sign::Negative,
+            _ => Sign::Zero,
+        }
     }
 
     /// The sign of a product.

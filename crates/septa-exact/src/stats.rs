@@ -19,7 +19,8 @@ pub struct Stats {
     /// Decided by the floating-point filter (including trivial N = 1 signs
     /// and exact zeros proven by a zero permanent).
     pub filter: u64,
-    /// Decided by the allocation-free expansion tier.
+    /// Decided by the allocation-free exact tier (`i128` for low-precision
+    /// rows, else expansions).
     pub expansion: u64,
     /// Decided by the bignum tier (inputs outside the exponent window).
     pub bignum: u64,

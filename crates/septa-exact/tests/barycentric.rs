@@ -1,6 +1,7 @@
 //! The barycentric predicate (Du et al. 2022, eq. 5-6) against a direct
 //! evaluation: solve eq. 4 for the barycentric coordinates of `v` in exact
 //! rationals and evaluate `g_{d+1}(v)` (eq. 3), for d = 0..3.
+#![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 
 mod common;
 
@@ -9,7 +10,10 @@ use num_rational::BigRational;
 use num_traits::{One, Zero};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa_exact::{barycentric_sign_ia, barycentric_sign_mi, Sign};
+use septa_exact::{
+    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi,
+    barycentric_sign_mi_f64_naive, Sign,
+};
 
 const CASES: usize = 5_000;
 
@@ -19,8 +23,16 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
     let n = g.len();
     let mut a: Vec<Vec<BigRational>> = (0..n)
         .map(|i| {
-            let mut row: Vec<BigRational> = if i + 1 == n { vec![BigRational::one(); n] } else { g[i].clone() };
-            row.push(if i + 1 == n { BigRational::one() } else { BigRational::zero() });
+            let mut row: Vec<BigRational> = if i + 1 == n {
+                vec![BigRational::one(); n]
+            } else {
+                g[i].clone()
+            };
+            row.push(if i + 1 == n {
+                BigRational::one()
+            } else {
+                BigRational::zero()
+            });
             row
         })
         .collect();
@@ -42,7 +54,13 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
         }
     }
     let v: Vec<BigRational> = (0..n).map(|i| a[i][n].clone()).collect();
-    Some(g[n - 1].iter().zip(&v).map(|(x, y)| x * y).fold(BigRational::zero(), |s, t| s + t))
+    Some(
+        g[n - 1]
+            .iter()
+            .zip(&v)
+            .map(|(x, y)| x * y)
+            .fold(BigRational::zero(), |s, t| s + t),
+    )
 }
 
 fn expected(g: Vec<Vec<BigRational>>) -> Sign {
@@ -83,42 +101,85 @@ fn rows<const N: usize>(r: &mut ChaCha8Rng, scale: f64) -> [[f64; N]; N] {
     g
 }
 
-fn run_ia<const N: usize>(seed: u64) -> usize {
+/// Runs the IA check; returns (zero results, naive-baseline mismatches).
+fn run_ia<const N: usize>(seed: u64) -> (usize, usize) {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut zeros = 0;
+    let (mut zeros, mut naive) = (0, 0);
     for i in 0..CASES {
         let g: [[f64; N]; N] = rows(&mut r, if i % 5 == 0 { 1e-200 } else { 1.0 });
-        let want = expected(g.iter().map(|row| row.iter().map(|&x| q(x)).collect()).collect());
+        let want = expected(
+            g.iter()
+                .map(|row| row.iter().map(|&x| q(x)).collect())
+                .collect(),
+        );
         assert_eq!(barycentric_sign_ia(&g), want, "IA d={} g={g:?}", N - 1);
         zeros += want.is_zero() as usize;
+        naive += (barycentric_sign_ia_f64_naive(&g) != want) as usize;
     }
-    zeros
+    (zeros, naive)
 }
 
-fn run_mi<const N: usize>(seed: u64) -> usize {
+/// Runs the MI check; returns (zero results, naive-baseline mismatches).
+fn run_mi<const N: usize>(seed: u64) -> (usize, usize) {
     let mut r = ChaCha8Rng::seed_from_u64(seed);
-    let mut zeros = 0;
+    let (mut zeros, mut naive) = (0, 0);
     for _ in 0..CASES {
         let x: [[f64; N]; N] = rows(&mut r, 1.0);
         let h: [[f64; N]; N] = mat(&mut r, |r| unit(r) * 4.0);
         let f: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| h[i][j] + x[i][j]));
-        let want = expected((0..N).map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect()).collect());
-        assert_eq!(barycentric_sign_mi(&f, &h), want, "MI d={} f={f:?} h={h:?}", N - 1);
+        let want = expected(
+            (0..N)
+                .map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect())
+                .collect(),
+        );
+        assert_eq!(
+            barycentric_sign_mi(&f, &h),
+            want,
+            "MI d={} f={f:?} h={h:?}",
+            N - 1
+        );
         zeros += want.is_zero() as usize;
+        naive += (barycentric_sign_mi_f64_naive(&f, &h) != want) as usize;
     }
-    zeros
+    (zeros, naive)
 }
 
 #[test]
 fn ia_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [run_ia::<1>(1), run_ia::<2>(2), run_ia::<3>(3), run_ia::<4>(4)];
-    eprintln!("IA zero results per d: {z:?}");
-    assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
+    let z = [
+        run_ia::<1>(1),
+        run_ia::<2>(2),
+        run_ia::<3>(3),
+        run_ia::<4>(4),
+    ];
+    eprintln!("IA (zero results, naive mismatches) per d: {z:?}");
+    assert!(
+        z[1..].iter().all(|&(z, _)| z > 0),
+        "degenerate cases must occur"
+    );
+    // The naive baseline is exact at d = 0 and must fail sometimes above.
+    assert_eq!(z[0].1, 0);
+    assert!(
+        z[1..].iter().all(|&(_, n)| n > 0),
+        "the naive baseline should be fooled"
+    );
 }
 
 #[test]
 fn mi_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [run_mi::<1>(5), run_mi::<2>(6), run_mi::<3>(7), run_mi::<4>(8)];
-    eprintln!("MI zero results per d: {z:?}");
-    assert!(z[1..].iter().all(|&z| z > 0), "degenerate cases must occur");
+    let z = [
+        run_mi::<1>(5),
+        run_mi::<2>(6),
+        run_mi::<3>(7),
+        run_mi::<4>(8),
+    ];
+    eprintln!("MI (zero results, naive mismatches) per d: {z:?}");
+    assert!(
+        z[1..].iter().all(|&(z, _)| z > 0),
+        "degenerate cases must occur"
+    );
+    assert!(
+        z[1..].iter().all(|&(_, n)| n > 0),
+        "the naive baseline should be fooled"
+    );
 }

@@ -33,6 +33,8 @@ fn main() {
                 let v = sample_grid(&s.functions, &pts);
                 let label = |r: &[f64]| -> Vec<bool> {
                     match s.mode {
+                        // A zero value is on the network: never uniform.
+                        Mode::Ia if r.contains(&0.0) => vec![],
                         Mode::Ia => r.iter().map(|x| *x > 0.0).collect(),
                         Mode::Mi => {
                             let m = (0..k).max_by(|&a, &c| r[a].total_cmp(&r[c])).unwrap();
@@ -42,7 +44,7 @@ fn main() {
                 };
                 let rows: Vec<&[f64]> = v.chunks(k).collect();
                 let l0 = label(rows[0]);
-                if rows.iter().all(|r| label(r) == l0) {
+                if !l0.is_empty() && rows.iter().all(|r| label(r) == l0) {
                     empty += 1;
                 }
             }

@@ -62,6 +62,10 @@ fn errors_name_file_line_and_field() {
     assert_eq!(e.path.to_string(), "surfaces[1][1]");
     assert_eq!(e.line, 2);
 
+    // A grid whose vertices cannot be numbered.
+    let e = scene_err("{\"grid\": {\"resolution\": [100000, 100000, 2], \"bounds\": [[0,0,0],[1,1,1]]}, \"functions\": [{\"type\": \"zero\"}]}");
+    assert!(e.message.contains("grid too large"), "{e}");
+
     // Syntax error: serde_json's line and column.
     let e = scene_err("{\"grid\":\n  {\"resolution\" 4}}");
     assert_eq!(e.line, 2);

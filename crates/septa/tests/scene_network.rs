@@ -242,3 +242,68 @@ fn box_minus_cylinder_volume_converges() {
     assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
     assert!(errors[2] < 2e-3, "{errors:?}");
 }
+
+#[test]
+fn voronoi_lines_5_has_one_cell_per_line() {
+    let s = builtin::voronoi_lines_5();
+    let (net, _) = network(&s);
+    let c: BTreeMap<_, _> = net.counts().into_iter().collect();
+    eprintln!("voronoi-lines-5: {c:?}");
+    assert_eq!(c["cells"], 5);
+    let mut materials: Vec<u64> = net.cells.iter().map(|c| c.label[0]).collect();
+    materials.sort();
+    assert_eq!(materials, vec![0, 1, 2, 3, 4]);
+    assert_eq!(c["components"], 1);
+    // Recorded from the exact run (regression values).
+    assert_eq!((c["patches"], c["chains"], c["corners"]), (16, 17, 19));
+}
+
+/// Polygons of the surfaces of interest oriented counter-clockwise seen
+/// from the lesser region (Bloomenthal 4.5.2.4) with [`must_flip`]: the
+/// network gives each polygon counter-clockwise from its positive side
+/// (cell `face_cells[f][0]`). Checks: every edge inside a surface is
+/// traversed in opposite directions by its two polygons (consistent
+/// orientation), and on the sphere with a hole the normals point out, into
+/// region 0, the lesser one.
+#[test]
+fn surfaces_are_oriented_from_the_lesser_region() {
+    use septa::scene::must_flip;
+    for name in ["sphere-with-hole", "saucer-square", "sphere-plane-hole", "cad-part"] {
+        let s = builtin::get(name).unwrap();
+        let (net, _) = network(&s);
+        let mut directed: HashMap<([RegionId; 2], [u32; 2]), i32> = HashMap::new();
+        let mut volume = 0.0;
+        for f in 0..net.num_faces() {
+            let [Some(pos), Some(neg)] = net.face_cells[f].map(|c| cell_region(&s, &net, c)) else { continue };
+            if !s.interest.surface(pos, neg) {
+                continue;
+            }
+            let mut vs = net.face(f).to_vec();
+            if must_flip(pos, neg) {
+                vs.reverse();
+            }
+            let pair = [pos.min(neg), pos.max(neg)];
+            for i in 0..vs.len() {
+                let (u, v) = (vs[i], vs[(i + 1) % vs.len()]);
+                *directed.entry((pair, [u, v])).or_default() += 1;
+            }
+            // Signed volume contribution (fan from the first vertex).
+            let p: Vec<[f64; 3]> = vs.iter().map(|&v| net.points[v as usize]).collect();
+            for i in 1..p.len() - 1 {
+                let (a, b, c) = (p[0], p[i], p[i + 1]);
+                volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                    + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                    / 6.0;
+            }
+        }
+        for ((pair, [u, v]), n) in &directed {
+            assert_eq!(*n, 1, "{name} {pair:?}: edge {u}-{v} traversed {n} times the same way");
+        }
+        if name == "sphere-with-hole" {
+            // Normals into region 0 (outside): positive enclosed volume, a
+            // little less than the large sphere's (the hole is open).
+            let sphere = 4.0 / 3.0 * std::f64::consts::PI * 0.6f64.powi(3);
+            assert!(volume > 0.5 * sphere && volume < sphere, "{volume}");
+        }
+    }
+}

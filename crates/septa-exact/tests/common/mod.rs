@@ -1,5 +1,6 @@
 //! Shared helpers for the property tests: an independent big-rational
 //! reference and seeded generators of matrices.
+#![allow(clippy::needless_range_loop)] // matrix code reads best with indices
 #![allow(dead_code)]
 
 use num_bigint::BigInt;
@@ -120,6 +121,8 @@ pub struct Tally {
     pub cases: usize,
     pub zero: usize,
     pub naive_wrong: usize,
+    /// Decided by the filter (set by tests that track it via `stats`).
+    pub filter: u64,
 }
 
 /// Checks `det_sign` against the reference; returns the reference sign.

@@ -164,45 +164,55 @@ impl Complex {
         }
     }
 
-    /// Replaces this complex by the encoded one at `data`.
+    /// Replaces this complex by the encoded one at `data` (slices are
+    /// copied whole: this is the hot path of the grid pipeline).
     pub(crate) fn decode(&mut self, data: &[u32]) {
         let mut i = 0;
-        let mut next = || {
-            i += 1;
-            data[i - 1]
-        };
+        let ia = self.mode == Some(Mode::Ia);
         self.vertices.clear();
         self.orient.clear();
-        for _ in 0..next() {
-            let w = next();
+        let nv = data[i] as usize;
+        i += 1;
+        for &w in &data[i..i + nv] {
             let len = (w >> 4 & 0xf) as usize;
-            let f: SmallVec<[u16; 4]> = (0..len).map(|j| (w >> (8 + 4 * j) & 0xf) as u16).collect();
-            self.vertices.push(Vertex::new((w & 0xf) as u8, &f));
-            self.orient.push(1);
+            let mut f = [0u16; 4];
+            for (j, x) in f.iter_mut().enumerate().take(len) {
+                *x = (w >> (8 + 4 * j) & 0xf) as u16;
+            }
+            self.vertices.push(Vertex::new((w & 0xf) as u8, &f[..len]));
         }
+        self.orient.resize(nv, 1);
+        i += nv;
         self.edges.clear();
-        for _ in 0..next() {
-            let vertices = [next(), next()];
-            let planes = [plane_decode(next()), plane_decode(next())];
-            self.edges.push(Edge { vertices, planes });
+        let ne = data[i] as usize;
+        i += 1;
+        for e in data[i..i + 4 * ne].chunks_exact(4) {
+            self.edges.push(Edge { vertices: [e[0], e[1]], planes: [plane_decode(e[2]), plane_decode(e[3])] });
         }
+        i += 4 * ne;
         self.faces.clear();
-        for _ in 0..next() {
-            let plane = plane_decode(next());
-            let n = next() as usize;
-            let vertices = (0..n).map(|_| next()).collect();
-            let edges = (0..n).map(|_| next()).collect();
-            let cells = [next(), next()];
-            self.faces.push(Face { plane, vertices, edges, cells });
+        let nf = data[i] as usize;
+        i += 1;
+        for _ in 0..nf {
+            let plane = plane_decode(data[i]);
+            let n = data[i + 1] as usize;
+            i += 2;
+            let vertices = SmallVec::from_slice(&data[i..i + n]);
+            let edges = SmallVec::from_slice(&data[i + n..i + 2 * n]);
+            i += 2 * n;
+            self.faces.push(Face { plane, vertices, edges, cells: [data[i], data[i + 1]] });
+            i += 2;
         }
         self.cells.clear();
-        for _ in 0..next() {
-            let n = next() as usize;
-            let faces = (0..n).map(|_| next()).collect();
-            let bits = next() as u64;
-            let material = next() as u16;
-            let positive = if self.mode == Some(Mode::Ia) { smallvec::smallvec![bits] } else { SmallVec::new() };
-            self.cells.push(Cell { faces, positive, material });
+        let nc = data[i] as usize;
+        i += 1;
+        for _ in 0..nc {
+            let n = data[i] as usize;
+            let faces = SmallVec::from_slice(&data[i + 1..i + 1 + n]);
+            i += 1 + n;
+            let positive = if ia { smallvec::smallvec![data[i] as u64] } else { SmallVec::new() };
+            self.cells.push(Cell { faces, positive, material: data[i + 1] as u16 });
+            i += 2;
         }
     }
 }

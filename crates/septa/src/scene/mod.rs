@@ -13,6 +13,40 @@
 //! primitive JSON loads unchanged ([`load_function_list`]) and samples to
 //! bit-identical values.
 //!
+//! ## Primitive JSON
+//!
+//! Every primitive is an object with a `"type"` (hyphens may replace
+//! underscores) and, inside a scene, an optional `"name"`. Positive inside.
+//! The first eight are the reference implementation's, with its field names.
+//!
+//! | type | fields | value |
+//! |---|---|---|
+//! | `sphere` | `center`, `radius`, `squared`?, `unsigned`? | `r - \|p-c\|` (`r^2 - \|p-c\|^2`; `-\|r - \|p-c\|\|`) |
+//! | `plane` | `point`, `normal` | `n . (p - point)`, `n` normalized |
+//! | `line` | `point`, `unit_vector` (or `direction`), `squared`? | minus the distance to the line |
+//! | `cylinder` | `axis_point` + `axis_vector` or `axis_point1` + `axis_point2`, `radius`, `squared`? | `r -` distance to the axis |
+//! | `torus` | `center`, `axis_vector`, `major_radius`, `minor_radius` | `r - sqrt((rho - R)^2 + h^2)` |
+//! | `circle` | `center`, `axis_vector`, `radius` | minus the distance to the circle |
+//! | `cone` | `apex`, `axis_vector`, `apex_angle` (radians) | `u . (p - apex) - cos(angle) \|p - apex\|` |
+//! | `zero` | | 0 |
+//! | `constant` | `value` | the value |
+//! | `half_space` | `point`, `normal` (outward) | `-n . (p - point)` |
+//! | `ellipsoid` | `center`, `radii` | `min(radii) (1 - \|(p - c) / radii\|)` |
+//! | `box` | `center` + `half_size` or `size`, or `min` + `max` | exact signed distance |
+//! | `capped_cylinder` | `a`, `b`, `radius` | exact signed distance |
+//! | `capsule` | `a`, `b`, `radius` | `r -` distance to the segment |
+//! | `segment` | `a`, `b` | minus the distance to the segment |
+//! | `points` | `points`, `weights`? | `max_i (w_i - \|p - x_i\|)` |
+//! | `mesh` | `path` (`.obj .off .ply .stl`, relative to the scene) or `vertices` + `triangles` | signed distance to a closed mesh |
+//! | `patch` | `origin` `[x0, y0]`, `size` `[sx, sy]`, `heights` (4 x 4) | signed offset from a bicubic height patch |
+//! | `wyvill` | `center`, `axis`?, `radius`, `height` | `height W(dist / radius)` (Bloomenthal's `Sigmoid`) |
+//! | `transform` | `of`, `scale`? (number or 3), `rotate`? (`{axis, degrees}`), `matrix`? (3 x 3), `translate`? | `of` moved by `p -> T R S p` |
+//! | `sum`, `min`, `max` | `of`: list | sum, minimum, maximum |
+//! | `scale`, `neg`, `abs` | `of`, (`factor`) | `factor f`, `-f`, `\|f\|` |
+//!
+//! `?` marks optional fields. Scene files, region rules and CSG: [`Scene`]
+//! and [`Expr::parse`]; built-in scenes: [`builtin`].
+//!
 //! What is exact here: nothing needs to be. Sampled values are *input
 //! data*; every topological decision is taken later, exactly, on them.
 //! Bounds are conservative (outward-rounded), so a skipped block provably
@@ -49,7 +83,7 @@ mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
-pub use mesh::{parse_obj, parse_stl, MeshFileError, TriMesh};
+pub use mesh::{read_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};

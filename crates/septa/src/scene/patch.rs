@@ -128,7 +128,71 @@ impl BicubicPatch {
         let h = comb(bs, bt);
         let hx = comb(bern_d1_iv(s), bt).div(Interval::point(self.size[0]));
         let hy = comb(bs, bern_d1_iv(t)).div(Interval::point(self.size[1]));
+        // Tighter: the control nets of h, h_x, h_y restricted to the box's
+        // parameter rectangle (blossoms), whose hulls bound them (convex
+        // hull property). Both enclosures are valid; keep their overlap.
+        let (net_h, net_x, net_y) = self.restricted_nets(s, t);
+        let h = meet(h, net_h);
+        let hx = meet(hx, net_x.scale(1.0 / self.size[0]).pad(1e-15 * net_x.mag() / self.size[0]));
+        let hy = meet(hy, net_y.scale(1.0 / self.size[1]).pad(1e-15 * net_y.mag() / self.size[1]));
         let w = Interval::point(1.0).add(hx.sqr()).add(hy.sqr()).sqrt();
         Interval::new(lo[2], hi[2]).sub(h).div(w)
     }
+
+    /// Hulls of the Bezier nets of `h`, `dh/ds`, `dh/dt` restricted to the
+    /// parameter rectangle `s x t`, padded for rounding.
+    fn restricted_nets(&self, s: Interval, t: Interval) -> (Interval, Interval, Interval) {
+        if !(s.lo.is_finite() && s.hi.is_finite() && t.lo.is_finite() && t.hi.is_finite()) {
+            return (Interval::ENTIRE, Interval::ENTIRE, Interval::ENTIRE);
+        }
+        let h = self.heights;
+        // Derivative nets: 3 (H[i+1][j] - H[i][j]) (degree 2 in s) and
+        // 3 (H[i][j+1] - H[i][j]) (degree 2 in t).
+        let ds: Vec<Vec<f64>> = (0..3).map(|i| (0..4).map(|j| 3.0 * (h[i + 1][j] - h[i][j])).collect()).collect();
+        let dt: Vec<Vec<f64>> = (0..4).map(|i| (0..3).map(|j| 3.0 * (h[i][j + 1] - h[i][j])).collect()).collect();
+        let full: Vec<Vec<f64>> = h.iter().map(|r| r.to_vec()).collect();
+        let hull = |net: Vec<Vec<f64>>| {
+            let net = restrict_2d(&net, s, t);
+            let (lo, hi) =
+                net.iter().flatten().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+            let m = net.iter().flatten().fold(0.0f64, |a, &x| a.max(x.abs()));
+            // de Casteljau at parameters up to |u| grows rounding errors by
+            // at most (1 + 2|u|)^6 ulps of the largest coefficient.
+            let u = 1.0 + s.mag().max(t.mag());
+            Interval::new(lo, hi).pad(64.0 * f64::EPSILON * (1.0 + 2.0 * u).powi(6) * m)
+        };
+        (hull(full), hull(ds), hull(dt))
+    }
+}
+
+/// Overlap of two enclosures of the same quantity.
+fn meet(a: Interval, b: Interval) -> Interval {
+    Interval::new(a.lo.max(b.lo), a.hi.min(b.hi))
+}
+
+/// Blossom of a Bezier polynomial with coefficients `c` at `u[0..n]`
+/// (de Casteljau with a different parameter per level).
+fn blossom(c: &[f64], u: &[f64]) -> f64 {
+    let mut b = c.to_vec();
+    for (level, &x) in u.iter().enumerate() {
+        for i in 0..b.len() - 1 - level {
+            b[i] = (1.0 - x) * b[i] + x * b[i + 1];
+        }
+    }
+    b[0]
+}
+
+/// Bezier coefficients of the same polynomial over `[a, b]` (rescaled to
+/// `[0, 1]`): the blossom at `(a, .., a, b, .., b)`.
+fn restrict(c: &[f64], a: f64, b: f64) -> Vec<f64> {
+    let n = c.len() - 1;
+    (0..=n).map(|i| blossom(c, &[vec![a; n - i], vec![b; i]].concat())).collect()
+}
+
+/// Restrict a tensor net `net[i][j]` (i along s, j along t).
+fn restrict_2d(net: &[Vec<f64>], s: Interval, t: Interval) -> Vec<Vec<f64>> {
+    let (ni, nj) = (net.len(), net[0].len());
+    let cols: Vec<Vec<f64>> =
+        (0..nj).map(|j| restrict(&(0..ni).map(|i| net[i][j]).collect::<Vec<_>>(), s.lo, s.hi)).collect();
+    (0..ni).map(|i| restrict(&(0..nj).map(|j| cols[j][i]).collect::<Vec<_>>(), t.lo, t.hi)).collect()
 }

@@ -1,21 +1,4 @@
-//! Scene files: a grid, named functions, a mode, region rules and the
-//! surfaces and curves of interest (issue 7).
-//!
-//! ```json
-//! {"grid": {"resolution": 33, "bounds": [[-1,-1,-1],[1,1,1]], "split": 5},
-//!  "mode": "ia",
-//!  "functions": [{"name": "big", "type": "sphere", "center": [0,0,0], "radius": 0.6},
-//!                {"name": "hole", "type": "sphere", "center": [0,0,0.6], "radius": 0.3}],
-//!  "regions": [{"when": "hole", "region": 1}, {"when": "big", "region": 2}, {"region": 0}],
-//!  "surfaces": [[0, 2]], "curves": [[0, 1, 2]]}
-//! ```
-//!
-//! `regions` may instead be `{"rules": [...], "otherwise": R}`, or replaced
-//! by `"solid": "EXPR"` (CSG: region 1 inside, 0 outside). Conditions are
-//! [`Expr`] text (`"a & !b"`, `"box - hole"`) or trees (`{"union": [..]}`,
-//! `{"intersection": [..]}`, `{"difference": [a, b]}`, `{"complement": e}`).
-//! A function without `name` is named by its index. `functions` may also be
-//! the path of a reference implementation function file.
+//! Scene files (see [`Scene`]).
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -77,7 +60,27 @@ impl GridSpec {
     }
 }
 
-/// A scene: what to partition and which walls to return.
+/// A scene: what to partition and which walls to return: a grid, named
+/// functions, a mode, region rules and the surfaces and curves of interest
+/// (issue 7). Its JSON form:
+///
+/// ```json
+/// {"grid": {"resolution": 33, "bounds": [[-1,-1,-1],[1,1,1]], "split": 5},
+///  "mode": "ia",
+///  "functions": [{"name": "big", "type": "sphere", "center": [0,0,0], "radius": 0.6},
+///                {"name": "hole", "type": "sphere", "center": [0,0,0.6], "radius": 0.3}],
+///  "regions": [{"when": "hole", "region": 1}, {"when": "big", "region": 2}, {"region": 0}],
+///  "surfaces": [[0, 2]], "curves": [[0, 1, 2]]}
+/// ```
+///
+/// `regions` may instead be `{"rules": [...], "otherwise": R}`, or replaced
+/// by `"solid": "EXPR"` (CSG: region 1 inside, 0 outside). Conditions are
+/// [`Expr`] text (`"a & !b"`, `"box - hole"`) or trees (`{"union": [..]}`,
+/// `{"intersection": [..]}`, `{"difference": [a, b]}`, `{"complement": e}`).
+/// A function without `name` is named by its index. `functions` may also be
+/// the path of a reference implementation function file.
+/// Reference implementation config files (`gridResolution`, `gridBbox`,
+/// `funcFile`) load too, as IA scenes without a region rule.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
     /// The grid.
@@ -208,6 +211,10 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
     if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
         return err(&bp, "empty grid: each max must exceed its min");
+    }
+    let vertices: u128 = resolution.iter().map(|&n| n as u128 + 1).product();
+    if vertices > u32::MAX as u128 {
+        return err(&rp, format!("grid too large: {vertices} vertices (at most {})", u32::MAX));
     }
     let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
     if split != 5.0 && split != 6.0 {

@@ -11,7 +11,7 @@ use serde_json::{Map, Value};
 
 use super::composite::{rotation, Mat3, Transform, Wyvill};
 use super::error::{err, JsonPath, Located};
-use super::mesh::{parse_obj, parse_stl, TriMesh};
+use super::mesh::{read_mesh, TriMesh};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
 use super::shapes::*;
@@ -336,18 +336,7 @@ fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {
             Some(d) => d.join(rel),
             None => Path::new(rel).to_path_buf(),
         };
-        let bytes = std::fs::read(&full)
-            .or_else(|e| err(&o.path.key("path"), format!("cannot read {}: {e}", full.display())))?;
-        let is_stl = full.extension().is_some_and(|e| e.eq_ignore_ascii_case("stl"));
-        let parsed = if is_stl {
-            parse_stl(&bytes)
-        } else {
-            match std::str::from_utf8(&bytes) {
-                Ok(text) => parse_obj(text),
-                Err(_) => return err(&o.path.key("path"), format!("{} is not text (OBJ expected)", full.display())),
-            }
-        };
-        return parsed.or_else(|e| err(&o.path.key("path"), format!("{}:{}: {}", full.display(), e.line, e.message)));
+        return read_mesh(&full).or_else(|e| err(&o.path.key("path"), e));
     }
     let vp = o.path.key("vertices");
     let tp = o.path.key("triangles");

@@ -8,7 +8,7 @@
 //!
 //! Voxel surfaces can have non-manifold spots, so this is a probe, not
 //! the exact test (the network tests assert the exact topology); it runs
-//! with `cargo test -p septa --test scene_topology_probe -- --ignored`.
+//! with `cargo run --release -p septa --example scene_topology_probe`.
 
 use std::collections::{HashMap, HashSet};
 
@@ -177,9 +177,7 @@ fn components(edges: &[(P, P)]) -> (usize, usize) {
     (comps, ends)
 }
 
-#[test]
-#[ignore]
-fn builtin_topology_probe() {
+fn main() {
     let names =
         ["saucer-square", "sphere-with-hole", "sphere-plane-hole", "patch-blend", "cad-part", "box-minus-cylinder"];
     let mut bad = vec![];
