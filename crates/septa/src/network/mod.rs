@@ -13,6 +13,7 @@ mod block;
 mod boxfast;
 mod merge;
 mod raytrace;
+pub mod sparse;
 mod topology;
 pub mod uf;
 
@@ -242,6 +243,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         options: Options::with_float(options.float),
         volumes: options.volumes,
         grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
+        sparse: None,
     };
     let blocks = grid.blocks(options.block);
     let outs: Vec<block::BlockOut> =
