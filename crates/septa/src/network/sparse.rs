@@ -17,6 +17,7 @@
 //! shooting rays (volumes asked for, a value exactly 0 in IA, a tie for the
 //! maximum in MI), the sparse path falls back to the dense one and says so.
 
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -53,20 +54,48 @@ pub struct SparseStats {
 }
 
 /// The values of one block's vertices, `lo..=hi` in grid coordinates.
-struct BlockValues<'a> {
-    grid: &'a BoxGrid,
+struct BlockValues {
     lo: [usize; 3],
     vn: [usize; 3],
     k: usize,
     data: Vec<f64>,
+    /// Vertex id strides of i and j.
+    stride: [u32; 2],
+    /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
+    /// block worker reads the same few tet vertices over and over (MI reads
+    /// up to `4 k^2` values per tet) and the integer divisions that locate
+    /// a row dominated. Relaxed atomics are plain loads and stores here;
+    /// every entry is self-validating, so sharing could never give a wrong row.
+    cache: [AtomicU64; 16],
 }
 
-impl Values for BlockValues<'_> {
+impl BlockValues {
+    fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
+        let b = grid.res[2] as u32 + 1;
+        let a = (grid.res[1] as u32 + 1) * b;
+        BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
+    }
+
+    #[inline]
+    fn local(&self, v: u32) -> usize {
+        let slot = &self.cache[(v.wrapping_mul(0x9E37_79B1) >> 28) as usize];
+        let e = slot.load(Ordering::Relaxed);
+        if e >> 32 == v as u64 {
+            return (e & 0xFFFF_FFFF) as usize;
+        }
+        let (i, r) = (v / self.stride[0], v % self.stride[0]);
+        let (j, l) = (r / self.stride[1], r % self.stride[1]);
+        let local = ((i as usize - self.lo[0]) * self.vn[1] + (j as usize - self.lo[1])) * self.vn[2]
+            + (l as usize - self.lo[2]);
+        slot.store((v as u64) << 32 | local as u64, Ordering::Relaxed);
+        local
+    }
+}
+
+impl Values for BlockValues {
     #[inline]
     fn val(&self, v: u32, f: usize) -> f64 {
-        let [i, j, l] = self.grid.vertex_ijk(v);
-        let local = ((i - self.lo[0]) * self.vn[1] + (j - self.lo[1])) * self.vn[2] + (l - self.lo[2]);
-        self.data[local * self.k + f]
+        self.data[self.local(v) * self.k + f]
     }
 }
 
@@ -96,13 +125,13 @@ fn may_be_active(grid: &BoxGrid, functions: &[Primitive], mode: Mode, lo: [usize
 
 /// Samples the vertices of cubes `lo..hi`; also says whether ray shooting's
 /// precondition holds there (IA no value 0, MI a unique strict maximum).
-fn sample_block<'a>(
-    grid: &'a BoxGrid,
+fn sample_block(
+    grid: &BoxGrid,
     functions: &[Primitive],
     mode: Mode,
     lo: [usize; 3],
     hi: [usize; 3],
-) -> Result<(BlockValues<'a>, bool), NetworkError> {
+) -> Result<(BlockValues, bool), NetworkError> {
     let k = functions.len();
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let mut data = Vec::with_capacity(vn[0] * vn[1] * vn[2] * k);
@@ -131,7 +160,7 @@ fn sample_block<'a>(
             }
         }
     }
-    Ok((BlockValues { grid, lo, vn, k, data }, clean))
+    Ok((BlockValues::new(grid, lo, vn, k, data), clean))
 }
 
 fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
