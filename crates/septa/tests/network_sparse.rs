@@ -129,7 +129,13 @@ fn nested_and_separate_shells_skip_empty_blocks_between_them() {
 
 #[test]
 fn builtin_scenes_regions_sparse_equals_dense() {
-    for name in ["builtin:sphere-with-hole", "builtin:apollonius-18"] {
+    // Every built-in scene (sphere-with-hole and apollonius-18 among them).
+    let names: Vec<String> = septa::scene::builtin::list().iter().map(|(n, _)| format!("builtin:{n}")).collect();
+    assert!(
+        names.iter().any(|n| n == "builtin:sphere-with-hole") && names.iter().any(|n| n == "builtin:apollonius-18")
+    );
+    for name in &names {
+        let name = name.as_str();
         let scene = Scene::load(name).unwrap();
         let dense = region_surfaces(&scene, &RegionOptions::default()).unwrap();
         let sparse = region_surfaces(&scene, &RegionOptions { sparse: true, ..Default::default() }).unwrap();
