@@ -14,6 +14,7 @@ mod boxfast;
 mod merge;
 mod raytrace;
 pub mod sparse;
+pub use sparse::{compute_sparse, SparseStats};
 mod topology;
 pub mod uf;
 
