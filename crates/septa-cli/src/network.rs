@@ -67,6 +67,11 @@ pub struct Args {
     /// Block edge in cubes.
     #[arg(long, default_value_t = 16)]
     block: usize,
+    /// Sparse evaluation (function JSON, reference config or scene on a box
+    /// grid): skip blocks the functions' bounds prove empty, sample the rest
+    /// block by block; same output, memory following the surface.
+    #[arg(long)]
+    sparse: bool,
 }
 
 /// Runs `septa ia|mi`.
@@ -76,8 +81,6 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         Mode::Ia => network::Mode::Ia,
         Mode::Mi => network::Mode::Mi,
     };
-    let (grid, values, k) = load(&args)?;
-    let t_read = t0.elapsed().as_secs_f64();
     let mut opts = NetworkOptions::new(mode);
     opts.float = args.float;
     opts.lookup = !args.no_lookup;
@@ -88,7 +91,16 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         pool = pool.num_threads(t.max(1));
     }
     let pool = pool.build()?;
-    let net = pool.install(|| network::compute(&grid, &values, k, &opts))?;
+    let (net, tets, t_read, stats) = if args.sparse {
+        let (g, funcs) = load_sparse(&args)?;
+        let t_read = t0.elapsed().as_secs_f64();
+        let (net, stats) = pool.install(|| network::sparse::compute_sparse(&g, &funcs, &opts))?;
+        (net, g.num_tets(), t_read, Some(stats))
+    } else {
+        let (grid, values, k) = load(&args)?;
+        let t_read = t0.elapsed().as_secs_f64();
+        (pool.install(|| network::compute(&grid, &values, k, &opts))?, grid.num_tets(), t_read, None)
+    };
     let mut extra = vec![("read", t_read)];
     if !args.no_output {
         let t = Instant::now();
@@ -101,7 +113,10 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         for (k, v) in net.counts() {
             obj.insert(k.into(), v.into());
         }
-        obj.insert("tets".into(), grid.num_tets().into());
+        obj.insert("tets".into(), tets.into());
+        if let Some(s) = stats {
+            obj.insert("blocks".into(), sparse_json(&s));
+        }
         obj.insert("cells_method".into(), cells_method.into());
         let mut secs = serde_json::Map::new();
         for (k, v) in net.seconds.iter().chain(extra.iter()) {
@@ -113,6 +128,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     } else {
         let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
+        if let Some(s) = stats {
+            println!("blocks: {}", sparse_json(&s));
+        }
         println!("{:.3} s", t0.elapsed().as_secs_f64());
     }
     Ok(())
@@ -188,4 +206,54 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
     let grid = Grid::Box(g);
     let values = functions::sample_grid(&funcs, &grid);
     Ok((grid, values, funcs.len()))
+}
+
+/// `"blocks"` of the JSON summary of a sparse run.
+pub fn sparse_json(s: &network::sparse::SparseStats) -> serde_json::Value {
+    serde_json::json!({
+        "total": s.blocks,
+        "skipped": s.skipped,
+        "sampled": s.sampled,
+        "active": s.active,
+        "sampled_vertices": s.sampled_vertices,
+        "dense_fallback": s.dense_fallback,
+    })
+}
+
+/// Reads a box grid and analytic functions for `--sparse`: a function
+/// list sampled on `--grid`, or a reference config / scene file (its grid).
+fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), Box<dyn std::error::Error>> {
+    let name = args.input.display().to_string();
+    if args.mesh.is_some() || args.input.extension().and_then(|e| e.to_str()) == Some("npz") {
+        return Err(format!("{name}: --sparse needs analytic functions on a box grid (a function JSON, config or scene), not sampled values or a tet mesh").into());
+    }
+    if name.starts_with("builtin:") {
+        let scene = septa::scene::Scene::load(&name)?;
+        let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
+        return Ok((BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split)?, scene.functions));
+    }
+    let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{name}: {e}"))?;
+    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
+    if json.is_object() && json.get("input").is_none() {
+        let scene = septa::scene::Scene::load(&name)?;
+        let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
+        let mut res = scene.grid.resolution;
+        let mut bounds = scene.grid.bounds;
+        if json.get("gridResolution").is_none() && json.get("grid").is_none() {
+            if let Some(n) = args.grid {
+                res = [n; 3];
+            }
+        }
+        if json.get("gridBbox").is_none() && json.get("grid").is_none() {
+            if let Some(b) = &args.bounds {
+                bounds = [[b[0], b[1], b[2]], [b[3], b[4], b[5]]];
+            }
+        }
+        return Ok((BoxGrid::new(res, bounds, split)?, scene.functions));
+    }
+    let funcs = septa::scene::load_function_list(&text, &name, args.input.parent())?;
+    let n = args.grid.ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
+    let b = args.bounds.clone().unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
+    let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
+    Ok((g, funcs))
 }

@@ -23,6 +23,10 @@ pub struct Args {
     /// Print one JSON object with counts, surfaces and curves.
     #[arg(long)]
     json: bool,
+    /// Sparse evaluation: skip blocks the functions' bounds prove empty
+    /// (same output; memory follows the surface).
+    #[arg(long)]
+    sparse: bool,
 }
 
 /// Runs `septa regions`.
@@ -37,11 +41,14 @@ pub fn run(a: Args) -> CliResult {
         return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
     };
     let scene = Scene::load(&path)?;
-    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals })?;
+    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: a.sparse })?;
     if let Some(dir) = &a.output {
         regions_out::write(&r, dir)?;
     }
-    let summary = regions_out::summary(&r);
+    let mut summary = regions_out::summary(&r);
+    if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
+        obj.insert("blocks".into(), crate::network::sparse_json(s));
+    }
     if a.json {
         println!("{summary}");
     } else {

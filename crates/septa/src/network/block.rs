@@ -116,6 +116,32 @@ pub(crate) struct Ctx<'a> {
     /// Join regions across tet faces (cell grouping); off when ray shooting
     /// is sure to apply.
     pub grouping: bool,
+    /// Sparse evaluation (issue 6): values come from here, not `values`.
+    pub sparse: Option<&'a dyn super::sparse::Values>,
+}
+
+impl Ctx<'_> {
+    /// Value of function `f` at grid vertex `v`.
+    #[inline]
+    pub(crate) fn val(&self, v: u32, f: usize) -> f64 {
+        match self.sparse {
+            None => self.values[v as usize * self.k + f],
+            Some(s) => s.val(v, f),
+        }
+    }
+
+    /// The `k` values at grid vertex `v` (copied into `buf` when sparse).
+    #[inline]
+    pub(crate) fn row<'b>(&'b self, v: u32, buf: &'b mut Vec<f64>) -> &'b [f64] {
+        match self.sparse {
+            None => &self.values[v as usize * self.k..(v as usize + 1) * self.k],
+            Some(s) => {
+                buf.clear();
+                buf.extend((0..self.k).map(|f| s.val(v, f)));
+                buf
+            }
+        }
+    }
 }
 
 const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
@@ -158,8 +184,7 @@ impl Worker {
     /// tables slot in at the `build` call.
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
-        let k = ctx.k;
-        let row = |f: usize| tet.map(|v| ctx.values[v as usize * k + f]);
+        let row = |f: usize| tet.map(|v| ctx.val(v, f));
         match self.active_hint {
             Some(mut mask) => {
                 self.active.clear();
@@ -525,7 +550,7 @@ pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Ve
     match ctx.mode {
         Mode::Ia => {
             for f in 0..k {
-                let r = tet.map(|v| ctx.values[v as usize * k + f]);
+                let r = tet.map(|v| ctx.val(v, f));
                 if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
                     if r.iter().all(|&x| x == 0.0) {
                         return Err(NetworkError::VanishesOnTet { tet: t, function: f });
@@ -543,9 +568,8 @@ pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Ve
 fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
     let k = ctx.k;
     let mut l: Label = SmallVec::from_elem(0, k.div_ceil(64).max(1));
-    let base = tet[0] as usize * k;
     for f in 0..k {
-        if ctx.values[base + f] > 0.0 {
+        if ctx.val(tet[0], f) > 0.0 {
             l[f / 64] |= 1 << (f % 64);
         }
     }
@@ -555,7 +579,7 @@ fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
 /// MI active functions: those not strictly dominated at all 4 tet vertices.
 fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     let k = ctx.k;
-    let v = |f: usize, i: usize| ctx.values[tet[i] as usize * k + f];
+    let v = |f: usize, i: usize| ctx.val(tet[i], f);
     // A likely dominator: the maximum at vertex 0.
     let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
     for f in 0..k {

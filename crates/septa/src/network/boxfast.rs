@@ -26,7 +26,8 @@ pub(crate) fn applies(ctx: &Ctx) -> bool {
 
 fn vertex_label(ctx: &Ctx, v: u32) -> u64 {
     let k = ctx.k;
-    let row = &ctx.values[v as usize * k..(v as usize + 1) * k];
+    let mut buf = Vec::new();
+    let row = ctx.row(v, &mut buf);
     match ctx.mode {
         Mode::Ia => {
             let mut bits = 0u64;

@@ -13,6 +13,8 @@ mod block;
 mod boxfast;
 mod merge;
 mod raytrace;
+pub mod sparse;
+pub use sparse::{compute_sparse, SparseStats};
 mod topology;
 pub mod uf;
 
@@ -251,6 +253,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         },
         volumes: options.volumes,
         grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
+        sparse: None,
     };
     let blocks = grid.blocks(options.block);
     let outs: Vec<block::BlockOut> =

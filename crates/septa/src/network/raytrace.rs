@@ -142,8 +142,8 @@ fn walk(
 /// change or zero; MI: the unique strict maximum differs or is tied).
 fn edge_may_cross(ctx: &Ctx, a: u32, b: u32) -> bool {
     let k = ctx.k;
-    let ra = &ctx.values[a as usize * k..(a as usize + 1) * k];
-    let rb = &ctx.values[b as usize * k..(b as usize + 1) * k];
+    let (mut ba, mut bb) = (Vec::new(), Vec::new());
+    let (ra, rb) = (ctx.row(a, &mut ba), ctx.row(b, &mut bb));
     match ctx.mode {
         Mode::Ia => ra.iter().zip(rb).any(|(&x, &y)| !(x > 0.0 && y > 0.0 || x < 0.0 && y < 0.0)),
         Mode::Mi => {
@@ -216,8 +216,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     let tet = found?;
     let mut active = Vec::new();
     active_functions(ctx, 0, &tet, &mut active).ok()?;
-    let k = ctx.k;
-    let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.values[v as usize * k + f as usize])).collect();
+    let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.val(v, f as usize))).collect();
     let mut complex = Complex::new();
     let empty = match ctx.mode {
         Mode::Ia => active.is_empty(),

@@ -33,6 +33,7 @@ use std::time::Instant;
 
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split};
+use crate::network::sparse::{compute_sparse, SparseStats};
 use crate::network::{compute, Network, NetworkError, NetworkOptions};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
@@ -46,6 +47,9 @@ pub struct RegionOptions {
     /// Compute per-vertex normals (one vertex copy per region pair) from
     /// the analytic gradients. Default value: `false`.
     pub normals: bool,
+    /// Sparse evaluation (issue 6): sample only blocks that the functions'
+    /// bounds do not prove empty; same output. Default value: `false`.
+    pub sparse: bool,
 }
 
 /// The surfaces and curves of interest of a region rule.
@@ -73,6 +77,8 @@ pub struct RegionSurfaces {
     pub normals: Vec<(u32, [RegionId; 2], [f64; 3])>,
     /// Seconds per stage.
     pub seconds: Vec<(&'static str, f64)>,
+    /// Block counts of sparse evaluation (`None` on the dense path).
+    pub sparse: Option<SparseStats>,
 }
 
 impl RegionSurfaces {
@@ -121,13 +127,23 @@ pub enum RegionError {
 pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionSurfaces, RegionError> {
     let t0 = Instant::now();
     let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
-    let grid = Grid::Box(BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split).map_err(RegionError::Grid)?);
-    let points = grid.vertices();
-    let values = sample_grid(&scene.functions, &points);
+    let bgrid = BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split).map_err(RegionError::Grid)?;
     let mode = match scene.mode {
         crate::scene::Mode::Ia => Mode::Ia,
         crate::scene::Mode::Mi => Mode::Mi,
     };
+    if options.sparse {
+        let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
+        let mut out = from_network(net, &scene.regions, &scene.interest);
+        if options.normals {
+            out.normals = normals(&out, &scene.functions);
+        }
+        out.sparse = Some(stats);
+        return Ok(out);
+    }
+    let grid = Grid::Box(bgrid);
+    let points = grid.vertices();
+    let values = sample_grid(&scene.functions, &points);
     let t1 = Instant::now();
     let net = compute(&grid, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
     let mut out = from_network(net, &scene.regions, &scene.interest);
@@ -171,6 +187,7 @@ pub fn from_network(network: Network, rule: &RegionRule, interest: &Interest) ->
         curves,
         normals: Vec::new(),
         seconds,
+        sparse: None,
     }
 }
 
