@@ -80,7 +80,7 @@ def test_python_equals_command_line(tmp_path):
             {"type": "sphere", "center": [0.6, 0.5, 0.55], "radius": 0.25},
             {"type": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]}]
     (tmp_path / "f.json").write_text(__import__("json").dumps(spec))
-    out = subprocess.run([str(exe), "ia", str(tmp_path / "f.json"), "--grid", "16", "-o", str(tmp_path / "o"), "--json"],
+    out = subprocess.run([str(exe), "ia", str(tmp_path / "f.json"), "--grid", "16", "--bounds", "0", "0", "0", "1", "1", "1", "-o", str(tmp_path / "o"), "--json"],
                          capture_output=True, text=True, check=True)
     cli = __import__("json").loads(out.stdout)
     g = septa.grid.box(16)
