@@ -55,4 +55,8 @@ cp -r tests/fixtures/two-planes "$ART/two-planes"
 # Two labels (f0, f1) and four patches: see scripts/make_fixture.py.
 node viewer/test/browser.mjs "$ART/two-planes/viewer" "$ART" --label-colours 2 --patch-colours 4
 
+# And on a real result: the demo's Apollonius diagram (material interface).
+"$ROOT/target/release/septa" demo --out "$ART/demo"
+node viewer/test/browser.mjs "$ART/demo/apollonius-18/viewer" "$ART/apollonius-18"
+
 step "all tests passed"

@@ -10,3 +10,13 @@ class InputError(ValueError):
 def check_values(values: npt.NDArray[np.float64], name: str = "values") -> None: ...
 def check_tets(tets: npt.NDArray[np.int64], n_vertices: int) -> None: ...
 def viewer_assets() -> dict[str, bytes]: ...
+def network(
+    mode: str,
+    vertices: npt.NDArray[np.float64],
+    tets: npt.NDArray[np.int64],
+    values: npt.NDArray[np.float64],
+    box: tuple[tuple[int, int, int], list[list[float]], int] | None = None,
+    lookup: bool = True,
+    raytrace: bool = True,
+    threads: int | None = None,
+) -> dict: ...

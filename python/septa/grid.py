@@ -91,7 +91,11 @@ def box(resolution, bounds=((0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), split: int = 5) -
 
     i, j, k = np.meshgrid(np.arange(nx + 1), np.arange(ny + 1), np.arange(nz + 1), indexing="ij")
     ijk = np.stack([i.ravel(), j.ravel(), k.ravel()], axis=1).astype(np.float64)
-    vertices = b[0] + ijk * ((b[1] - b[0]) / np.array([nx, ny, nz], dtype=np.float64))
+    # lo + (hi - lo) * i / n, and exactly hi at i = n: the same numbers as the
+    # Rust box grid, so values sampled here equal the command line's.
+    n = np.array([nx, ny, nz], dtype=np.float64)
+    vertices = b[0] + (b[1] - b[0]) * ijk / n
+    vertices = np.where(ijk == n, b[1], vertices)
 
     ci, cj, ck = (a.ravel() for a in np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij"))
     sy, sx = nz + 1, (ny + 1) * (nz + 1)

@@ -2,10 +2,10 @@
 contiguous float64 / int64 arrays and validated in Rust (without the GIL);
 errors are :class:`septa.InputError` (a ``ValueError``) naming what and where.
 
-The exact core is being wired to Python (crates/septa-py); until it is, the
-jobs validate their input and then raise ``NotImplementedError``. Meanwhile
-``septa ia|mi|regions|cut -o OUTDIR`` on the command line and
-:func:`septa.load` give the same results.
+``arrangement`` and ``material_interface`` run the exact core in Rust with
+the GIL released. ``region_surfaces`` and ``cut_mesh`` are not wired yet:
+they raise ``NotImplementedError``; ``septa regions|cut -o OUTDIR`` and
+:func:`septa.load` give their results meanwhile.
 """
 from __future__ import annotations
 
@@ -13,6 +13,7 @@ import numpy as np
 
 from . import _septa
 from .grid import Grid
+from .network import Network
 
 __all__ = ["arrangement", "material_interface", "region_surfaces", "cut_mesh"]
 
@@ -47,20 +48,42 @@ def _grid_inputs(grid_or_vertices, tets, values):
     return v, t, f
 
 
+def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells):
+    v, t, f = _grid_inputs(grid_or_vertices, tets, values)
+    if cells not in ("raytrace", "grouping"):
+        raise _septa.InputError(f'cells must be "raytrace" or "grouping", not {cells!r}')
+    box = None
+    g = grid_or_vertices
+    if isinstance(g, Grid) and g.resolution is not None and (tets is None or values is None or tets is g.tets):
+        box = (tuple(g.resolution), g.bounds.tolist(), g.split)
+    d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"), threads=threads)
+    return Network._from_core(d)
+
+
 def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace"):
     """Implicit arrangement of the zero sets of k functions sampled on a tet grid.
 
     ``arrangement(grid, values)`` or ``arrangement(vertices, tets, values)``
-    with ``values`` ``(#V, k) float64``. Returns a :class:`septa.Network`.
+    with ``values`` ``(#V, k) float64`` (a 1-D array is one function).
+    ``threads``: worker threads (default all cores); ``lookup``: use the
+    look-up tables; ``cells``: ``"raytrace"`` or ``"grouping"``.
+    Returns a :class:`septa.Network`; the same as ``septa ia``.
+
+    >>> import septa
+    >>> from septa import shapes
+    >>> g = septa.grid.box(4)
+    >>> f = shapes.sample([shapes.plane([.5] * 3, [1, 0, 0]), shapes.plane([.5] * 3, [0, 1, 0])], g)
+    >>> s = septa.arrangement(g, f).summary()
+    >>> s["patches"], s["chains"], s["cells"]
+    (4, 1, 4)
     """
-    _grid_inputs(grid_or_vertices, tets, values)
-    raise NotImplementedError(_PENDING.format(job="arrangement", cli="ia"))
+    return _network("ia", grid_or_vertices, tets, values, threads, lookup, cells)
 
 
 def material_interface(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace"):
-    """Material interface (argmax partition) of k functions on a tet grid."""
-    _grid_inputs(grid_or_vertices, tets, values)
-    raise NotImplementedError(_PENDING.format(job="material_interface", cli="mi"))
+    """Material interface (argmax partition) of k functions on a tet grid;
+    the same arguments as :func:`arrangement`, the same result as ``septa mi``."""
+    return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells)
 
 
 def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None):

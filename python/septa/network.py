@@ -45,8 +45,58 @@ class Network:
         cells: list of dicts ``{"shells", "label"}``.
     """
 
+    @classmethod
+    def _from_core(cls, d: dict) -> "Network":
+        """From the arrays that the compiled core returns (no JSON)."""
+        net = cls.__new__(cls)
+        net._data = None
+        net.mode = d["mode"]
+        net.points = d["points"]
+        net.offsets, net.indices = d["offsets"], d["indices"]
+        net._triangulate()
+        net.face_patch, net.face_cells, net.face_label = d["face_patch"], d["face_cells"], d["face_label"]
+        net.patch_labels, net._patch_faces = d["patch_labels"], d["patch_faces"]
+        net.chains, net.corners, net.shells, net.cells = d["chains"], d["corners"], d["shells"], d["cells"]
+        net.chain_patches = d.get("chain_patches", [])
+        net.seconds = dict(d["seconds"])
+        net._counts = dict(d["counts"])
+        net._counts["cells_method"] = d.get("cells_method")
+        return net
+
+    @property
+    def data(self) -> dict:
+        """The network as the ``network.json`` contract (built on demand)."""
+        if self._data is None:
+            faces = [self.indices[a:b].tolist() for a, b in zip(self.offsets[:-1], self.offsets[1:])]
+            self._data = {
+                "mode": self.mode,
+                "points": self.points.tolist(),
+                "faces": faces,
+                "face_label": self.face_label.tolist(),
+                "face_patch": self.face_patch.tolist(),
+                "face_cells": self.face_cells.tolist(),
+                "patches": [{"label": l, "faces": int(n)} for l, n in zip(self.patch_labels.tolist(), self._patch_faces)],
+                "chains": [c.tolist() for c in self.chains],
+                "corners": self.corners.tolist(),
+                "shells": [s.tolist() for s in self.shells],
+                "cells": [{"shells": list(c["shells"]), "label": list(c["label"])} for c in self.cells],
+                "counts": {k: v for k, v in self._counts.items() if k != "cells_method"},
+                "seconds": self.seconds,
+            }
+        return self._data
+
+    def _triangulate(self):
+        # Fan triangulation (faces are convex): triangle (v0, vk, vk+1).
+        sizes = np.diff(self.offsets)
+        ntri = sizes - 2
+        self.triangle_face = np.repeat(np.arange(len(sizes), dtype=np.int64), ntri)
+        k = np.arange(len(self.triangle_face)) - np.repeat(np.cumsum(ntri) - ntri, ntri)
+        first = self.offsets[:-1][self.triangle_face]
+        self.triangles = np.stack([self.indices[first], self.indices[first + k + 1], self.indices[first + k + 2]], axis=1)
+
     def __init__(self, data: dict):
-        self.data = data
+        self._data = data
+        self._counts = dict(data.get("counts", {}))
         self.mode = data.get("mode", "ia")
         self.points = np.asarray(data.get("points", []), dtype=np.float64).reshape(-1, 3)
         faces = data.get("faces", [])
@@ -57,15 +107,13 @@ class Network:
             raise InputError("network: a face refers to a point that does not exist")
         if np.any(sizes < 3):
             raise InputError(f"network: face {int(np.argmax(sizes < 3))} has fewer than 3 points")
-        # Fan triangulation (faces are convex): triangle (v0, vk, vk+1).
-        ntri = sizes - 2
-        self.triangle_face = np.repeat(np.arange(len(faces), dtype=np.int64), ntri)
-        k = np.arange(len(self.triangle_face)) - np.repeat(np.cumsum(ntri) - ntri, ntri)
-        first = self.offsets[:-1][self.triangle_face]
-        self.triangles = np.stack([self.indices[first], self.indices[first + k + 1], self.indices[first + k + 2]], axis=1)
+        self._triangulate()
+        self.face_label = np.asarray(data.get("face_label", np.full((len(faces), 2), -1)), dtype=np.int64).reshape(-1, 2)
         self.face_patch = np.asarray(data.get("face_patch", np.zeros(len(faces))), dtype=np.int64)
         self.face_cells = np.asarray(data.get("face_cells", np.full((len(faces), 2), -1)), dtype=np.int64).reshape(-1, 2)
         self.patch_labels = np.asarray([p.get("label", [-1, -1])[:2] + [-1] * (2 - len(p.get("label", [])[:2])) for p in data.get("patches", [])], dtype=np.int64).reshape(-1, 2)
+        self._patch_faces = [p.get("faces", 0) for p in data.get("patches", [])]
+        self.chain_patches = data.get("chain_patches", [])
         self.chains = [np.asarray(c, dtype=np.int64) for c in data.get("chains", [])]
         self.corners = np.asarray(data.get("corners", []), dtype=np.int64)
         self.shells = [np.asarray(s, dtype=np.int64) for s in data.get("shells", [])]
@@ -81,7 +129,7 @@ class Network:
 
     def summary(self) -> dict:
         """Counts and timings, the same dict as the command line's ``--json``."""
-        out = dict(self.data.get("counts", {}))
+        out = dict(self._counts)
         out.update({
             "vertices": len(self.points),
             "faces": len(self),

@@ -33,16 +33,59 @@ def test_bad_tets_named():
         septa.arrangement(g, np.zeros((5, 2)))
 
 
-def _arrangement_or_skip(*args, **kw):
-    try:
-        return septa.arrangement(*args, **kw)
-    except NotImplementedError as e:
-        pytest.skip(f"interim: core not wired to Python yet ({e})")
-
-
 def test_arrangement_two_planes_matches_hand_count():
+    # Two coordinate planes through grid nodes (exactly degenerate), issue 5:
+    # 4 patches, 1 chain, 2 corners where it meets the boundary, 4 cells.
     g = septa.grid.box(4)
     vals = shapes.sample([shapes.plane([0.5] * 3, [1, 0, 0]), shapes.plane([0.5] * 3, [0, 1, 0])], g)
-    net = _arrangement_or_skip(g, vals)
+    net = septa.arrangement(g, vals)
     s = net.summary()
-    assert (s["patches"], s["chains"], s["corners"], s["cells"]) == (4, 1, 2, 4)
+    assert (s["patches"], s["chains"], s["corners"], s["cells"], s["shells"]) == (4, 1, 2, 4, 4)
+    assert net.points.dtype == np.float64 and net.indices.dtype == np.int64
+    assert net.patch_labels.tolist() == [[0, 0], [0, 0], [1, 1], [1, 1]] or sorted(net.patch_labels[:, 0].tolist()) == [0, 0, 1, 1]
+    # The general tet-mesh path gives the same network.
+    s2 = septa.arrangement(g.vertices, g.tets, vals, cells="grouping").summary()
+    assert {k: s2[k] for k in ("vertices", "faces", "patches", "chains", "corners", "cells")} == \
+        {k: s[k] for k in ("vertices", "faces", "patches", "chains", "corners", "cells")}
+
+
+def _counts(s):
+    return {k: s[k] for k in ("vertices", "faces", "edges", "patches", "chains", "corners", "shells", "cells", "components")}
+
+
+@pytest.mark.parametrize("case", ["ia4_R20", "mi4_R20"])
+def test_reference_cases(case):
+    import json
+
+    from conftest import ISN
+
+    path = ISN / f"{case}.npz"
+    if not path.exists():
+        pytest.skip(f"shared test data not found at {path}")
+    d = np.load(path)
+    expected = json.loads((ISN / "expected.json").read_text())[case]
+    g = septa.grid.box(int(d["grid_res"]), d["bbox"])
+    job = septa.arrangement if case.startswith("ia") else septa.material_interface
+    net = job(g, d["values"], threads=1)
+    assert all(net.summary()[k] == expected[k] for k in ("vertices", "faces", "patches", "chains", "shells", "cells"))
+
+
+def test_python_equals_command_line(tmp_path):
+    from conftest import ROOT
+
+    exe = ROOT / "target" / "release" / "septa"
+    if not exe.exists():
+        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    spec = [{"type": "sphere", "center": [0.4, 0.45, 0.5], "radius": 0.3},
+            {"type": "sphere", "center": [0.6, 0.5, 0.55], "radius": 0.25},
+            {"type": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]}]
+    (tmp_path / "f.json").write_text(__import__("json").dumps(spec))
+    out = subprocess.run([str(exe), "ia", str(tmp_path / "f.json"), "--grid", "16", "--bounds", "0", "0", "0", "1", "1", "1", "-o", str(tmp_path / "o"), "--json"],
+                         capture_output=True, text=True, check=True)
+    cli = __import__("json").loads(out.stdout)
+    g = septa.grid.box(16)
+    fs = [shapes.sphere(s["center"], s["radius"]) if s["type"] == "sphere" else shapes.plane(s["point"], s["normal"]) for s in spec]
+    py = septa.arrangement(g, shapes.sample(fs, g)).summary()
+    assert _counts(py) == _counts(cli)
+    # And the written network loads to the same summary.
+    assert _counts(septa.load(tmp_path / "o").summary()) == _counts(cli)

@@ -25,7 +25,16 @@ export function buildPanel(data, net, ns, api) {
   panel.append(el('div', { className: 'mode' }, `mode: ${net.mode}`));
 
   const counts = el('table', { className: 'counts' });
-  for (const [k, v] of Object.entries(net.counts)) counts.append(el('tr', {}, el('td', {}, k), el('td', {}, String(v))));
+  // Scalars as they are; nested summaries (e.g. a region job's "network")
+  // one level deep; lists by their length.
+  const row = (k, v) => counts.append(el('tr', {}, el('td', {}, k), el('td', {}, String(v))));
+  for (const [k, v] of Object.entries(net.counts)) {
+    if (k === 'seconds') continue;
+    if (Array.isArray(v)) row(k, `${v.length} item(s)`);
+    else if (v && typeof v === 'object') {
+      for (const [k2, v2] of Object.entries(v)) if (typeof v2 !== 'object') row(`${k}.${k2}`, v2);
+    } else row(k, v);
+  }
   panel.append(counts);
 
   panel.append(el('h2', {}, 'Show'));

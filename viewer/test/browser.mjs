@@ -128,14 +128,17 @@ try {
   const byLabel = await shot('viewer-flat-by-label.png');
   const labelPalette = await page.evaluate(() => window.__septa.palette());
   const labelFound = coloursOnScreen(byLabel, labelPalette);
-  check('distinct label colours on screen', labelFound.length === expectLabel,
+  // Without an expected count (a real result, not the hand-made fixture),
+  // at least one palette colour must show.
+  const want = (n, found) => (Number.isNaN(n) ? found > 0 : found === n);
+  check('distinct label colours on screen', want(expectLabel, labelFound.length),
     `${labelFound.length} of ${labelPalette.length} (expected ${expectLabel}): ${labelFound.map((f) => `${f.label}=${f.pixels}px`).join(' ')}`);
 
   await act(() => page.selectOption('#color-by', 'patch'));
   const byPatch = await shot('viewer-flat-by-patch.png');
   const patchPalette = await page.evaluate(() => window.__septa.palette());
   const patchFound = coloursOnScreen(byPatch, patchPalette);
-  check('distinct patch colours on screen', patchFound.length === expectPatch,
+  check('distinct patch colours on screen', want(expectPatch, patchFound.length),
     `${patchFound.length} of ${patchPalette.length} (expected ${expectPatch})`);
 
   // 3. Picking: click on a pixel of the first patch colour found.

@@ -30,10 +30,7 @@ pub struct Args {
 
 /// Runs `septa view`.
 pub fn run(args: Args) -> CliResult {
-    let title = args
-        .title
-        .clone()
-        .unwrap_or_else(|| folder_name(&args.outdir));
+    let title = args.title.clone().unwrap_or_else(|| folder_name(&args.outdir));
     let index = write_viewer(&args.outdir, &title)?;
     println!("viewer: {}", index.display());
     if !args.no_open && has_display() {
@@ -80,9 +77,7 @@ fn load_network(outdir: &Path) -> Result<serde_json::Value, Box<dyn std::error::
         let value = parse_json(&net_path, &text)?;
         for key in ["points", "faces"] {
             if value.get(key).and_then(|v| v.as_array()).is_none() {
-                return Err(
-                    format!("{}: missing array field \"{key}\"", net_path.display()).into(),
-                );
+                return Err(format!("{}: missing array field \"{key}\"", net_path.display()).into());
             }
         }
         return Ok(value);
@@ -99,8 +94,7 @@ fn load_network(outdir: &Path) -> Result<serde_json::Value, Box<dyn std::error::
 }
 
 fn parse_json(path: &Path, text: &str) -> Result<serde_json::Value, String> {
-    serde_json::from_str(text)
-        .map_err(|e| format!("{}:{}: invalid JSON: {e}", path.display(), e.line()))
+    serde_json::from_str(text).map_err(|e| format!("{}:{}: invalid JSON: {e}", path.display(), e.line()))
 }
 
 /// Converts an OBJ of cut-cells (one `g`/`o` group per cell) into the
@@ -115,11 +109,8 @@ fn obj_cells_to_network(path: &Path, text: &str) -> Result<serde_json::Value, St
         let mut it = line.split_whitespace();
         match it.next() {
             Some("v") => {
-                let c: Vec<f64> = it
-                    .take(3)
-                    .map(|s| s.parse::<f64>())
-                    .collect::<Result<_, _>>()
-                    .map_err(|_| err("bad vertex"))?;
+                let c: Vec<f64> =
+                    it.take(3).map(|s| s.parse::<f64>()).collect::<Result<_, _>>().map_err(|_| err("bad vertex"))?;
                 if c.len() != 3 || c.iter().any(|x| !x.is_finite()) {
                     return Err(err("a vertex needs three finite coordinates"));
                 }
@@ -129,17 +120,8 @@ fn obj_cells_to_network(path: &Path, text: &str) -> Result<serde_json::Value, St
             Some("f") => {
                 let mut f = Vec::new();
                 for tok in it {
-                    let i: i64 = tok
-                        .split('/')
-                        .next()
-                        .unwrap_or("")
-                        .parse()
-                        .map_err(|_| err("bad face index"))?;
-                    let i = if i < 0 {
-                        points.len() as i64 + i
-                    } else {
-                        i - 1
-                    };
+                    let i: i64 = tok.split('/').next().unwrap_or("").parse().map_err(|_| err("bad face index"))?;
+                    let i = if i < 0 { points.len() as i64 + i } else { i - 1 };
                     if i < 0 || i as usize >= points.len() {
                         return Err(err("face index out of range"));
                     }
@@ -160,8 +142,9 @@ fn obj_cells_to_network(path: &Path, text: &str) -> Result<serde_json::Value, St
     let cells: Vec<_> = (0..cell_names.len())
         .map(|c| serde_json::json!({ "shells": [], "label": [c], "name": cell_names[c] }))
         .collect();
-    let patches: Vec<_> =
-        (0..cell_names.len()).map(|c| serde_json::json!({ "label": [c], "faces": face_cell.iter().filter(|&&x| x == c as i64).count() })).collect();
+    let patches: Vec<_> = (0..cell_names.len())
+        .map(|c| serde_json::json!({ "label": [c], "faces": face_cell.iter().filter(|&&x| x == c as i64).count() }))
+        .collect();
     let face_cells: Vec<[i64; 2]> = face_cell.iter().map(|&c| [c, -1]).collect();
     Ok(serde_json::json!({
         "mode": "cut",

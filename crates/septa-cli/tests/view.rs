@@ -15,53 +15,30 @@ fn scratch(name: &str) -> PathBuf {
 }
 
 fn septa(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_septa"))
-        .args(args)
-        .output()
-        .unwrap()
+    Command::new(env!("CARGO_BIN_EXE_septa")).args(args).output().unwrap()
 }
 
 #[test]
 fn view_writes_self_contained_folder() {
     let dir = scratch("fixture");
-    std::fs::copy(
-        root().join("tests/fixtures/two-planes/network.json"),
-        dir.join("network.json"),
-    )
-    .unwrap();
+    std::fs::copy(root().join("tests/fixtures/two-planes/network.json"), dir.join("network.json")).unwrap();
     let out = septa(&["view", dir.to_str().unwrap(), "--no-open"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v = dir.join("viewer");
     // The bundle written is the committed, built one (byte for byte).
     let dist = root().join("viewer/dist");
     for f in ["index.html", "viewer.js"] {
-        assert_eq!(
-            std::fs::read(v.join(f)).unwrap(),
-            std::fs::read(dist.join(f)).unwrap(),
-            "{f}"
-        );
+        assert_eq!(std::fs::read(v.join(f)).unwrap(), std::fs::read(dist.join(f)).unwrap(), "{f}");
     }
     let data = std::fs::read_to_string(v.join("data.js")).unwrap();
-    let json = data
-        .strip_prefix("window.__SEPTA_DATA = ")
-        .unwrap()
-        .trim_end()
-        .trim_end_matches(';');
+    let json = data.strip_prefix("window.__SEPTA_DATA = ").unwrap().trim_end().trim_end_matches(';');
     let value: serde_json::Value = serde_json::from_str(json).unwrap();
     assert_eq!(value["network"]["patches"].as_array().unwrap().len(), 4);
     assert_eq!(value["network"]["cells"].as_array().unwrap().len(), 4);
     // Nothing is loaded from the network at view time.
     let html = std::fs::read_to_string(v.join("index.html")).unwrap();
     assert!(!html.contains("http://") && !html.contains("https://"));
-    assert!(!std::fs::read_dir(&v).unwrap().any(|e| e
-        .unwrap()
-        .path()
-        .extension()
-        .is_some_and(|x| x == "tmp-septa")));
+    assert!(!std::fs::read_dir(&v).unwrap().any(|e| e.unwrap().path().extension().is_some_and(|x| x == "tmp-septa")));
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -71,11 +48,7 @@ fn view_reads_cut_cells_obj() {
     let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ng cell0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     std::fs::write(dir.join("cells.obj"), obj).unwrap();
     let out = septa(&["view", dir.to_str().unwrap(), "--no-open"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let data = std::fs::read_to_string(dir.join("viewer/data.js")).unwrap();
     assert!(data.contains("\"mode\":\"cut\""));
     let _ = std::fs::remove_dir_all(&dir);
@@ -91,10 +64,7 @@ fn view_rejects_folder_without_results() {
     std::fs::write(dir.join("network.json"), "{\"points\": [1,\n").unwrap();
     let out = septa(&["view", dir.to_str().unwrap(), "--no-open"]);
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("network.json:2") && err.contains("invalid JSON"),
-        "{err}"
-    );
+    assert!(err.contains("network.json:2") && err.contains("invalid JSON"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -102,16 +72,9 @@ fn view_rejects_folder_without_results() {
 fn demo_prints_table() {
     let dir = scratch("demo");
     let out = septa(&["demo", "--out", dir.join("d").to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        text.contains("vertices") && text.contains("cells") && text.contains("septa view"),
-        "{text}"
-    );
+    assert!(text.contains("vertices") && text.contains("cells") && text.contains("septa view"), "{text}");
     assert!(dir.join("d").is_dir());
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -9,6 +9,7 @@
 use pyo3::prelude::*;
 
 mod checks;
+mod network;
 mod viewer;
 
 pyo3::create_exception!(
@@ -26,5 +27,6 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(checks::check_values, m)?)?;
     m.add_function(wrap_pyfunction!(checks::check_tets, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
+    m.add_function(wrap_pyfunction!(network::network, m)?)?;
     Ok(())
 }

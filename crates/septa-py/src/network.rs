@@ -1,0 +1,143 @@
+//! `septa.arrangement` / `septa.material_interface`: the grid surface
+//! network (Du et al. 2022) computed by `septa::network::compute`, handed
+//! back as numpy arrays (no file round trip).
+use crate::InputError;
+use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use septa::grid::{BoxGrid, Grid, Split, TetMesh};
+use septa::network::{compute, Mode, Network, NetworkOptions};
+
+fn id(x: u32) -> i64 {
+    if x == u32::MAX {
+        -1
+    } else {
+        x as i64
+    }
+}
+
+/// network(mode, vertices, tets, values, box=None, lookup=True, raytrace=True, threads=None)
+/// --
+///
+/// Computes the IA (`mode="ia"`) or MI (`mode="mi"`) network of the `k`
+/// functions in `values` `(#V, k) float64` on the grid `vertices`
+/// `(#V, 3) float64`, `tets` `(#T, 4) int64`. With `box=((nx, ny, nz),
+/// ((x0, y0, z0), (x1, y1, z1)), split)` the grid is the built-in box (whose
+/// vertices and tets must be the ones given). The GIL is released while the
+/// network is computed. Returns a dict of arrays (see `septa.Network`).
+#[pyfunction]
+#[pyo3(signature = (mode, vertices, tets, values, r#box = None, lookup = true, raytrace = true, threads = None))]
+#[allow(clippy::too_many_arguments, clippy::type_complexity)]
+pub fn network<'py>(
+    py: Python<'py>,
+    mode: &str,
+    vertices: PyReadonlyArray2<'py, f64>,
+    tets: PyReadonlyArray2<'py, i64>,
+    values: PyReadonlyArray2<'py, f64>,
+    r#box: Option<([usize; 3], [[f64; 3]; 2], u8)>,
+    lookup: bool,
+    raytrace: bool,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let mode = match mode {
+        "ia" => Mode::Ia,
+        "mi" => Mode::Mi,
+        m => return Err(InputError::new_err(format!("mode must be \"ia\" or \"mi\", not {m:?}"))),
+    };
+    let k = values.shape()[1];
+    let vs = vertices.as_slice().map_err(|_| InputError::new_err("vertices: array must be C-contiguous"))?;
+    let ts = tets.as_slice().map_err(|_| InputError::new_err("tets: array must be C-contiguous"))?;
+    let fs = values.as_slice().map_err(|_| InputError::new_err("values: array must be C-contiguous"))?;
+    let mut options = NetworkOptions::new(mode);
+    options.lookup = lookup;
+    options.raytrace = raytrace;
+    let result: Result<Network, String> = py.detach(|| {
+        let grid = match r#box {
+            Some((res, bounds, split)) => {
+                let split = match split {
+                    5 => Split::Five,
+                    6 => Split::Six,
+                    s => return Err(format!("split must be 5 or 6, not {s}")),
+                };
+                Grid::Box(BoxGrid::new(res, bounds, split)?)
+            }
+            None => {
+                let pts: Vec<[f64; 3]> = vs.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+                let tt: Vec<[i64; 4]> = ts.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
+                Grid::Mesh(TetMesh::new(pts, &tt).map_err(|e| e.to_string())?)
+            }
+        };
+        let run = || compute(&grid, fs, k, &options).map_err(|e| e.to_string());
+        match threads {
+            Some(t) => {
+                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
+            }
+            None => run(),
+        }
+    });
+    let net = result.map_err(InputError::new_err)?;
+    to_dict(py, &net)
+}
+
+fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let n = net.points.len();
+    d.set_item("mode", if net.mode == Mode::Ia { "ia" } else { "mi" })?;
+    d.set_item("functions", net.functions)?;
+    let pts: Vec<f64> = net.points.iter().flatten().copied().collect();
+    d.set_item("points", pts.into_pyarray(py).reshape([n, 3])?)?;
+    let offsets: Vec<i64> = net.face_start.iter().map(|&x| x as i64).collect();
+    d.set_item("offsets", offsets.into_pyarray(py))?;
+    let indices: Vec<i64> = net.face_verts.iter().map(|&x| x as i64).collect();
+    d.set_item("indices", indices.into_pyarray(py))?;
+    let nf = net.num_faces();
+    let fp: Vec<i64> = net.face_patch.iter().map(|&x| x as i64).collect();
+    d.set_item("face_patch", fp.into_pyarray(py))?;
+    let fc: Vec<i64> = net.face_cells.iter().flat_map(|c| [id(c[0]), id(c[1])]).collect();
+    d.set_item("face_cells", fc.into_pyarray(py).reshape([nf, 2])?)?;
+    let fl: Vec<i64> = net.face_label.iter().flat_map(|l| [l[0] as i64, l[1] as i64]).collect();
+    d.set_item("face_label", fl.into_pyarray(py).reshape([nf, 2])?)?;
+    let pl: Vec<i64> = net.patches.iter().flat_map(|p| [p.label[0] as i64, p.label[1] as i64]).collect();
+    d.set_item("patch_labels", pl.into_pyarray(py).reshape([net.patches.len(), 2])?)?;
+    let pf: Vec<i64> = net.patches.iter().map(|p| p.faces as i64).collect();
+    d.set_item("patch_faces", pf.into_pyarray(py))?;
+    let as_arrays = |lists: &[Vec<u32>]| -> PyResult<Bound<'py, PyList>> {
+        PyList::new(py, lists.iter().map(|c| c.iter().map(|&x| x as i64).collect::<Vec<_>>().into_pyarray(py)))
+    };
+    d.set_item("chains", as_arrays(&net.chains)?)?;
+    d.set_item("chain_patches", as_arrays(&net.chain_patches)?)?;
+    let corners: Vec<i64> = net.corners.iter().map(|&x| x as i64).collect();
+    d.set_item("corners", corners.into_pyarray(py))?;
+    d.set_item("shells", as_arrays(&net.shells)?)?;
+    let cells = PyList::empty(py);
+    for c in &net.cells {
+        let cd = PyDict::new(py);
+        cd.set_item("shells", c.shells.clone())?;
+        match net.mode {
+            // Sign vector as booleans (bit f set iff f > 0), as network.json.
+            Mode::Ia => cd.set_item(
+                "label",
+                (0..net.functions)
+                    .map(|f| c.label.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1))
+                    .collect::<Vec<bool>>(),
+            )?,
+            Mode::Mi => cd.set_item("label", vec![c.label.first().copied().unwrap_or(0)])?,
+        }
+        cells.append(cd)?;
+    }
+    d.set_item("cells", cells)?;
+    let counts = PyDict::new(py);
+    for (k, v) in net.counts() {
+        counts.set_item(k, v)?;
+    }
+    counts.set_item("components", net.components)?;
+    counts.set_item("active_tets", net.active_tets)?;
+    d.set_item("counts", counts)?;
+    d.set_item("cells_method", net.cells_method)?;
+    let seconds = PyDict::new(py);
+    for (k, v) in &net.seconds {
+        seconds.set_item(*k, *v)?;
+    }
+    d.set_item("seconds", seconds)?;
+    Ok(d)
+}
