@@ -20,3 +20,14 @@ def network(
     raytrace: bool = True,
     threads: int | None = None,
 ) -> dict: ...
+
+def regions(scene: str, normals: bool = False) -> str:
+    """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as ``network.json`` text."""
+
+def cut(
+    vertices: npt.NDArray[np.float64],
+    triangles: npt.NDArray[np.int64],
+    planes: npt.NDArray[np.float64],
+    threads: int = 0,
+) -> str:
+    """Planar cut-cell mesh as JSON text (counts, points, cells' outward polygons)."""

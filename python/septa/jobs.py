@@ -3,11 +3,12 @@ contiguous float64 / int64 arrays and validated in Rust (without the GIL);
 errors are :class:`septa.InputError` (a ``ValueError``) naming what and where.
 
 ``arrangement`` and ``material_interface`` run the exact core in Rust with
-the GIL released. ``region_surfaces`` and ``cut_mesh`` are not wired yet:
-they raise ``NotImplementedError``; ``septa regions|cut -o OUTDIR`` and
-:func:`septa.load` give their results meanwhile.
+the GIL released; so do ``region_surfaces`` (Bloomenthal's non-manifold
+shapes on the exact network) and ``cut_mesh`` (TopoCut planar cut-cells).
 """
 from __future__ import annotations
+
+import json
 
 import numpy as np
 
@@ -15,12 +16,8 @@ from . import _septa
 from .grid import Grid
 from .network import Network
 
-__all__ = ["arrangement", "material_interface", "region_surfaces", "cut_mesh"]
+__all__ = ["arrangement", "material_interface", "region_surfaces", "cut_mesh", "CutCells"]
 
-_PENDING = (
-    "{job}: the exact core is not wired to Python in this build yet; "
-    "run `septa {cli} ... -o OUTDIR` and load the result with septa.load(OUTDIR)"
-)
 
 
 def _grid_inputs(grid_or_vertices, tets, values):
@@ -86,16 +83,87 @@ def material_interface(grid_or_vertices, tets, values=None, *, threads=None, loo
     return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells)
 
 
-def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None):
-    """Non-manifold implicit shape: surfaces and curves of interest of a region rule."""
-    raise NotImplementedError(_PENDING.format(job="region_surfaces", cli="regions"))
+def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False):
+    """Non-manifold implicit shape: the surfaces and curves of interest of a region rule.
+
+    ``scene_or_functions`` is a scene (a dict in the scene-file form, a path,
+    or ``"builtin:NAME"``), or a list of primitive dicts (``{"type": "sphere",
+    "center": [..], "radius": r, "name": ..}``) used with ``rule`` (the
+    scene's ``regions``: a list of ``{"when": EXPR, "region": R}`` or a CSG
+    string for a solid), ``surfaces`` (region pairs of interest, default all),
+    ``curves`` (region triples of interest), ``grid`` (``{"resolution": n,
+    "bounds": [[..], [..]]}``) and ``mode``.
+    Returns a :class:`septa.Network` whose patches are the surfaces (labels are
+    region pairs, polygons counter-clockwise seen from the lesser region) and
+    whose chains are the curves; ``net.surfaces`` and ``net.curves`` list
+    each one's regions and topology (Euler characteristic, boundary loops).
+
+    >>> import septa
+    >>> net = septa.region_surfaces("builtin:sphere-with-hole")
+    >>> [(s["regions"], s["euler"], s["boundary_loops"]) for s in net.surfaces]
+    [([0, 2], 1, 1)]
+    """
+    scene = scene_or_functions
+    if isinstance(scene, (list, tuple)):
+        scene = {"grid": grid or {"resolution": 32, "bounds": [[-1, -1, -1], [1, 1, 1]]}, "mode": mode,
+                 "functions": list(scene)}
+        if rule is not None:
+            scene["solid" if isinstance(rule, str) else "regions"] = rule
+        if surfaces is not None:
+            scene["surfaces"] = surfaces
+        if curves is not None:
+            scene["curves"] = curves
+    elif rule is not None or surfaces is not None or curves is not None:
+        raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
+    text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
+    data = json.loads(_septa.regions(text, normals=normals))
+    net = Network(data)
+    net.surfaces = data["counts"]["surfaces"]
+    net.curves = data["counts"]["curves"]
+    return net
 
 
-def cut_mesh(vertices, triangles, planes):
-    """Planar cut-cell mesh of a closed triangle mesh by planes."""
+class CutCells:
+    """A planar cut-cell mesh.
+
+    Attributes: ``points`` ``(#V, 3) float64`` (the floating-point embedding
+    of the exact cut-vertices, which keeps every order along cut lines);
+    ``cells``: per cell, its boundary polygons (point-id lists, outward);
+    ``cell_volumes`` ``(#C,) float64``.
+    """
+
+    def __init__(self, d):
+        self._summary = {k: d[k] for k in ("cut_vertices", "cut_edges", "cut_faces", "cut_cells", "euler",
+                                           "volume_relative_error")}
+        self.points = np.asarray(d["points"], dtype=np.float64).reshape(-1, 3)
+        self.cells = [[np.asarray(loop, dtype=np.int64) for face in cell for loop in face] for cell in d["cells"]]
+        self.cell_volumes = np.asarray(d["cell_volumes"], dtype=np.float64)
+
+    def summary(self) -> dict:
+        """Counts and checks, as ``septa cut --json``."""
+        return dict(self._summary)
+
+
+def cut_mesh(vertices, triangles, planes, *, threads=None):
+    """Planar cut-cell mesh of a closed, outward triangle mesh by planes (TopoCut).
+
+    ``vertices`` ``(#V, 3)``, ``triangles`` ``(#T, 3)``, ``planes`` ``(#P, 4)``
+    rows ``a b c d`` for ``a x + b y + c z + d = 0``. Returns :class:`CutCells`;
+    the combinatorics are exact, the same as ``septa cut``.
+
+    >>> import septa, numpy as np
+    >>> v = np.array([[0,0,0],[1,0,0],[0,1,0],[0,0,1]], float)
+    >>> t = np.array([[0,2,1],[0,1,3],[0,3,2],[1,2,3]])
+    >>> septa.cut_mesh(v, t, [[1, 0, 0, -0.25]]).summary()["cut_cells"]
+    2
+    """
     v = np.ascontiguousarray(vertices, dtype=np.float64)
     _septa.check_values(v.reshape(-1, 3), "vertices")
     t = np.ascontiguousarray(triangles, dtype=np.int64)
     if t.ndim != 2 or t.shape[1] != 3 or (len(t) and (t.min() < 0 or t.max() >= len(v))):
         raise _septa.InputError("triangles: expected (#T, 3) indices into vertices")
-    raise NotImplementedError(_PENDING.format(job="cut_mesh", cli="cut"))
+    p = np.ascontiguousarray(planes, dtype=np.float64)
+    if p.ndim != 2 or p.shape[1] != 4:
+        raise _septa.InputError(f"planes: expected shape (#P, 4), got {p.shape}")
+    _septa.check_values(p, "planes")
+    return CutCells(json.loads(_septa.cut(v, t, p, threads=threads or 0)))

@@ -9,7 +9,9 @@
 use pyo3::prelude::*;
 
 mod checks;
+mod cut;
 mod network;
+mod regions;
 mod viewer;
 
 pyo3::create_exception!(
@@ -28,5 +30,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(checks::check_tets, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
+    m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
+    m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
     Ok(())
 }

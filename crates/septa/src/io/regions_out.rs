@@ -30,9 +30,8 @@ pub fn summary(r: &RegionSurfaces) -> Value {
     })
 }
 
-/// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
-pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
+/// The `network.json` document of region surfaces (the schema every job writes).
+pub fn document(r: &RegionSurfaces) -> Value {
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
@@ -41,7 +40,7 @@ pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
     corners.sort_unstable();
     corners.dedup();
     let regions: std::collections::BTreeSet<_> = r.cell_region.iter().copied().collect();
-    let doc = json!({
+    json!({
         "mode": "regions",
         "points": net.points,
         "faces": polys,
@@ -55,8 +54,15 @@ pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
         "cells": regions.iter().map(|g| json!({"shells": [], "label": [g]})).collect::<Vec<_>>(),
         "counts": summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
-    });
-    write_atomic(&dir.join("network.json"), doc.to_string().as_bytes())?;
+    })
+}
+
+/// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
+pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let net = &r.network;
+    let polys: Vec<&[u32]> = (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
+    write_atomic(&dir.join("network.json"), document(r).to_string().as_bytes())?;
     let mut obj = String::from("# Septa region surfaces: a group per surface, curves as polylines\n");
     for p in &net.points {
         writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();

@@ -1,0 +1,29 @@
+//! `septa.region_surfaces`: the surfaces and curves of interest of a scene's
+//! region rule (Bloomenthal's non-manifold model on the exact network).
+use crate::InputError;
+use pyo3::prelude::*;
+use septa::regions::{region_surfaces, RegionOptions};
+use septa::scene::Scene;
+
+/// regions(scene, normals=False)
+/// --
+///
+/// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
+/// (starting with `{`). Returns the `network.json` document as JSON text
+/// (`mode` "regions"; `patches` are the surfaces with their region pairs,
+/// `chains` the curves); the GIL is released while it is computed.
+#[pyfunction]
+#[pyo3(signature = (scene, normals = false))]
+pub fn regions(py: Python<'_>, scene: &str, normals: bool) -> PyResult<String> {
+    let result: Result<String, String> = py.detach(|| {
+        let s = if scene.trim_start().starts_with('{') {
+            Scene::from_json(scene, "<scene>", None)
+        } else {
+            Scene::load(scene)
+        }
+        .map_err(|e| e.to_string())?;
+        let r = region_surfaces(&s, &RegionOptions { normals, ..Default::default() }).map_err(|e| e.to_string())?;
+        Ok(septa::io::regions_out::document(&r).to_string())
+    });
+    result.map_err(InputError::new_err)
+}

@@ -1,0 +1,71 @@
+"""region_surfaces and cut_mesh from Python: the same results as the command line."""
+import json
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import septa
+
+ROOT = Path(__file__).resolve().parents[2]
+SEPTA = ROOT / "target" / "release" / "septa"
+
+
+def test_bloomenthal_sphere_plane_hole_topology():
+    net = septa.region_surfaces("builtin:sphere-plane-hole")
+    surfaces = sorted((tuple(s["regions"]), s["euler"], s["boundary_loops"]) for s in net.surfaces)
+    assert surfaces == [((0, 2), 1, 1), ((0, 3), 1, 1), ((2, 3), 0, 2)]
+    curves = sorted((tuple(c["regions"]), c["closed"]) for c in net.curves)
+    assert curves == [((0, 1, 2), False), ((0, 1, 3), False), ((0, 2, 3), False), ((1, 2, 3), False), ((2, 3, 4), True)]
+    assert net.points.dtype == np.float64 and net.points.shape[1] == 3
+
+
+def test_region_rule_from_a_list_of_functions():
+    # A solid: a box minus a sphere, as a CSG string over named functions.
+    functions = [
+        {"name": "box", "type": "box", "center": [0, 0, 0], "size": [1.2, 1.2, 1.2]},
+        {"name": "ball", "type": "sphere", "center": [0, 0, 0.6], "radius": 0.5},
+    ]
+    net = septa.region_surfaces(functions, "box & !ball", grid={"resolution": 21, "bounds": [[-1] * 3, [1] * 3]})
+    assert [(s["regions"], s["euler"], s["boundary_loops"]) for s in net.surfaces] == [([0, 1], 2, 0)]
+
+
+def test_region_errors_name_the_field():
+    with pytest.raises(septa.InputError, match="radius"):
+        septa.region_surfaces([{"type": "sphere", "center": [0, 0, 0], "radius": -1}], [{"region": 0}])
+
+
+@pytest.mark.skipif(not SEPTA.exists(), reason="the command line is built by scripts/test.sh first")
+def test_cut_matches_the_command_line(tmp_path):
+    # A corner tetrahedron cut by 5 planes per axis at exact quarters: 20 cells
+    # (cubes with i + j + k <= 3), with planes through its vertices and edges.
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    obj = tmp_path / "tet.obj"
+    obj.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in v) + "".join(f"f {a+1} {b+1} {c+1}\n" for a, b, c in t))
+    out = subprocess.run([str(SEPTA), "cut", str(obj), "--grid", "5", "-o", str(tmp_path / "cut"), "--json"],
+                         check=True, capture_output=True, text=True)
+    cli = json.loads(out.stdout.splitlines()[0])
+    planes = []
+    for axis in range(3):
+        for j in range(5):
+            p = [0.0, 0.0, 0.0, -j / 4]
+            p[axis] = 1.0
+            planes.append(p)
+    r = septa.cut_mesh(v, t, planes)
+    s = r.summary()
+    for k in ("cut_vertices", "cut_edges", "cut_faces", "cut_cells"):
+        assert s[k] == cli[k], k
+    assert s["cut_cells"] == 20
+    assert abs(r.cell_volumes.sum() - 1 / 6) < 1e-12
+    assert len(r.cells) == s["cut_cells"]
+
+
+def test_cut_rejects_bad_planes():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    t = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    with pytest.raises(septa.InputError):
+        septa.cut_mesh(v, t, [[1, 0, 0]])
+    with pytest.raises(septa.InputError):
+        septa.cut_mesh(v, t, [[np.nan, 0, 0, 1]])
