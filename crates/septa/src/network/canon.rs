@@ -23,16 +23,22 @@ use crate::complex::NONE;
 pub(crate) fn canonicalize_merged(m: &mut Merged) {
     let nv = m.keys.len();
     let nf = m.face_label.len();
-    // Vertices.
-    let mut order: Vec<u32> = (0..nv as u32).collect();
+    // Vertices: a counting sort by the element's smallest grid vertex, then
+    // the short buckets by the whole element, coordinates, functions.
     let bits = |p: &[f64; 3]| p.map(f64::to_bits);
-    order.sort_unstable_by(|&a, &b| {
-        let (ka, kb) = (&m.keys[a as usize], &m.keys[b as usize]);
-        ka.grid
-            .cmp(&kb.grid)
-            .then_with(|| bits(&m.points[a as usize]).cmp(&bits(&m.points[b as usize])))
-            .then_with(|| ka.funcs.cmp(&kb.funcs))
-    });
+    let nb = m.keys.iter().map(|k| k.grid[0] as usize + 1).max().unwrap_or(0);
+    let order = bucket_sort(
+        nv,
+        nb,
+        |v| m.keys[v].grid[0],
+        |&a, &b| {
+            let (ka, kb) = (&m.keys[a as usize], &m.keys[b as usize]);
+            ka.grid
+                .cmp(&kb.grid)
+                .then_with(|| bits(&m.points[a as usize]).cmp(&bits(&m.points[b as usize])))
+                .then_with(|| ka.funcs.cmp(&kb.funcs))
+        },
+    );
     let mut vnew = vec![0u32; nv];
     for (i, &o) in order.iter().enumerate() {
         vnew[o as usize] = i as u32;
@@ -43,21 +49,40 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
         *v = vnew[*v as usize];
     }
     // Faces: by sorted vertex ids, then (degenerate duplicates only) label.
+    // Sort inline keys of the two smallest vertices, then the short runs of
+    // faces sharing them by all their vertices.
     let face = |f: usize| &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
-    let sorted: Vec<SmallVec<[u32; 8]>> = (0..nf)
+    let mut two: Vec<[u32; 2]> = (0..nf)
         .map(|f| {
-            let mut s: SmallVec<[u32; 8]> = face(f).into();
-            s.sort_unstable();
-            s
+            let (mut a, mut b) = (u32::MAX, u32::MAX);
+            for &v in face(f) {
+                if v < a {
+                    (a, b) = (v, a);
+                } else if v < b {
+                    b = v;
+                }
+            }
+            [a, b]
         })
         .collect();
-    let mut forder: Vec<u32> = (0..nf as u32).collect();
-    forder.sort_unstable_by(|&a, &b| {
-        sorted[a as usize]
-            .cmp(&sorted[b as usize])
-            .then_with(|| m.face_label[a as usize].cmp(&m.face_label[b as usize]))
-    });
-    drop(sorted);
+    let sorted = |f: u32| {
+        let mut s: SmallVec<[u32; 8]> = face(f as usize).into();
+        s.sort_unstable();
+        s
+    };
+    let forder = bucket_sort(
+        nf,
+        nv,
+        |f| two[f][0],
+        |&a, &b| {
+            two[a as usize][1]
+                .cmp(&two[b as usize][1])
+                .then_with(|| sorted(a).cmp(&sorted(b)))
+                .then_with(|| m.face_label[a as usize].cmp(&m.face_label[b as usize]))
+        },
+    );
+    two = Vec::new();
+    drop(two);
     let mut fnew = vec![0u32; nf];
     let mut start = Vec::with_capacity(nf + 1);
     let mut verts = Vec::with_capacity(m.face_verts.len());
@@ -109,6 +134,37 @@ pub(crate) fn canonicalize_topology(t: &mut Topology) {
     for cyc in t.chain_patches.iter_mut() {
         *cyc = min_rotation(cyc);
     }
+}
+
+/// `0..n` ordered by `bucket` (a counting sort over `0..nb`), then within
+/// each bucket by `cmp`: linear time when buckets are short.
+fn bucket_sort(
+    n: usize,
+    nb: usize,
+    bucket: impl Fn(usize) -> u32,
+    cmp: impl Fn(&u32, &u32) -> std::cmp::Ordering,
+) -> Vec<u32> {
+    let mut start = vec![0u32; nb + 1];
+    let keys: Vec<u32> = (0..n).map(&bucket).collect();
+    for &k in &keys {
+        start[k as usize + 1] += 1;
+    }
+    for b in 0..nb {
+        start[b + 1] += start[b];
+    }
+    let mut fill = start.clone();
+    let mut order = vec![0u32; n];
+    for (i, &k) in keys.iter().enumerate() {
+        order[fill[k as usize] as usize] = i as u32;
+        fill[k as usize] += 1;
+    }
+    for b in 0..nb {
+        let r = start[b] as usize..start[b + 1] as usize;
+        if r.len() > 1 {
+            order[r].sort_unstable_by(&cmp);
+        }
+    }
+    order
 }
 
 fn empty_cell() -> super::CellInfo {
