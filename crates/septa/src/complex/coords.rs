@@ -21,7 +21,10 @@ impl Complex {
             }
             k
         };
-        f.sort_by_key(|&g| key(g));
+        if f.len() > 1 {
+            // Equal keys mean equal rows: either order gives the same result.
+            f.sort_unstable_by_key(|&g| key(g));
+        }
         // Rows of A (eq. 4): g_1..g_d then ones; right-hand side e_n.
         let mut a = [[0.0f64; 4]; 4];
         for r in 0..n - 1 {
