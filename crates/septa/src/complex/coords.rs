@@ -10,7 +10,21 @@ impl Complex {
         let vert = &self.vertices[v];
         let s = vert.tet_vertices();
         let n = s.len();
-        let f = vert.functions();
+        // The functions in an order given by their values, not their ids, so
+        // the rounded position does not depend on how the functions are
+        // numbered (the same output for any permutation of them; issue 5).
+        let mut f: smallvec::SmallVec<[u16; 4]> = vert.functions().into();
+        let key = |g: u16| -> [u64; 4] {
+            let mut k = [0; 4];
+            for (j, &sj) in s.iter().enumerate() {
+                k[j] = values[g as usize][sj as usize].to_bits();
+            }
+            k
+        };
+        if f.len() > 1 {
+            // Equal keys mean equal rows: either order gives the same result.
+            f.sort_unstable_by_key(|&g| key(g));
+        }
         // Rows of A (eq. 4): g_1..g_d then ones; right-hand side e_n.
         let mut a = [[0.0f64; 4]; 4];
         for r in 0..n - 1 {

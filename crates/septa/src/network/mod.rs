@@ -11,6 +11,7 @@
 pub mod bench;
 mod block;
 mod boxfast;
+mod canon;
 mod merge;
 mod raytrace;
 pub mod sparse;
@@ -260,8 +261,10 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
+    canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
     let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
+    canon::canonicalize_topology(&mut topo);
     // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
     for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
         let row = &values[..k];

@@ -24,17 +24,38 @@ pub(crate) struct Topology {
 pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topology {
     let nf = m.face_label.len();
     let nv = m.points.len();
-    // Edges: (a, b, face) sorted; a run of equal (a, b) is one edge.
     // Edges: (a << 32 | b, face) sorted; a run of equal keys is one edge.
-    let mut ef: Vec<(u64, u32)> = Vec::with_capacity(m.face_verts.len());
+    // A counting sort by the smaller vertex `a`, then each short bucket
+    // sorted: linear time instead of a global sort of every polygon side.
+    let side = |vs: &[u32], j: usize| {
+        let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
+        (a.min(b), a.max(b))
+    };
+    let mut start = vec![0u32; nv + 1];
     for f in 0..nf {
         let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
         for j in 0..vs.len() {
-            let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
-            ef.push(((a.min(b) as u64) << 32 | a.max(b) as u64, f as u32));
+            start[side(vs, j).0 as usize + 1] += 1;
         }
     }
-    ef.sort_unstable();
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut ef: Vec<(u64, u32)> = vec![(0, 0); m.face_verts.len()];
+    for f in 0..nf {
+        let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
+        for j in 0..vs.len() {
+            let (a, b) = side(vs, j);
+            ef[fill[a as usize] as usize] = ((a as u64) << 32 | b as u64, f as u32);
+            fill[a as usize] += 1;
+        }
+    }
+    drop(fill);
+    for v in 0..nv {
+        ef[start[v] as usize..start[v + 1] as usize].sort_unstable();
+    }
+    drop(start);
     let mut edges = Vec::new();
     let mut patch_uf = UnionFind::new(nf);
     let mut vert_uf = UnionFind::new(nv);
