@@ -245,6 +245,8 @@ pub fn compute_sparse(
     let outs: Vec<BlockOut> = outs.into_iter().map(|o| o.0).collect();
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
+    // The same canonical order as the dense path (identical output).
+    super::canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
     let pv = PointValues { grid, functions };
     let c = ctx(&g, k, options, &pv);
@@ -252,6 +254,7 @@ pub fn compute_sparse(
     if topo.cells_method != "raytrace" {
         return fallback(stats);
     }
+    super::canon::canonicalize_topology(&mut topo);
     // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
     for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
         let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
