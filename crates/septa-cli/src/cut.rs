@@ -56,19 +56,14 @@ pub fn run(a: Args) -> CliResult {
     };
     let read_s = t0.elapsed().as_secs_f64();
     if a.threads > 0 {
-        let _ = rayon::ThreadPoolBuilder::new()
-            .num_threads(a.threads)
-            .build_global();
+        let _ = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global();
     }
     let t1 = Instant::now();
     let out = cut_mesh(
         &mesh.vertices,
         &mesh.triangles,
         &planes,
-        &CutOptions {
-            threads: a.threads,
-            skip_self_intersection_check: a.no_self_check,
-        },
+        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check },
     )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
@@ -79,10 +74,7 @@ pub fn run(a: Args) -> CliResult {
     std::fs::create_dir_all(&a.out)?;
     if !a.no_mesh_output {
         cut_out::write_atomic(&a.out.join("cells.vtu"), cut_out::vtu(&out).as_bytes())?;
-        cut_out::write_atomic(
-            &a.out.join("cells.obj"),
-            cut_out::obj(&out, a.explode).as_bytes(),
-        )?;
+        cut_out::write_atomic(&a.out.join("cells.obj"), cut_out::obj(&out, a.explode).as_bytes())?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let c = out.counts;
@@ -95,12 +87,7 @@ pub fn run(a: Args) -> CliResult {
     seconds.insert("write".into(), write_s.into());
     seconds.insert("total".into(), t0.elapsed().as_secs_f64().into());
     let (euler, vol_err, min_vol, check_msg) = match &check {
-        Ok(v) => (
-            v.euler,
-            v.volume_relative_error,
-            v.min_cell_volume,
-            "ok".to_string(),
-        ),
+        Ok(v) => (v.euler, v.volume_relative_error, v.min_cell_volume, "ok".to_string()),
         Err(e) => (
             c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - c.cut_cells as i64,
             f64::NAN,
@@ -131,10 +118,7 @@ pub fn run(a: Args) -> CliResult {
         "dropped_planes": out.stats.dropped_planes.len(),
         "seconds": seconds,
     });
-    cut_out::write_atomic(
-        &a.out.join("cut.json"),
-        serde_json::to_string_pretty(&j)?.as_bytes(),
-    )?;
+    cut_out::write_atomic(&a.out.join("cut.json"), serde_json::to_string_pretty(&j)?.as_bytes())?;
     if a.json {
         println!("{j}");
     } else {

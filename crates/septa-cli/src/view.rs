@@ -161,15 +161,9 @@ fn obj_cells_to_network(path: &Path, text: &str) -> Result<serde_json::Value, St
     }))
 }
 
-/// Writes to a temporary file in the same folder, then renames, so a reader
-/// never sees a half-written file.
+/// Atomic write (temporary sibling file, then rename) with a message naming the file.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let tmp = path.with_extension("tmp-septa");
-    std::fs::write(&tmp, bytes).map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        format!("cannot write {}: {e}", path.display())
-    })
+    septa::io::write_atomic(path, bytes).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 fn has_display() -> bool {

@@ -8,9 +8,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa_exact::{
-    det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive, stats, Sign,
-};
+use septa_exact::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive, stats, Sign};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -63,8 +61,7 @@ fn tiny<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
 /// Exactly singular small-integer matrices (two equal rows, rows scaled
 /// by different powers of two): the exact tiers must decide these.
 fn singular<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
-    let mut m: [[f64; N]; N] =
-        std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-9i32..=9) as f64));
+    let mut m: [[f64; N]; N] = std::array::from_fn(|_| std::array::from_fn(|_| r.gen_range(-9i32..=9) as f64));
     if N > 1 {
         m[N - 1] = m[0].map(|x| x * 0.5);
     }
@@ -104,10 +101,7 @@ fn bench<const N: usize>(label: &str, gen: fn(&mut ChaCha8Rng) -> [[f64; N]; N])
         .map(|_| {
             let x = gen(&mut r);
             let b = random::<N>(&mut r);
-            (
-                std::array::from_fn(|i| std::array::from_fn(|j| b[i][j] + x[i][j])),
-                b,
-            )
+            (std::array::from_fn(|i| std::array::from_fn(|j| b[i][j] + x[i][j])), b)
         })
         .collect();
 

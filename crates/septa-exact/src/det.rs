@@ -132,9 +132,7 @@ pub fn det_sign_diff<const N: usize>(a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Si
 #[inline(never)]
 fn slow_mi<const N: usize>(o: Outcome, a: &[[f64; N]; N], b: &[[f64; N]; N]) -> Sign {
     let exact = match o {
-        Outcome::Expansion => {
-            integer_det::det_sign_mi(a, b).or_else(|| expansion_det::det_sign_mi(a, b))
-        }
+        Outcome::Expansion => integer_det::det_sign_mi(a, b).or_else(|| expansion_det::det_sign_mi(a, b)),
         Outcome::Bignum => integer_det::det_sign_mi(a, b),
         decided => return decided.sign().unwrap_or(Sign::Zero),
     };

@@ -188,10 +188,7 @@ impl<const CAP: usize> Arena<CAP> {
     /// An empty arena.
     #[inline]
     pub(crate) fn new() -> Self {
-        Arena {
-            buf: [0.0; CAP],
-            top: 0,
-        }
+        Arena { buf: [0.0; CAP], top: 0 }
     }
 
     /// The components of `e`, smallest first.
@@ -223,10 +220,7 @@ impl<const CAP: usize> Arena<CAP> {
             self.buf[start] = x;
             self.top += 1;
         }
-        Some(Ex {
-            start,
-            len: self.top - start,
-        })
+        Some(Ex { start, len: self.top - start })
     }
 
     /// Appends the exact difference `a - b` of two inputs.
@@ -241,10 +235,7 @@ impl<const CAP: usize> Arena<CAP> {
                 self.top += 1;
             }
         }
-        Some(Ex {
-            start,
-            len: self.top - start,
-        })
+        Some(Ex { start, len: self.top - start })
     }
 
     /// Appends `e + s f`.
@@ -266,10 +257,7 @@ impl<const CAP: usize> Arena<CAP> {
         let r = self.sum(acc, t, s)?;
         self.buf.copy_within(r.start..r.end(), acc.start);
         self.top = acc.start + r.len;
-        Some(Ex {
-            start: acc.start,
-            len: r.len,
-        })
+        Some(Ex { start: acc.start, len: r.len })
     }
 
     /// Moves the top run `t` down to where `over` begins (discarding
@@ -280,10 +268,7 @@ impl<const CAP: usize> Arena<CAP> {
         debug_assert!(t.end() == self.top && to <= t.start);
         self.buf.copy_within(t.start..t.end(), to);
         self.top = to + t.len;
-        Ex {
-            start: to,
-            len: t.len,
-        }
+        Ex { start: to, len: t.len }
     }
 
     /// Appends `e * f`: one scaled copy of `e` per component of `f`, folded
@@ -305,17 +290,11 @@ impl<const CAP: usize> Arena<CAP> {
                     self.top += 1;
                 }
             }
-            return Some(Ex {
-                start,
-                len: self.top - start,
-            });
+            return Some(Ex { start, len: self.top - start });
         }
         let (lo, hi) = self.buf.split_at_mut(start);
         self.top += scale(&lo[e.start..e.end()], lo[f.start], hi);
-        let mut acc = Ex {
-            start,
-            len: self.top - start,
-        };
+        let mut acc = Ex { start, len: self.top - start };
         for k in 1..f.len {
             let b = self.buf[f.start + k];
             self.room(2 * e.len)?;

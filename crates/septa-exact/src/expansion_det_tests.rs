@@ -12,12 +12,7 @@ fn tiny_arena_reports_overflow_and_large_arena_decides() {
         [19.0, 23.0, 29.0, 31.0],
         [37.0, 41.0, 43.0, 47.0],
     ];
-    let b = [
-        [t, -t, t, -t],
-        [-t, t, -t, t],
-        [t, t, -t, -t],
-        [-t, -t, t, t],
-    ];
+    let b = [[t, -t, t, -t], [-t, t, -t, t], [t, t, -t, -t], [-t, -t, t, t]];
     assert_eq!(mi_in::<8, 4>(&a, &b), None);
     let big = mi_in::<CAP_BIG, 4>(&a, &b).expect("fits");
     assert_eq!(Some(big), det_sign_mi(&a, &b));

@@ -123,18 +123,9 @@ pub(crate) const HOT_LIMITS: (f64, f64) = (P_MIN, S_MAX);
 /// Exponent window `[2^-W, 2^W]` per size (see the module doc).
 pub(crate) const fn window(n: usize) -> (f64, f64) {
     match n {
-        0..=2 => (
-            f64::from_bits((1023 - 400) << 52),
-            f64::from_bits((1023 + 400) << 52),
-        ),
-        3 => (
-            f64::from_bits((1023 - 250) << 52),
-            f64::from_bits((1023 + 250) << 52),
-        ),
-        _ => (
-            f64::from_bits((1023 - 180) << 52),
-            f64::from_bits((1023 + 180) << 52),
-        ),
+        0..=2 => (f64::from_bits((1023 - 400) << 52), f64::from_bits((1023 + 400) << 52)),
+        3 => (f64::from_bits((1023 - 250) << 52), f64::from_bits((1023 + 250) << 52)),
+        _ => (f64::from_bits((1023 - 180) << 52), f64::from_bits((1023 + 180) << 52)),
     }
 }
 
@@ -244,10 +235,7 @@ fn det_perm4(m: &[f64; 16]) -> (f64, f64, f64) {
     #[inline(always)]
     fn pairs(m: &[f64; 16], r: usize, sub: bool) -> [f64; 6] {
         let f = |i: usize, j: usize| {
-            let (x, y) = (
-                m[4 * r + i] * m[4 * r + 4 + j],
-                m[4 * r + j] * m[4 * r + 4 + i],
-            );
+            let (x, y) = (m[4 * r + i] * m[4 * r + 4 + j], m[4 * r + j] * m[4 * r + 4 + i]);
             if sub {
                 x - y
             } else {
@@ -258,13 +246,11 @@ fn det_perm4(m: &[f64; 16]) -> (f64, f64, f64) {
     }
     let s = pairs(m, 0, true);
     let c = pairs(m, 2, true);
-    let d =
-        ((s[0] * c[5] - s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] - s[4] * c[1]);
+    let d = ((s[0] * c[5] - s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] - s[4] * c[1]);
     let a = m.map(f64::abs);
     let s = pairs(&a, 0, false);
     let c = pairs(&a, 2, false);
-    let p =
-        ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
+    let p = ((s[0] * c[5] + s[1] * c[4]) + (s[2] * c[3] + s[3] * c[2])) + (s[5] * c[0] + s[4] * c[1]);
     // Magnification sum of the twelve 2x2 minor permanents, bounded by row
     // sums: sum_{i<j} (|r_i||s_j| + |r_j||s_i|) <= (sum |r|)(sum |s|).
     let row = |k: usize| (a[4 * k] + a[4 * k + 1]) + (a[4 * k + 2] + a[4 * k + 3]);
@@ -412,16 +398,8 @@ fn det_f64_dyn(m: &[Vec<f64>]) -> f64 {
     }
     let mut acc = 0.0;
     for c in 0..n {
-        let minor: Vec<Vec<f64>> = m[1..]
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != c)
-                    .map(|(_, &x)| x)
-                    .collect()
-            })
-            .collect();
+        let minor: Vec<Vec<f64>> =
+            m[1..].iter().map(|r| r.iter().enumerate().filter(|&(j, _)| j != c).map(|(_, &x)| x).collect()).collect();
         let t = m[0][c] * det_f64_dyn(&minor);
         acc += if c % 2 == 0 { t } else { -t };
     }

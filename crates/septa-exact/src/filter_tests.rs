@@ -18,15 +18,9 @@ fn error_constants_dominate_the_derived_bound() {
         let k = BigRational::from_integer(BigInt::from(mp));
         let gamma = &k * &u / (&one - &k * &u);
         let need = (&one + &u) * gamma / Pow::pow(&one - &u, mperm + 1);
-        assert!(
-            q(c) >= need,
-            "{name}: constant {c:e} below the derived bound"
-        );
+        assert!(q(c) >= need, "{name}: constant {c:e} below the derived bound");
         // ... and not wastefully above it (within 1% of the first-order term).
-        assert!(
-            q(c) <= need * q(1.01),
-            "{name}: constant far above the bound"
-        );
+        assert!(q(c) <= need * q(1.01), "{name}: constant far above the bound");
     }
 }
 
@@ -38,10 +32,7 @@ fn hot_constants_absorb_the_underflow_term() {
     let eta = q(2f64.powi(-1075 + 53) * 2f64.powi(-53)); // 2^-1075
     let f_cap = eta * (q(2.0) * q(s_max) * q(1.0001) + q(6.0)) * q(1.0001);
     let r = q(2f64.powi(-70));
-    assert!(
-        f_cap / q(p_min) <= r.clone(),
-        "r = F / P^ must stay below 2^-70"
-    );
+    assert!(f_cap / q(p_min) <= r.clone(), "r = F / P^ must stay below 2^-70");
     let u = q(U);
     let one = BigRational::one();
     for (name, _n, mp, mperm, _, c_hot) in BOUNDS {
@@ -61,17 +52,11 @@ fn windows_keep_intermediates_normal_and_finite() {
         assert_eq!(hi.log2() as i32, w, "symmetric window");
         // Unit of an n-fold product of multiples of 2^(-w-52), times the
         // smallest bound constant (~2^-53), must stay normal.
-        assert!(
-            n as i32 * (w + 52) + 53 <= 1022,
-            "N={n}: products may underflow"
-        );
+        assert!(n as i32 * (w + 52) + 53 <= 1022, "N={n}: products may underflow");
         // n! * 2^(n(w+1)) (MI differences double the magnitude) well below
         // 2^995, where Veltkamp's split would overflow.
         let fact: f64 = (1..=n).map(|i| i as f64).product();
-        assert!(
-            fact.log2() + (n as f64) * (w as f64 + 1.0) < 995.0 - 60.0,
-            "N={n}: may overflow"
-        );
+        assert!(fact.log2() + (n as f64) * (w as f64 + 1.0) < 995.0 - 60.0, "N={n}: may overflow");
     }
 }
 

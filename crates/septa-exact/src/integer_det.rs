@@ -25,19 +25,11 @@ fn decompose(x: f64) -> (i64, i32, i32) {
     let bits = x.to_bits();
     let biased = ((bits >> 52) & 0x7ff) as i32;
     let frac = bits & ((1u64 << 52) - 1);
-    let (m, e) = if biased == 0 {
-        (frac, -1074)
-    } else {
-        (frac | (1u64 << 52), biased - 1075)
-    };
+    let (m, e) = if biased == 0 { (frac, -1074) } else { (frac | (1u64 << 52), biased - 1075) };
     let tz = m.trailing_zeros();
     let m = m >> tz;
     let len = 64 - m.leading_zeros() as i32;
-    let m = if bits >> 63 == 1 {
-        -(m as i64)
-    } else {
-        m as i64
-    };
+    let m = if bits >> 63 == 1 { -(m as i64) } else { m as i64 };
     (m, e + tz as i32, len)
 }
 
@@ -51,20 +43,12 @@ fn row_ints<const K: usize>(values: &[f64; K], max_bits: i32) -> Option<([i64; K
     if emin == i32::MAX {
         return Some(([0; K], 0));
     }
-    let top = d
-        .iter()
-        .filter(|&&(m, _, _)| m != 0)
-        .map(|&(_, e, l)| e + l)
-        .max()
-        .unwrap_or(emin);
+    let top = d.iter().filter(|&&(m, _, _)| m != 0).map(|&(_, e, l)| e + l).max().unwrap_or(emin);
     let span = top - emin;
     if span > max_bits {
         return None;
     }
-    Some((
-        d.map(|(m, e, _)| if m == 0 { 0 } else { m << (e - emin) }),
-        span,
-    ))
+    Some((d.map(|(m, e, _)| if m == 0 { 0 } else { m << (e - emin) }), span))
 }
 
 /// `ceil(log2(N!))` for N = 1..=4, and the `i128` budget (see module doc).
@@ -80,8 +64,7 @@ fn det_i128<const N: usize>(m: &[[i128; N]; N]) -> i128 {
         3 => m[0][0] * m2(1, 2, 1, 2) - m[0][1] * m2(1, 2, 0, 2) + m[0][2] * m2(1, 2, 0, 1),
         4 => {
             let c = |i, j| m2(2, 3, i, j);
-            let (c01, c02, c03, c12, c13, c23) =
-                (c(0, 1), c(0, 2), c(0, 3), c(1, 2), c(1, 3), c(2, 3));
+            let (c01, c02, c03, c12, c13, c23) = (c(0, 1), c(0, 2), c(0, 3), c(1, 2), c(1, 3), c(2, 3));
             let r = &m[1];
             let m0 = r[1] * c23 - r[2] * c13 + r[3] * c12;
             let m1 = r[0] * c23 - r[2] * c03 + r[3] * c02;
@@ -172,26 +155,19 @@ fn cofactor_sum(x: [i64; 4], m: [I256; 4], n: usize) -> I256 {
 /// Exact sign of `det(m)` for rows of `i64` entries (any `N <= 4`).
 fn det_sign_wide<const N: usize>(m: &[[i64; N]; N]) -> Sign {
     let w = |v: i128| I256::from_i128(v);
-    let m2 = |r: usize, s: usize, i: usize, j: usize| {
-        m[r][i] as i128 * m[s][j] as i128 - m[r][j] as i128 * m[s][i] as i128
-    };
+    let m2 =
+        |r: usize, s: usize, i: usize, j: usize| m[r][i] as i128 * m[s][j] as i128 - m[r][j] as i128 * m[s][i] as i128;
     let row = |r: usize| -> [i64; 4] { std::array::from_fn(|j| if j < N { m[r][j] } else { 0 }) };
     match N {
         1 => Sign::from_i8(m[0][0].signum() as i8),
         2 => sign_i128(m2(0, 1, 0, 1)),
         3 => {
-            let minors = [
-                w(m2(1, 2, 1, 2)),
-                w(m2(1, 2, 0, 2)),
-                w(m2(1, 2, 0, 1)),
-                w(0),
-            ];
+            let minors = [w(m2(1, 2, 1, 2)), w(m2(1, 2, 0, 2)), w(m2(1, 2, 0, 1)), w(0)];
             cofactor_sum(row(0), minors, 3).sign()
         }
         4 => {
             let c = |i, j| w(m2(2, 3, i, j));
-            let (c01, c02, c03, c12, c13, c23) =
-                (c(0, 1), c(0, 2), c(0, 3), c(1, 2), c(1, 3), c(2, 3));
+            let (c01, c02, c03, c12, c13, c23) = (c(0, 1), c(0, 2), c(0, 3), c(1, 2), c(1, 3), c(2, 3));
             let r1 = row(1);
             let sub3 = |cols: [usize; 3], cof: [I256; 3]| {
                 let x = [r1[cols[0]], r1[cols[1]], r1[cols[2]], 0];

@@ -49,8 +49,7 @@ pub mod stats;
 mod validate;
 
 pub use barycentric::{
-    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi,
-    barycentric_sign_mi_f64_naive,
+    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi, barycentric_sign_mi_f64_naive,
 };
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;

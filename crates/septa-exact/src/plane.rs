@@ -136,11 +136,7 @@ const SAFE_LO: f64 = 1e-270;
 fn add_down(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() {
-            f64::NEG_INFINITY
-        } else {
-            next_down(s)
-        };
+        return if s.is_nan() { f64::NEG_INFINITY } else { next_down(s) };
     }
     if e < 0.0 {
         next_down(s)
@@ -153,11 +149,7 @@ fn add_down(a: f64, b: f64) -> f64 {
 fn add_up(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() {
-            f64::INFINITY
-        } else {
-            next_up(s)
-        };
+        return if s.is_nan() { f64::INFINITY } else { next_up(s) };
     }
     if e > 0.0 {
         next_up(s)
@@ -233,21 +225,13 @@ impl Interval {
         if o.lo <= 0.0 && o.hi >= 0.0 {
             return None;
         }
-        let q = [
-            self.lo / o.lo,
-            self.lo / o.hi,
-            self.hi / o.lo,
-            self.hi / o.hi,
-        ];
+        let q = [self.lo / o.lo, self.lo / o.hi, self.hi / o.lo, self.hi / o.hi];
         let lo = q.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = q.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         if !lo.is_finite() || !hi.is_finite() {
             return None;
         }
-        Some(Interval {
-            lo: next_down(lo),
-            hi: next_up(hi),
-        })
+        Some(Interval { lo: next_down(lo), hi: next_up(hi) })
     }
 
     /// Midpoint (an approximation of the value, for embeddings and pre-sorts).
@@ -264,61 +248,35 @@ impl Ring for Interval {
     }
     #[inline]
     fn add(&self, o: &Self) -> Self {
-        Interval {
-            lo: add_down(self.lo, o.lo),
-            hi: add_up(self.hi, o.hi),
-        }
+        Interval { lo: add_down(self.lo, o.lo), hi: add_up(self.hi, o.hi) }
     }
     #[inline]
     fn sub(&self, o: &Self) -> Self {
-        Interval {
-            lo: add_down(self.lo, -o.hi),
-            hi: add_up(self.hi, -o.lo),
-        }
+        Interval { lo: add_down(self.lo, -o.hi), hi: add_up(self.hi, -o.lo) }
     }
     #[inline]
     fn mul(&self, o: &Self) -> Self {
         let (a, b, c, d) = (self.lo, self.hi, o.lo, o.hi);
         if a >= 0.0 && c >= 0.0 {
-            return Interval {
-                lo: mul_round(a, c, false),
-                hi: mul_round(b, d, true),
-            };
+            return Interval { lo: mul_round(a, c, false), hi: mul_round(b, d, true) };
         }
         if b <= 0.0 && d <= 0.0 {
-            return Interval {
-                lo: mul_round(b, d, false),
-                hi: mul_round(a, c, true),
-            };
+            return Interval { lo: mul_round(b, d, false), hi: mul_round(a, c, true) };
         }
         if a >= 0.0 && d <= 0.0 {
-            return Interval {
-                lo: mul_round(b, c, false),
-                hi: mul_round(a, d, true),
-            };
+            return Interval { lo: mul_round(b, c, false), hi: mul_round(a, d, true) };
         }
         if b <= 0.0 && c >= 0.0 {
-            return Interval {
-                lo: mul_round(a, d, false),
-                hi: mul_round(b, c, true),
-            };
+            return Interval { lo: mul_round(a, d, false), hi: mul_round(b, c, true) };
         }
-        let lo = mul_round(a, d, false)
-            .min(mul_round(b, c, false))
-            .min(mul_round(a, c, false))
-            .min(mul_round(b, d, false));
-        let hi = mul_round(a, c, true)
-            .max(mul_round(b, d, true))
-            .max(mul_round(a, d, true))
-            .max(mul_round(b, c, true));
+        let lo =
+            mul_round(a, d, false).min(mul_round(b, c, false)).min(mul_round(a, c, false)).min(mul_round(b, d, false));
+        let hi = mul_round(a, c, true).max(mul_round(b, d, true)).max(mul_round(a, d, true)).max(mul_round(b, c, true));
         Interval { lo, hi }
     }
     #[inline]
     fn neg(&self) -> Self {
-        Interval {
-            lo: -self.hi,
-            hi: -self.lo,
-        }
+        Interval { lo: -self.hi, hi: -self.lo }
     }
 }
 
@@ -355,11 +313,7 @@ pub fn plane_point_sign(plane: &[f64; 4], x: &[f64; 3]) -> Sign {
     let s = t[0].abs() + t[1].abs() + t[2].abs() + plane[3].abs();
     let bound = 8.0 * f64::EPSILON * 0.5 * s;
     if s > 1e-250 && s < 1e250 && v.abs() > bound {
-        return if v > 0.0 {
-            Sign::Positive
-        } else {
-            Sign::Negative
-        };
+        return if v > 0.0 { Sign::Positive } else { Sign::Negative };
     }
     fn f<R: Ring>(p: &[f64; 4], x: &[f64; 3]) -> R {
         let mut acc = R::of(p[3]);
@@ -378,14 +332,9 @@ mod tests {
     #[test]
     fn exact_zero_of_small_integers_is_decided_by_the_filter() {
         // plane x = 15 through the point (15, 3, 7): 1*15 + 0*3 + 0*7 - 15
-        let v = Interval::point(1.0)
-            .mul(&Interval::point(15.0))
-            .add(&Interval::point(-15.0));
+        let v = Interval::point(1.0).mul(&Interval::point(15.0)).add(&Interval::point(-15.0));
         assert_eq!(v.sign(), Some(Sign::Zero));
-        assert_eq!(
-            plane_point_sign(&[1.0, 0.0, 0.0, -15.0], &[15.0, 3.0, 7.0]),
-            Sign::Zero
-        );
+        assert_eq!(plane_point_sign(&[1.0, 0.0, 0.0, -15.0], &[15.0, 3.0, 7.0]), Sign::Zero);
     }
 
     #[test]

@@ -11,8 +11,7 @@ use num_traits::{One, Zero};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use septa_exact::{
-    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi,
-    barycentric_sign_mi_f64_naive, Sign,
+    barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi, barycentric_sign_mi_f64_naive, Sign,
 };
 
 const CASES: usize = 5_000;
@@ -23,16 +22,8 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
     let n = g.len();
     let mut a: Vec<Vec<BigRational>> = (0..n)
         .map(|i| {
-            let mut row: Vec<BigRational> = if i + 1 == n {
-                vec![BigRational::one(); n]
-            } else {
-                g[i].clone()
-            };
-            row.push(if i + 1 == n {
-                BigRational::one()
-            } else {
-                BigRational::zero()
-            });
+            let mut row: Vec<BigRational> = if i + 1 == n { vec![BigRational::one(); n] } else { g[i].clone() };
+            row.push(if i + 1 == n { BigRational::one() } else { BigRational::zero() });
             row
         })
         .collect();
@@ -54,13 +45,7 @@ fn g_at_vertex(g: &[Vec<BigRational>]) -> Option<BigRational> {
         }
     }
     let v: Vec<BigRational> = (0..n).map(|i| a[i][n].clone()).collect();
-    Some(
-        g[n - 1]
-            .iter()
-            .zip(&v)
-            .map(|(x, y)| x * y)
-            .fold(BigRational::zero(), |s, t| s + t),
-    )
+    Some(g[n - 1].iter().zip(&v).map(|(x, y)| x * y).fold(BigRational::zero(), |s, t| s + t))
 }
 
 fn expected(g: Vec<Vec<BigRational>>) -> Sign {
@@ -107,11 +92,7 @@ fn run_ia<const N: usize>(seed: u64) -> (usize, usize) {
     let (mut zeros, mut naive) = (0, 0);
     for i in 0..CASES {
         let g: [[f64; N]; N] = rows(&mut r, if i % 5 == 0 { 1e-200 } else { 1.0 });
-        let want = expected(
-            g.iter()
-                .map(|row| row.iter().map(|&x| q(x)).collect())
-                .collect(),
-        );
+        let want = expected(g.iter().map(|row| row.iter().map(|&x| q(x)).collect()).collect());
         assert_eq!(barycentric_sign_ia(&g), want, "IA d={} g={g:?}", N - 1);
         zeros += want.is_zero() as usize;
         naive += (barycentric_sign_ia_f64_naive(&g) != want) as usize;
@@ -127,17 +108,8 @@ fn run_mi<const N: usize>(seed: u64) -> (usize, usize) {
         let x: [[f64; N]; N] = rows(&mut r, 1.0);
         let h: [[f64; N]; N] = mat(&mut r, |r| unit(r) * 4.0);
         let f: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| h[i][j] + x[i][j]));
-        let want = expected(
-            (0..N)
-                .map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect())
-                .collect(),
-        );
-        assert_eq!(
-            barycentric_sign_mi(&f, &h),
-            want,
-            "MI d={} f={f:?} h={h:?}",
-            N - 1
-        );
+        let want = expected((0..N).map(|i| (0..N).map(|j| q(f[i][j]) - q(h[i][j])).collect()).collect());
+        assert_eq!(barycentric_sign_mi(&f, &h), want, "MI d={} f={f:?} h={h:?}", N - 1);
         zeros += want.is_zero() as usize;
         naive += (barycentric_sign_mi_f64_naive(&f, &h) != want) as usize;
     }
@@ -146,40 +118,18 @@ fn run_mi<const N: usize>(seed: u64) -> (usize, usize) {
 
 #[test]
 fn ia_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [
-        run_ia::<1>(1),
-        run_ia::<2>(2),
-        run_ia::<3>(3),
-        run_ia::<4>(4),
-    ];
+    let z = [run_ia::<1>(1), run_ia::<2>(2), run_ia::<3>(3), run_ia::<4>(4)];
     eprintln!("IA (zero results, naive mismatches) per d: {z:?}");
-    assert!(
-        z[1..].iter().all(|&(z, _)| z > 0),
-        "degenerate cases must occur"
-    );
+    assert!(z[1..].iter().all(|&(z, _)| z > 0), "degenerate cases must occur");
     // The naive baseline is exact at d = 0 and must fail sometimes above.
     assert_eq!(z[0].1, 0);
-    assert!(
-        z[1..].iter().all(|&(_, n)| n > 0),
-        "the naive baseline should be fooled"
-    );
+    assert!(z[1..].iter().all(|&(_, n)| n > 0), "the naive baseline should be fooled");
 }
 
 #[test]
 fn mi_matches_direct_evaluation_for_d_0_to_3() {
-    let z = [
-        run_mi::<1>(5),
-        run_mi::<2>(6),
-        run_mi::<3>(7),
-        run_mi::<4>(8),
-    ];
+    let z = [run_mi::<1>(5), run_mi::<2>(6), run_mi::<3>(7), run_mi::<4>(8)];
     eprintln!("MI (zero results, naive mismatches) per d: {z:?}");
-    assert!(
-        z[1..].iter().all(|&(z, _)| z > 0),
-        "degenerate cases must occur"
-    );
-    assert!(
-        z[1..].iter().all(|&(_, n)| n > 0),
-        "the naive baseline should be fooled"
-    );
+    assert!(z[1..].iter().all(|&(z, _)| z > 0), "degenerate cases must occur");
+    assert!(z[1..].iter().all(|&(_, n)| n > 0), "the naive baseline should be fooled");
 }

@@ -316,10 +316,7 @@ fn reference_scaling_matches_plain_rational_laplace() {
             1 => singular(&mut r, 300),
             _ => extreme(&mut r, i),
         };
-        let rows: Vec<Vec<_>> = m
-            .iter()
-            .map(|row| row.iter().map(|&x| q(x)).collect())
-            .collect();
+        let rows: Vec<Vec<_>> = m.iter().map(|row| row.iter().map(|&x| q(x)).collect()).collect();
         assert_eq!(sign_q(&det_q(&rows)), ref_ia(&m), "{m:?}");
     }
 }
@@ -330,11 +327,7 @@ fn reference_scaling_matches_plain_rational_laplace() {
 fn underflow_edge<const N: usize>(r: &mut ChaCha8Rng) -> [[f64; N]; N] {
     let mut m: [[f64; N]; N] = mat(r, unit);
     let k = r.gen_range(0..N);
-    let p = if r.gen_bool(0.5) {
-        None
-    } else {
-        Some(r.gen_range(20..=70))
-    };
+    let p = if r.gen_bool(0.5) { None } else { Some(r.gen_range(20..=70)) };
     near_dependent(r, &mut m, k, p);
     let (big, tiny) = match N {
         3 => (r.gen_range(200..=300), r.gen_range(-560..=-470)),

@@ -28,34 +28,15 @@ fn filter_share<const N: usize>(seed: u64) -> (stats::Stats, stats::Stats) {
 
 #[test]
 fn filter_decides_the_large_majority_of_random_cases() {
-    for (n, (ia, mi)) in [
-        (1, filter_share::<1>(1)),
-        (2, filter_share::<2>(2)),
-        (3, filter_share::<3>(3)),
-        (4, filter_share::<4>(4)),
-    ] {
-        eprintln!(
-            "N={n} IA {ia:?} rate {:.5}; MI {mi:?} rate {:.5}",
-            ia.filter_rate(),
-            mi.filter_rate()
-        );
+    for (n, (ia, mi)) in
+        [(1, filter_share::<1>(1)), (2, filter_share::<2>(2)), (3, filter_share::<3>(3)), (4, filter_share::<4>(4))]
+    {
+        eprintln!("N={n} IA {ia:?} rate {:.5}; MI {mi:?} rate {:.5}", ia.filter_rate(), mi.filter_rate());
         assert_eq!(ia.total(), CASES as u64, "one count per call");
         assert_eq!(mi.total(), CASES as u64, "one count per call");
-        assert!(
-            ia.filter_rate() > 0.99,
-            "N={n} IA filter rate {}",
-            ia.filter_rate()
-        );
-        assert!(
-            mi.filter_rate() > 0.99,
-            "N={n} MI filter rate {}",
-            mi.filter_rate()
-        );
-        assert_eq!(
-            ia.bignum + mi.bignum,
-            0,
-            "unit-scale inputs never need bignums"
-        );
+        assert!(ia.filter_rate() > 0.99, "N={n} IA filter rate {}", ia.filter_rate());
+        assert!(mi.filter_rate() > 0.99, "N={n} MI filter rate {}", mi.filter_rate());
+        assert_eq!(ia.bignum + mi.bignum, 0, "unit-scale inputs never need bignums");
     }
 }
 
@@ -63,35 +44,16 @@ fn filter_decides_the_large_majority_of_random_cases() {
 fn each_tier_is_counted() {
     stats::reset();
     // Filter: well-conditioned.
-    assert_eq!(
-        det_sign(&[[2.0, 1.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 4.0]]),
-        Sign::Positive
-    );
+    assert_eq!(det_sign(&[[2.0, 1.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 4.0]]), Sign::Positive);
     // Exact zero row: decided by the filter through a zero permanent.
-    assert_eq!(
-        det_sign(&[[2.0, 1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 4.0]]),
-        Sign::Zero
-    );
-    assert_eq!(
-        stats::snapshot(),
-        stats::Stats {
-            filter: 2,
-            expansion: 0,
-            bignum: 0
-        }
-    );
+    assert_eq!(det_sign(&[[2.0, 1.0, 0.0], [0.0, 0.0, 0.0], [0.0, 1.0, 4.0]]), Sign::Zero);
+    assert_eq!(stats::snapshot(), stats::Stats { filter: 2, expansion: 0, bignum: 0 });
     // Exact tier (i128 shortcut): exactly singular with a nonzero permanent.
-    assert_eq!(
-        det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]),
-        Sign::Zero
-    );
+    assert_eq!(det_sign(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0], [7.0, 8.0, 9.0]]), Sign::Zero);
     assert_eq!(stats::snapshot().expansion, 1);
     // Exact tier (expansions): full-precision rows, exactly singular.
     let (x, y) = (0.1, 0.7);
-    assert_eq!(
-        det_sign(&[[x, y, 1.0], [x, y, 1.0], [0.3, 0.2, 0.9]]),
-        Sign::Zero
-    );
+    assert_eq!(det_sign(&[[x, y, 1.0], [x, y, 1.0], [0.3, 0.2, 0.9]]), Sign::Zero);
     assert_eq!(stats::snapshot().expansion, 2);
     // Subnormal entries in narrow rows: still the i128 shortcut.
     let tiny = f64::from_bits(3);
@@ -100,14 +62,7 @@ fn each_tier_is_counted() {
     // Bignum: rows spanning 1e-300 .. 1, outside the exponent window.
     let m = [[1e-300, 1.0, 0.0], [0.0, 1.0, 1e-300], [1.0, 0.0, 1.0]];
     assert_eq!(det_sign(&m), Sign::Positive);
-    assert_eq!(
-        stats::snapshot(),
-        stats::Stats {
-            filter: 2,
-            expansion: 3,
-            bignum: 1
-        }
-    );
+    assert_eq!(stats::snapshot(), stats::Stats { filter: 2, expansion: 3, bignum: 1 });
 }
 
 #[test]
@@ -184,16 +139,8 @@ fn filter_is_sharp_on_near_degenerate_input() {
         // filter must decline (IA N=2 is decided by its monotone compare
         // whenever the two rounded products differ, which they usually do).
         if n > 2 {
-            assert!(
-                fine.0 < 0.05,
-                "N={n}: IA filter decided {} below its resolution",
-                fine.0
-            );
+            assert!(fine.0 < 0.05, "N={n}: IA filter decided {} below its resolution", fine.0);
         }
-        assert!(
-            fine.1 < 0.5,
-            "N={n}: MI filter decided {} below its resolution",
-            fine.1
-        );
+        assert!(fine.1 < 0.5, "N={n}: MI filter decided {} below its resolution", fine.1);
     }
 }

@@ -21,7 +21,8 @@ pub fn cut<'py>(
     planes: PyReadonlyArray2<'py, f64>,
     threads: usize,
 ) -> PyResult<String> {
-    let shape_err = |what: &str, n: usize, s: &[usize]| InputError::new_err(format!("{what}: expected shape (N, {n}), got {s:?}"));
+    let shape_err =
+        |what: &str, n: usize, s: &[usize]| InputError::new_err(format!("{what}: expected shape (N, {n}), got {s:?}"));
     if vertices.shape()[1] != 3 {
         return Err(shape_err("vertices", 3, vertices.shape()));
     }

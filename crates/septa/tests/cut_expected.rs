@@ -12,14 +12,7 @@ use std::path::Path;
 fn data() -> String {
     common::shared_data().display().to_string()
 }
-const SMALL: &[&str] = &[
-    "cube",
-    "staircase",
-    "knight",
-    "plate_genus9",
-    "bunny",
-    "fertility",
-];
+const SMALL: &[&str] = &["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"];
 
 #[test]
 fn counts_match_reference() {
@@ -40,29 +33,16 @@ fn counts_match_reference() {
             continue;
         }
         let mesh = read_mesh(Path::new(&format!("{}/meshes/{mesh_name}", data()))).unwrap();
-        let planes = read_planes(Path::new(&format!("{}/topocut/{}", data(),
-            case["planes"].as_str().unwrap()
-        )))
-        .unwrap();
+        let planes =
+            read_planes(Path::new(&format!("{}/topocut/{}", data(), case["planes"].as_str().unwrap()))).unwrap();
         let t = std::time::Instant::now();
-        let out = cut_mesh(
-            &mesh.vertices,
-            &mesh.triangles,
-            &planes,
-            &CutOptions::default(),
-        )
-        .unwrap();
+        let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &CutOptions::default()).unwrap();
         let secs = t.elapsed().as_secs_f64();
         ran += 1;
         let c = out.counts;
         let want = |k: &str| case[k].as_u64().unwrap() as usize;
         let got = [c.cut_vertices, c.cut_edges, c.cut_faces, c.cut_cells];
-        let exp4 = [
-            want("cut_vertices"),
-            want("cut_edges"),
-            want("cut_faces"),
-            want("cut_cells"),
-        ];
+        let exp4 = [want("cut_vertices"), want("cut_edges"), want("cut_faces"), want("cut_cells")];
         let check = out.validate();
         eprintln!(
             "{name:20} got {got:?} want {exp4:?} {} {:.3}s fallbacks {} check {:?}",
@@ -71,19 +51,10 @@ fn counts_match_reference() {
             out.stats.exact_fallbacks,
             check
                 .as_ref()
-                .map(|v| (
-                    v.euler,
-                    v.euler_by_cell,
-                    v.domain_euler,
-                    v.non_ball_cells,
-                    v.volume_relative_error
-                ))
+                .map(|v| (v.euler, v.euler_by_cell, v.domain_euler, v.non_ball_cells, v.volume_relative_error))
                 .map_err(|e| e.to_string())
         );
-        let euler_ok = check
-            .as_ref()
-            .map(|v| v.euler_by_cell == v.domain_euler)
-            .unwrap_or(false);
+        let euler_ok = check.as_ref().map(|v| v.euler_by_cell == v.domain_euler).unwrap_or(false);
         if got != exp4 || !euler_ok {
             failures.push(name.clone());
         }

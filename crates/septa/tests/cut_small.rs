@@ -27,10 +27,7 @@ fn cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
         [7, 6, 5],
         [8, 6, 7],
     ];
-    (
-        v,
-        t.iter().map(|f| [f[0] - 1, f[1] - 1, f[2] - 1]).collect(),
-    )
+    (v, t.iter().map(|f| [f[0] - 1, f[1] - 1, f[2] - 1]).collect())
 }
 
 #[test]

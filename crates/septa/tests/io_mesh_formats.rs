@@ -15,12 +15,7 @@ fn tmp(name: &str, bytes: &[u8]) -> PathBuf {
     p
 }
 
-const V: [[f64; 3]; 4] = [
-    [0.0, 0.0, 0.0],
-    [1.0, 0.0, 0.0],
-    [0.0, 1.0, 0.0],
-    [0.0, 0.0, 1.0],
-];
+const V: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 const T: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
 
 #[test]
@@ -68,11 +63,7 @@ fn every_format_reads_the_same_tetrahedron() {
         let m = read_mesh(&tmp(name, &bytes)).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(m.vertices.len(), 4, "{name}");
         // same triangles up to vertex renumbering (STL welds in first-use order)
-        let tris: Vec<[[f64; 3]; 3]> = m
-            .triangles
-            .iter()
-            .map(|t| t.map(|k| m.vertices[k as usize]))
-            .collect();
+        let tris: Vec<[[f64; 3]; 3]> = m.triangles.iter().map(|t| t.map(|k| m.vertices[k as usize])).collect();
         let want: Vec<[[f64; 3]; 3]> = T.iter().map(|t| t.map(|k| V[k as usize])).collect();
         assert_eq!(tris, want, "{name}");
     }
@@ -108,21 +99,12 @@ fn plane_files_and_generators() {
 
 #[test]
 fn reference_plane_files_match_the_grid_generator() {
-    for mesh in [
-        "cube",
-        "staircase",
-        "knight",
-        "plate_genus9",
-        "bunny",
-        "fertility",
-    ] {
+    for mesh in ["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"] {
         let data = common::shared_data();
         let m = read_mesh(&data.join(format!("meshes/{mesh}.obj"))).unwrap();
         for n in [5, 10, 20] {
-            let f = septa::io::planes::read_planes(Path::new(&format!(
-                "{}/topocut/{mesh}.A{n}.plane", data.display()
-            )))
-            .unwrap();
+            let f = septa::io::planes::read_planes(Path::new(&format!("{}/topocut/{mesh}.A{n}.plane", data.display())))
+                .unwrap();
             assert_eq!(grid_planes(&m.vertices, n), f, "{mesh} A{n}");
         }
     }

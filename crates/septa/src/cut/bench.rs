@@ -30,15 +30,7 @@ pub fn time_case(
     let p = read_planes(planes)?;
     let read_seconds = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
-    let out = cut_mesh(
-        &m.vertices,
-        &m.triangles,
-        &p,
-        &CutOptions {
-            threads,
-            ..Default::default()
-        },
-    )?;
+    let out = cut_mesh(&m.vertices, &m.triangles, &p, &CutOptions { threads, ..Default::default() })?;
     Ok(CutTiming {
         counts: out.counts,
         read_seconds,

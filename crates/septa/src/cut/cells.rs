@@ -69,8 +69,7 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
     // incident (edge key, face loop, traverses min -> max, its own direction
     // label), grouped by sorting (no per-edge allocation)
-    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> =
-        Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
+    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> = Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
     for (f, fl) in faces.iter().enumerate() {
         let n = fl.verts.len();
         for i in 0..n {
@@ -107,10 +106,8 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
             let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
-            let iws: Vec<V3<Interval>> = items
-                .iter()
-                .map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up)))
-                .collect();
+            let iws: Vec<V3<Interval>> =
+                items.iter().map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up))).collect();
             let class = |x: (Support, (LineDir, bool)), iwx: &V3<Interval>| -> u8 {
                 fn b<R: Ring>(
                     c: &Ctx,
@@ -119,31 +116,20 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     x: (Support, (LineDir, bool)),
                 ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(
-                        &dv,
-                        &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)),
-                    )
+                    dot3(&dv, &cross3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1)))
                 }
-                fn a<R: Ring>(
-                    c: &Ctx,
-                    w0: (Support, (LineDir, bool)),
-                    x: (Support, (LineDir, bool)),
-                ) -> R {
+                fn a<R: Ring>(c: &Ctx, w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
                 let sb = match dot3(&dv_i, &cross3(&iws[0], iwx)).sign() {
                     Some(s) => s,
-                    None => {
-                        filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x))
-                    }
+                    None => filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x)),
                 };
                 match sb {
                     Sign::Positive => 1,
                     Sign::Negative => 3,
                     Sign::Zero => {
-                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x))
-                            == Sign::Positive
-                        {
+                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x)) == Sign::Positive {
                             0
                         } else {
                             2
@@ -183,15 +169,12 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     wy: (Support, (LineDir, bool)),
                 ) -> R {
                     let dv = dir_vec::<R>(c, d.0, d.1);
-                    dot3(
-                        &dv,
-                        &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)),
-                    )
+                    dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
                 }
                 let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
-                match quick.unwrap_or_else(|| {
-                    filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy))
-                }) {
+                match quick
+                    .unwrap_or_else(|| filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy)))
+                {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,
@@ -244,10 +227,5 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
         }
     }
     let _ = neg3::<Interval>;
-    Cells {
-        cell_of,
-        count: ids.len(),
-        edges: nedges,
-        ordered_edges: ordered,
-    }
+    Cells { cell_of, count: ids.len(), edges: nedges, ordered_edges: ordered }
 }

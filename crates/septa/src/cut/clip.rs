@@ -80,14 +80,9 @@ pub struct Clipped {
 /// Clips every triangle by the planes crossing it (in parallel; the
 /// result is in triangle order whatever the thread count).
 pub fn clip_all(c: &Ctx) -> Clipped {
-    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> = (0..c.tris.len() as u32)
-        .into_par_iter()
-        .map(|t| clip_tri(c, t))
-        .collect();
-    let mut out = Clipped {
-        pieces: Vec::new(),
-        interior: Vec::new(),
-    };
+    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> =
+        (0..c.tris.len() as u32).into_par_iter().map(|t| clip_tri(c, t)).collect();
+    let mut out = Clipped { pieces: Vec::new(), interior: Vec::new() };
     for (p, i) in per {
         out.pieces.extend(p);
         out.interior.extend(i);
@@ -116,10 +111,7 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
             tri: t,
             nodes: tri.iter().map(|&v| Def::V(v)).collect(),
             boxes: tri.iter().map(|_| None).collect(),
-            lines: c.tri_edges[t as usize]
-                .iter()
-                .map(|&e| EdgeLine::Mesh(e))
-                .collect(),
+            lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
         };
         polys.clear();
         polys.push(first);
@@ -149,18 +141,8 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
                     next.push(poly);
                     continue;
                 }
-                let mut a = Work {
-                    tri: t,
-                    nodes: SmallVec::new(),
-                    lines: SmallVec::new(),
-                    boxes: SmallVec::new(),
-                };
-                let mut b = Work {
-                    tri: t,
-                    nodes: SmallVec::new(),
-                    lines: SmallVec::new(),
-                    boxes: SmallVec::new(),
-                };
+                let mut a = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
+                let mut b = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
                 let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
                 let n = poly.nodes.len();

@@ -45,9 +45,7 @@ pub enum CutError {
         b: u32,
     },
     /// An edge with only one triangle.
-    #[error(
-        "edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight"
-    )]
+    #[error("edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight")]
     NotWatertight {
         /// Triangle index.
         triangle: usize,

@@ -157,10 +157,7 @@ impl Ctx<'_> {
                 let e1 = sub3(&v3(&self.verts[b as usize]), &a);
                 let e2 = sub3(&v3(&self.verts[c as usize]), &a);
                 let (np, nq) = (self.pn::<R>(p), self.pn::<R>(q));
-                let (dp, dq) = (
-                    R::of(self.planes[p as usize][3]),
-                    R::of(self.planes[q as usize][3]),
-                );
+                let (dp, dq) = (R::of(self.planes[p as usize][3]), R::of(self.planes[q as usize][3]));
                 let m00 = dot3(&np, &e1);
                 let m01 = dot3(&np, &e2);
                 let m10 = dot3(&nq, &e1);
@@ -214,10 +211,7 @@ impl Ctx<'_> {
             let x = dot3(&hb, &dv).mul(&wa).sub(&dot3(&ha, &dv).mul(&wb));
             x.mul(&wa).mul(&wb)
         }
-        filtered_sign(
-            || f::<Interval>(self, a, b, dir),
-            || f::<Exact>(self, a, b, dir),
-        )
+        filtered_sign(|| f::<Interval>(self, a, b, dir), || f::<Exact>(self, a, b, dir))
     }
 
     /// Approximate coordinates of a cut-vertex (for output).
@@ -230,11 +224,7 @@ impl Ctx<'_> {
         } else {
             let (h, w) = self.hom::<Exact>(d);
             let w = w.to_f64_approx();
-            [
-                h[0].to_f64_approx() / w,
-                h[1].to_f64_approx() / w,
-                h[2].to_f64_approx() / w,
-            ]
+            [h[0].to_f64_approx() / w, h[1].to_f64_approx() / w, h[2].to_f64_approx() / w]
         }
     }
 
@@ -253,10 +243,7 @@ impl Ctx<'_> {
         fn f<R: Ring>(c: &Ctx, p: u32, q: u32, r: u32) -> R {
             dot3(&c.pn::<R>(p), &cross3(&c.pn(q), &c.pn(r)))
         }
-        filtered_sign(
-            || f::<Interval>(self, p, q, r),
-            || f::<Exact>(self, p, q, r),
-        )
+        filtered_sign(|| f::<Interval>(self, p, q, r), || f::<Exact>(self, p, q, r))
     }
 
     /// Sign of `det M` of App. B for triangle `t` and planes `p, q`:
@@ -265,9 +252,6 @@ impl Ctx<'_> {
         fn f<R: Ring>(c: &Ctx, t: u32, p: u32, q: u32) -> R {
             c.hom::<R>(Def::TPP(t, p, q)).1
         }
-        filtered_sign(
-            || f::<Interval>(self, t, p, q),
-            || f::<Exact>(self, t, p, q),
-        )
+        filtered_sign(|| f::<Interval>(self, t, p, q), || f::<Exact>(self, t, p, q))
     }
 }

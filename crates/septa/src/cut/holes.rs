@@ -25,23 +25,13 @@ fn coord_cmp(c: &Ctx, a: Def, b: Def, k: usize) -> Sign {
 /// Sign of `g . (b - a)` for a fixed direction `g` in general position with
 /// respect to axis-aligned data (so ties, which need the exact path, are rare).
 fn generic_cmp(c: &Ctx, a: Def, b: Def) -> Sign {
-    const G: [f64; 3] = [
-        0.7548776662466927,
-        0.5698402909980532,
-        0.324_717_957_244_746,
-    ];
+    const G: [f64; 3] = [0.7548776662466927, 0.5698402909980532, 0.324_717_957_244_746];
     fn f<R: Ring>(c: &Ctx, a: Def, b: Def) -> R {
         let (ha, wa) = c.hom::<R>(a);
         let (hb, wb) = c.hom::<R>(b);
         let g = [R::of(G[0]), R::of(G[1]), R::of(G[2])];
-        let ga = ha[0]
-            .mul(&g[0])
-            .add(&ha[1].mul(&g[1]))
-            .add(&ha[2].mul(&g[2]));
-        let gb = hb[0]
-            .mul(&g[0])
-            .add(&hb[1].mul(&g[1]))
-            .add(&hb[2].mul(&g[2]));
+        let ga = ha[0].mul(&g[0]).add(&ha[1].mul(&g[1])).add(&ha[2].mul(&g[2]));
+        let gb = hb[0].mul(&g[0]).add(&hb[1].mul(&g[1])).add(&hb[2].mul(&g[2]));
         gb.mul(&wa).sub(&ga.mul(&wb)).mul(&wa).mul(&wb)
     }
     filtered_sign(|| f::<Interval>(c, a, b), || f::<Exact>(c, a, b))
@@ -94,22 +84,13 @@ fn contains(c: &Ctx, ccw: &Ccw, rep: &[Def], l: &PlaneLoop, p: Def) -> bool {
             let (hb, bw) = c.hom::<R>(b);
             let (hp, pw) = c.hom::<R>(p);
             let (ax, ay, bx, by, px, py) = (&ha[i], &ha[j], &hb[i], &hb[j], &hp[i], &hp[j]);
-            let t1 = ax
-                .mul(&pw)
-                .sub(&px.mul(&aw))
-                .mul(&by.mul(&aw).sub(&ay.mul(&bw)));
-            let t2 = py
-                .mul(&aw)
-                .sub(&ay.mul(&pw))
-                .mul(&bx.mul(&aw).sub(&ax.mul(&bw)));
+            let t1 = ax.mul(&pw).sub(&px.mul(&aw)).mul(&by.mul(&aw).sub(&ay.mul(&bw)));
+            let t2 = py.mul(&aw).sub(&ay.mul(&pw)).mul(&bx.mul(&aw).sub(&ax.mul(&bw)));
             // sign(E) * sign(B.y - A.y) = sign(N * pw * bw) * sign((by aw - ay bw) * aw * bw)
             let dy = by.mul(&aw).sub(&ay.mul(&bw)).mul(&aw).mul(&bw);
             t1.add(&t2).mul(&pw).mul(&bw).mul(&dy)
         }
-        let s = filtered_sign(
-            || e::<Interval>(c, a, b, p, i, j),
-            || e::<Exact>(c, a, b, p, i, j),
-        );
+        let s = filtered_sign(|| e::<Interval>(c, a, b, p, i, j), || e::<Exact>(c, a, b, p, i, j));
         if s == Sign::Negative {
             inside = !inside;
         }
@@ -121,10 +102,7 @@ fn contains(c: &Ctx, ccw: &Ccw, rep: &[Def], l: &PlaneLoop, p: Def) -> bool {
 pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (usize, usize) {
     let pl = &c.planes[p as usize];
     let ccw = Ccw::new(&[pl[0], pl[1], pl[2]]);
-    let outer: Vec<bool> = loops
-        .iter()
-        .map(|l| l.has_line_edge || is_outer(c, &ccw, rep, l))
-        .collect();
+    let outer: Vec<bool> = loops.iter().map(|l| l.has_line_edge || is_outer(c, &ccw, rep, l)).collect();
     let holes: Vec<usize> = (0..loops.len()).filter(|&k| !outer[k]).collect();
     for (k, l) in loops.iter_mut().enumerate() {
         l.outer = k as u32;
@@ -133,9 +111,7 @@ pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (u
         return (0, 0);
     }
     let np = c.planes.len() as u32;
-    let others: Vec<u32> = (0..np)
-        .filter(|&q| q != p && c.planes_cross(p.min(q), p.max(q)))
-        .collect();
+    let others: Vec<u32> = (0..np).filter(|&q| q != p && c.planes_cross(p.min(q), p.max(q))).collect();
     let mut tested = 0;
     for &h in &holes {
         // side of the hole on each other plane
@@ -153,13 +129,10 @@ pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (u
         let cands: Vec<usize> = (0..loops.len())
             .filter(|&k| outer[k])
             .filter(|&k| {
-                others.iter().zip(&sig).all(|(&q, &s)| {
-                    s == Sign::Zero
-                        || loops[k]
-                            .verts
-                            .iter()
-                            .all(|&v| c.side(rep[v as usize], q) != -s)
-                })
+                others
+                    .iter()
+                    .zip(&sig)
+                    .all(|(&q, &s)| s == Sign::Zero || loops[k].verts.iter().all(|&v| c.side(rep[v as usize], q) != -s))
             })
             .collect();
         let pick = if cands.len() == 1 {
@@ -167,19 +140,13 @@ pub fn assign_holes(c: &Ctx, p: u32, rep: &[Def], loops: &mut [PlaneLoop]) -> (u
         } else {
             tested += 1;
             let pt = rep[loops[h].verts[lexmin(c, &ccw, rep, &loops[h].verts)] as usize];
-            let inside: Vec<usize> = cands
-                .iter()
-                .copied()
-                .filter(|&k| contains(c, &ccw, rep, &loops[k], pt))
-                .collect();
+            let inside: Vec<usize> = cands.iter().copied().filter(|&k| contains(c, &ccw, rep, &loops[k], pt)).collect();
             // innermost: the one whose corner lies inside every other candidate
             *inside
                 .iter()
                 .find(|&&x| {
                     let q = rep[loops[x].verts[0] as usize];
-                    inside
-                        .iter()
-                        .all(|&y| y == x || contains(c, &ccw, rep, &loops[y], q))
+                    inside.iter().all(|&y| y == x || contains(c, &ccw, rep, &loops[y], q))
                 })
                 .or(inside.first())
                 .unwrap_or(&h)

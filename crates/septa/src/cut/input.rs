@@ -24,10 +24,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
     order.sort_unstable_by_key(|&i| (key(i), i));
     for w in order.windows(2) {
         if key(w[0]) == key(w[1]) {
-            return Err(CutError::DuplicateVertex {
-                first: w[0] as usize,
-                second: w[1] as usize,
-            });
+            return Err(CutError::DuplicateVertex { first: w[0] as usize, second: w[1] as usize });
         }
     }
     let nv = verts.len() as u32;
@@ -48,10 +45,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
                 let (e2i, e2j) = (c[i].sub(&a[i]), c[j].sub(&a[j]));
                 e1i.mul(&e2j).sub(&e1j.mul(&e2i))
             }
-            filtered_sign(
-                || f::<Interval>(verts, tri, k),
-                || f::<Exact>(verts, tri, k),
-            ) == Sign::Zero
+            filtered_sign(|| f::<Interval>(verts, tri, k), || f::<Exact>(verts, tri, k)) == Sign::Zero
         });
         if zero {
             return Err(CutError::DegenerateTriangle { triangle: t });
@@ -76,25 +70,15 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             j += 1;
         }
         let (u, v, _, t, _) = sides[i];
-        let (fw, bw): (Vec<&(u32, u32, bool, u32, u8)>, Vec<_>) =
-            sides[i..j].iter().partition(|s| s.2);
+        let (fw, bw): (Vec<&(u32, u32, bool, u32, u8)>, Vec<_>) = sides[i..j].iter().partition(|s| s.2);
         if fw.len() > 1 || bw.len() > 1 {
             let two = if fw.len() > 1 { &fw } else { &bw };
             let (a, b) = if two[0].2 { (u, v) } else { (v, u) };
-            return Err(CutError::NonManifoldOrFlipped {
-                triangle: two[1].3 as usize,
-                other: two[0].3 as usize,
-                a,
-                b,
-            });
+            return Err(CutError::NonManifoldOrFlipped { triangle: two[1].3 as usize, other: two[0].3 as usize, a, b });
         }
         if fw.is_empty() || bw.is_empty() {
             let (a, b) = if sides[i].2 { (u, v) } else { (v, u) };
-            return Err(CutError::NotWatertight {
-                triangle: t as usize,
-                a,
-                b,
-            });
+            return Err(CutError::NotWatertight { triangle: t as usize, a, b });
         }
         let e = edges.len() as u32;
         edges.push([u, v]);
@@ -127,11 +111,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             let k = tri.iter().position(|&x| x == v as u32).unwrap();
             // the side entering v; its other triangle is the next in the fan
             let e = tri_edges[t as usize][(k + 2) % 3] as usize;
-            t = if edge_tris[e][0] == t {
-                edge_tris[e][1]
-            } else {
-                edge_tris[e][0]
-            };
+            t = if edge_tris[e][0] == t { edge_tris[e][1] } else { edge_tris[e][0] };
             if t == t0 || count > valence[v] {
                 break;
             }
@@ -145,11 +125,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
     let mut scale = 0.0f64;
     for tri in tris {
         let [a, b, c] = tri.map(|i| verts[i as usize]);
-        let cr = [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ];
+        let cr = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
         vol += (cr[0] * c[0] + cr[1] * c[1] + cr[2] * c[2]) / 6.0;
         scale = scale.max(a.iter().chain(b.iter()).fold(0.0f64, |m, x| m.max(x.abs())));
     }
@@ -165,10 +141,7 @@ fn verts3<R: Ring>(v: &[f64; 3]) -> [R; 3] {
 
 /// Checks planes; returns the indices kept (duplicates of an earlier plane
 /// dropped, reported in `dropped`).
-pub fn check_planes(
-    planes: &[[f64; 4]],
-    dropped: &mut Vec<(usize, usize)>,
-) -> Result<Vec<usize>, CutError> {
+pub fn check_planes(planes: &[[f64; 4]], dropped: &mut Vec<(usize, usize)>) -> Result<Vec<usize>, CutError> {
     let mut keep: Vec<usize> = Vec::new();
     for (i, p) in planes.iter().enumerate() {
         if p.iter().any(|x| !x.is_finite()) {

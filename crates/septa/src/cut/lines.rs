@@ -99,12 +99,7 @@ pub fn register(lines: &mut LinePoints, crosses: &[bool], np: usize, node: u32, 
 
 /// Mesh edges cut by planes: for each edge, the ordered distinct points
 /// from `u` to `v`; registers every point that lies on two planes.
-pub fn mesh_edges(
-    c: &Ctx,
-    nodes: &mut Nodes,
-    lines: &mut LinePoints,
-    crosses: &[bool],
-) -> Vec<Vec<u32>> {
+pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &[bool]) -> Vec<Vec<u32>> {
     let np = c.planes.len();
     let mut chains = Vec::with_capacity(c.edges.len());
     let mut pts = Vec::new();

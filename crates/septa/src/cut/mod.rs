@@ -175,10 +175,7 @@ pub fn cut_mesh(
     if opts.threads == 0 {
         return cut_impl(vertices, triangles, planes, opts);
     }
-    match rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads)
-        .build()
-    {
+    match rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build() {
         Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes, opts)),
         Err(_) => cut_impl(vertices, triangles, planes, opts),
     }
@@ -197,14 +194,9 @@ fn cut_impl(
     let mut lap = |name: &str, stats: &mut CutStats| {
         if debug {
             let rss = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
-            eprintln!(
-                "stage {name}: {:.3}s statm {rss}",
-                clock.elapsed().as_secs_f64()
-            );
+            eprintln!("stage {name}: {:.3}s statm {rss}", clock.elapsed().as_secs_f64());
         }
-        stats
-            .seconds
-            .push((name.to_string(), clock.elapsed().as_secs_f64()));
+        stats.seconds.push((name.to_string(), clock.elapsed().as_secs_f64()));
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
@@ -219,27 +211,16 @@ fn cut_impl(
     let np = planes.len();
     let mut pv = vec![0i8; np * nv];
     if nv > 0 {
-        pv.par_chunks_mut(nv)
-            .zip(planes.par_iter())
-            .for_each(|(row, pl)| {
-                for (r, x) in row.iter_mut().zip(vertices) {
-                    *r = septa_exact::plane_point_sign(pl, x).as_i8();
-                }
-            });
+        pv.par_chunks_mut(nv).zip(planes.par_iter()).for_each(|(row, pl)| {
+            for (r, x) in row.iter_mut().zip(vertices) {
+                *r = septa_exact::plane_point_sign(pl, x).as_i8();
+            }
+        });
     }
-    let c = Ctx {
-        verts: vertices,
-        tris: triangles,
-        planes: &planes,
-        edges,
-        tri_edges,
-        edge_tris,
-        pv,
-        tn_iv: Vec::new(),
-    };
-    let tn_iv: Vec<[septa_exact::Interval; 3]> = (0..triangles.len() as u32)
-        .map(|t| c.tn_compute::<septa_exact::Interval>(t))
-        .collect();
+    let c =
+        Ctx { verts: vertices, tris: triangles, planes: &planes, edges, tri_edges, edge_tris, pv, tn_iv: Vec::new() };
+    let tn_iv: Vec<[septa_exact::Interval; 3]> =
+        (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Interval>(t)).collect();
     let c = Ctx { tn_iv, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
@@ -257,11 +238,8 @@ fn cut_impl(
         let n = nodes.get(*d);
         lines::register(&mut line_pts, &crosses, np, n, z);
     }
-    let piece_nodes: Vec<Vec<u32>> = clipped
-        .pieces
-        .iter()
-        .map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect())
-        .collect();
+    let piece_nodes: Vec<Vec<u32>> =
+        clipped.pieces.iter().map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect()).collect();
     lap("triangles", &mut stats);
     let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
     lap("plane_lines", &mut stats);
@@ -278,26 +256,16 @@ fn cut_impl(
     }
     let cid = |n: u32| canon[n as usize];
     // boundary edge maps and per-plane edge lists
-    let mut bnd = Boundary {
-        gamma: FxMap::default(),
-        mesh: FxMap::default(),
-    };
+    let mut bnd = Boundary { gamma: FxMap::default(), mesh: FxMap::default() };
     let mut pedges: Vec<Vec<GEdge>> = vec![Vec::new(); np];
     for (e, chain) in chains.iter().enumerate() {
         let [u, v] = c.edges[e];
-        let inside: Vec<u32> = (0..np as u32)
-            .filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0)
-            .collect();
+        let inside: Vec<u32> = (0..np as u32).filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0).collect();
         for w in chain.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
             for &p in &inside {
-                pedges[p as usize].push(GEdge {
-                    a,
-                    b,
-                    dir: LineDir::Mesh(e as u32),
-                    fwd: true,
-                });
+                pedges[p as usize].push(GEdge { a, b, dir: LineDir::Mesh(e as u32), fwd: true });
             }
         }
     }
@@ -305,26 +273,17 @@ fn cut_impl(
     for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
         let t = piece.tri;
         let n = pn.len();
-        let mut fl = FaceLoop {
-            support: Support::Tri(t),
-            verts: Vec::with_capacity(n),
-            dirs: Vec::with_capacity(n),
-            face: 0,
-        };
+        let mut fl =
+            FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
         for i in 0..n {
             let (na, nb) = (pn[i], pn[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
             fl.verts.push(a);
             match piece.lines[i] {
-                EdgeLine::Mesh(e) => fl
-                    .dirs
-                    .push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
+                EdgeLine::Mesh(e) => fl.dirs.push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
                 EdgeLine::Plane(p, fwd) => {
                     let dir = LineDir::TriPlane(t, p);
-                    debug_assert_eq!(
-                        fwd,
-                        c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive
-                    );
+                    debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
                     fl.dirs.push((dir, fwd));
                     bnd.gamma.insert((a.min(b), a.max(b)), t);
                     pedges[p as usize].push(GEdge { a, b, dir, fwd });
@@ -338,18 +297,12 @@ fn cut_impl(
         // outside the domain (a point's representative triple is (P,P,P)
         // only when no mesh triple names it)
         let on_mesh = |n: &u32| !matches!(rep[cid(*n) as usize], Def::PPP(..));
-        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh))
-        else {
+        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh)) else {
             continue;
         };
         for w in pts[i0..=i1].windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
-            let ge = GEdge {
-                a,
-                b,
-                dir: LineDir::PlanePlane(*p, *q),
-                fwd: true,
-            };
+            let ge = GEdge { a, b, dir: LineDir::PlanePlane(*p, *q), fwd: true };
             pedges[*p as usize].push(ge);
             pedges[*q as usize].push(ge);
         }
@@ -382,12 +335,7 @@ fn cut_impl(
         }
         for l in loops {
             let face = id[l.outer as usize];
-            faces.push(FaceLoop {
-                support: Support::Plane(l.plane),
-                verts: l.verts,
-                dirs: l.dirs,
-                face,
-            });
+            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs, face });
         }
     }
     stats.holes = nholes;
@@ -411,11 +359,7 @@ fn cut_impl(
     let mut moved: Vec<u32> = Vec::new();
     let to_out = |n: &u32| used[cid(*n) as usize];
     for chain in chains.iter() {
-        let l: Vec<u32> = chain
-            .iter()
-            .map(to_out)
-            .filter(|&v| v != u32::MAX)
-            .collect();
+        let l: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
         output::enforce_line_order(&mut out.vertices, &l, &mut moved);
     }
     for (_, pts) in &plines {
@@ -428,14 +372,7 @@ fn cut_impl(
     out.num_cells = cells.count;
     out.cell_volumes = vec![0.0; cells.count];
     let nf = nface as usize;
-    out.faces = vec![
-        CutFace {
-            support: Support::Plane(0),
-            loops: Vec::new(),
-            cells: [u32::MAX; 2]
-        };
-        nf
-    ];
+    out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
     for f in faces.iter() {
         let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
         let i = f.face as usize;
@@ -463,15 +400,8 @@ fn cut_impl(
         .iter()
         .map(|t| {
             let [a, b, cc] = t.map(|i| vertices[i as usize]);
-            let (u, v) = (
-                [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-                [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]],
-            );
-            [
-                u[1] * v[2] - u[2] * v[1],
-                u[2] * v[0] - u[0] * v[2],
-                u[0] * v[1] - u[1] * v[0],
-            ]
+            let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]]);
+            [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
         })
         .collect();
     out.mesh_euler = nv as i64 - c.edges.len() as i64 + triangles.len() as i64;

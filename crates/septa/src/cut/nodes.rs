@@ -83,11 +83,7 @@ impl Nodes {
         if ra == rb {
             return;
         }
-        let (keep, drop) = if self.defs[ra as usize] <= self.defs[rb as usize] {
-            (ra, rb)
-        } else {
-            (rb, ra)
-        };
+        let (keep, drop) = if self.defs[ra as usize] <= self.defs[rb as usize] { (ra, rb) } else { (rb, ra) };
         self.parent[drop as usize] = keep;
     }
 

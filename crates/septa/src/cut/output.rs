@@ -9,15 +9,8 @@ pub fn loop_volume(x: &[[f64; 3]], verts: &[u32]) -> f64 {
         let a = x[verts[i] as usize];
         let b = x[verts[i + 1] as usize];
         // relative to o for accuracy; the closed surface sum is unchanged
-        let (a, b) = (
-            [a[0] - o[0], a[1] - o[1], a[2] - o[2]],
-            [b[0] - o[0], b[1] - o[1], b[2] - o[2]],
-        );
-        let cr = [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ];
+        let (a, b) = ([a[0] - o[0], a[1] - o[1], a[2] - o[2]], [b[0] - o[0], b[1] - o[1], b[2] - o[2]]);
+        let cr = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
         s += cr[0] * o[0] + cr[1] * o[1] + cr[2] * o[2];
     }
     s / 6.0
@@ -44,9 +37,7 @@ pub fn enforce_line_order(x: &mut [[f64; 3]], line: &[u32], moved: &mut Vec<u32>
         return;
     }
     let t = [d[0] / n, d[1] / n, d[2] / n];
-    let dot = |p: [f64; 3], q: [f64; 3]| {
-        (q[0] - p[0]) * t[0] + (q[1] - p[1]) * t[1] + (q[2] - p[2]) * t[2]
-    };
+    let dot = |p: [f64; 3], q: [f64; 3]| (q[0] - p[0]) * t[0] + (q[1] - p[1]) * t[1] + (q[2] - p[2]) * t[2];
     for w in line.windows(2) {
         let p = x[w[0] as usize];
         let mut q = x[w[1] as usize];

@@ -82,23 +82,14 @@ pub(crate) struct Ccw {
 
 impl Ccw {
     pub(crate) fn new(n: &[f64; 3]) -> Ccw {
-        let k = (0..3)
-            .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
-            .unwrap();
-        Ccw {
-            i: (k + 1) % 3,
-            j: (k + 2) % 3,
-            flip: n[k] < 0.0,
-        }
+        let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
+        Ccw { i: (k + 1) % 3, j: (k + 2) % 3, flip: n[k] < 0.0 }
     }
 
     fn half(&self, c: &Ctx, d: (LineDir, bool), iv: &V3<Interval>) -> u8 {
         let comp = |k: usize| match iv[k].sign() {
             Some(s) => s,
-            None => filtered_sign(
-                || dir_vec::<Interval>(c, d.0, d.1)[k],
-                || dir_vec::<Exact>(c, d.0, d.1)[k].clone(),
-            ),
+            None => filtered_sign(|| dir_vec::<Interval>(c, d.0, d.1)[k], || dir_vec::<Exact>(c, d.0, d.1)[k].clone()),
         };
         let y = comp(self.j);
         if y == Sign::Positive || (y == Sign::Zero && comp(self.i) == Sign::Positive) {
@@ -115,24 +106,14 @@ impl Ccw {
             let y = dir_vec::<R>(c, b.0, b.1);
             x[i].mul(&y[j]).sub(&x[j].mul(&y[i]))
         }
-        filtered_sign(
-            || f::<Interval>(c, a, b, i, j),
-            || f::<Exact>(c, a, b, i, j),
-        )
+        filtered_sign(|| f::<Interval>(c, a, b, i, j), || f::<Exact>(c, a, b, i, j))
     }
 
     /// Sorts directions counter-clockwise about the plane normal.
     fn sort(&self, c: &Ctx, items: &mut [(u32, (LineDir, bool))]) {
         // interval directions computed once per item; exact only on doubt
-        let iv: Vec<V3<Interval>> = items
-            .iter()
-            .map(|x| dir_vec::<Interval>(c, x.1 .0, x.1 .1))
-            .collect();
-        let halves: Vec<u8> = items
-            .iter()
-            .zip(&iv)
-            .map(|(x, v)| self.half(c, x.1, v))
-            .collect();
+        let iv: Vec<V3<Interval>> = items.iter().map(|x| dir_vec::<Interval>(c, x.1 .0, x.1 .1)).collect();
+        let halves: Vec<u8> = items.iter().zip(&iv).map(|(x, v)| self.half(c, x.1, v)).collect();
         let mut idx: Vec<usize> = (0..items.len()).collect();
         let (i, j) = (self.i, self.j);
         idx.sort_by(|&x, &y| {
@@ -184,32 +165,17 @@ fn gamma_status(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> Status {
 pub(crate) fn mesh_status(c: &Ctx, p: u32, e: u32, h: (LineDir, bool)) -> Status {
     let [t1, t2] = c.edge_tris[e as usize];
     let [u, v] = c.edges[e as usize];
-    let apex = *c.tris[t2 as usize]
-        .iter()
-        .find(|&&x| x != u && x != v)
-        .unwrap();
+    let apex = *c.tris[t2 as usize].iter().find(|&&x| x != u && x != v).unwrap();
     fn side<R: Ring>(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> R {
         let w = cross3(&c.pn::<R>(p), &dir_vec::<R>(c, h.0, h.1));
         dot3(&c.tn::<R>(t), &w)
     }
     fn conv<R: Ring>(c: &Ctx, t1: u32, u: u32, apex: u32) -> R {
-        dot3(
-            &c.tn::<R>(t1),
-            &sub3(&v3(&c.verts[apex as usize]), &v3(&c.verts[u as usize])),
-        )
+        dot3(&c.tn::<R>(t1), &sub3(&v3(&c.verts[apex as usize]), &v3(&c.verts[u as usize])))
     }
-    let s1 = filtered_sign(
-        || side::<Interval>(c, p, t1, h),
-        || side::<Exact>(c, p, t1, h),
-    );
-    let s2 = filtered_sign(
-        || side::<Interval>(c, p, t2, h),
-        || side::<Exact>(c, p, t2, h),
-    );
-    let cv = filtered_sign(
-        || conv::<Interval>(c, t1, u, apex),
-        || conv::<Exact>(c, t1, u, apex),
-    );
+    let s1 = filtered_sign(|| side::<Interval>(c, p, t1, h), || side::<Exact>(c, p, t1, h));
+    let s2 = filtered_sign(|| side::<Interval>(c, p, t2, h), || side::<Exact>(c, p, t2, h));
+    let cv = filtered_sign(|| conv::<Interval>(c, t1, u, apex), || conv::<Exact>(c, t1, u, apex));
     use Sign::*;
     match cv {
         Negative => {
@@ -248,13 +214,7 @@ fn find(parent: &mut [u32], mut i: u32) -> u32 {
 }
 
 /// Builds `H(p)` from its edges and returns the inside loops (cut-faces).
-pub fn plane_faces(
-    c: &Ctx,
-    p: u32,
-    edges: &[GEdge],
-    bnd: &Boundary,
-    unclassified: &mut u64,
-) -> Vec<PlaneLoop> {
+pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassified: &mut u64) -> Vec<PlaneLoop> {
     // dedup edges by end points
     let mut seen: FxMap<(u32, u32), ()> = FxMap::default();
     let mut es: Vec<GEdge> = Vec::with_capacity(edges.len());
@@ -278,11 +238,7 @@ pub fn plane_faces(
     for h in 0..nh {
         out_of.entry(tail(h)).or_default().push((h as u32, hdir(h)));
     }
-    let ccw = Ccw::new(&[
-        c.planes[p as usize][0],
-        c.planes[p as usize][1],
-        c.planes[p as usize][2],
-    ]);
+    let ccw = Ccw::new(&[c.planes[p as usize][0], c.planes[p as usize][1], c.planes[p as usize][2]]);
     // position of each half-edge in its tail's cyclic order
     let mut pos = vec![(0u32, 0u32); nh];
     let mut rings: Vec<Vec<u32>> = Vec::with_capacity(out_of.len());
@@ -344,10 +300,7 @@ pub fn plane_faces(
             None => {
                 line_edge[l] = true;
                 if h % 2 == 0 {
-                    let (a, b) = (
-                        find(&mut parent, loop_of[h]),
-                        find(&mut parent, loop_of[h ^ 1]),
-                    );
+                    let (a, b) = (find(&mut parent, loop_of[h]), find(&mut parent, loop_of[h ^ 1]));
                     if a != b {
                         parent[a.max(b) as usize] = a.min(b);
                     }
@@ -365,20 +318,12 @@ pub fn plane_faces(
         }
     }
     if std::env::var("SEPTA_DEBUG").is_ok() {
-        eprintln!(
-            "plane {p}: {} edges, {} loops, status {:?}",
-            es.len(),
-            loops.len(),
-            status
-        );
+        eprintln!("plane {p}: {} edges, {} loops, status {:?}", es.len(), loops.len(), status);
         for e in &es {
             eprintln!("  edge {} {} {:?} fwd {}", e.a, e.b, e.dir, e.fwd);
         }
         for cyc in &loops {
-            eprintln!(
-                "  loop {:?}",
-                cyc.iter().map(|&h| tail(h)).collect::<Vec<_>>()
-            );
+            eprintln!("  loop {:?}", cyc.iter().map(|&h| tail(h)).collect::<Vec<_>>());
         }
     }
     let mut faces = Vec::new();

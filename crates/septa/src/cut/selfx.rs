@@ -12,12 +12,7 @@ fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
     // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
     // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
     // permanent of absolute values of the same products.
-    let (pa, pb, pc, pd) = (
-        &x[a as usize],
-        &x[b as usize],
-        &x[c as usize],
-        &x[d as usize],
-    );
+    let (pa, pb, pc, pd) = (&x[a as usize], &x[b as usize], &x[c as usize], &x[d as usize]);
     let adx = pa[0] - pd[0];
     let bdx = pb[0] - pd[0];
     let cdx = pc[0] - pd[0];
@@ -55,11 +50,7 @@ fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
 fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
     fn f(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Interval {
         let p = |i: u32| {
-            [
-                Interval::point(x[i as usize][0]),
-                Interval::point(x[i as usize][1]),
-                Interval::point(x[i as usize][2]),
-            ]
+            [Interval::point(x[i as usize][0]), Interval::point(x[i as usize][1]), Interval::point(x[i as usize][2])]
         };
         let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
         let u: [Interval; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
@@ -99,14 +90,9 @@ fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
     fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
         let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
         let (pa, pb, pc) = (p(a), p(b), p(c));
-        pb.0.sub(&pa.0)
-            .mul(&pc.1.sub(&pa.1))
-            .sub(&pb.1.sub(&pa.1).mul(&pc.0.sub(&pa.0)))
+        pb.0.sub(&pa.0).mul(&pc.1.sub(&pa.1)).sub(&pb.1.sub(&pa.1).mul(&pc.0.sub(&pa.0)))
     }
-    filtered_sign(
-        || f::<Interval>(x, i, j, a, b, c),
-        || f::<Exact>(x, i, j, a, b, c),
-    )
+    filtered_sign(|| f::<Interval>(x, i, j, a, b, c), || f::<Exact>(x, i, j, a, b, c))
 }
 
 /// Sign of `(w - v) . (o - v)` in the projection dropping axis `k`.
@@ -118,10 +104,7 @@ fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
         let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
         wi.mul(&oi).add(&wj.mul(&oj))
     }
-    filtered_sign(
-        || f::<Interval>(x, i, j, v, w, o),
-        || f::<Exact>(x, i, j, v, w, o),
-    )
+    filtered_sign(|| f::<Interval>(x, i, j, v, w, o), || f::<Exact>(x, i, j, v, w, o))
 }
 
 /// An axis along which the plane of triangle `t` projects without collapse.
@@ -145,19 +128,9 @@ fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
     if o1 == Sign::Zero && o2 == Sign::Zero {
         // collinear: overlap of projections on the axis with most spread
         let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-        let ax = if x[p as usize][i] != x[q as usize][i] {
-            i
-        } else {
-            j
-        };
-        let (l1, h1) = (
-            x[p as usize][ax].min(x[q as usize][ax]),
-            x[p as usize][ax].max(x[q as usize][ax]),
-        );
-        let (l2, h2) = (
-            x[a as usize][ax].min(x[b as usize][ax]),
-            x[a as usize][ax].max(x[b as usize][ax]),
-        );
+        let ax = if x[p as usize][i] != x[q as usize][i] { i } else { j };
+        let (l1, h1) = (x[p as usize][ax].min(x[q as usize][ax]), x[p as usize][ax].max(x[q as usize][ax]));
+        let (l2, h2) = (x[a as usize][ax].min(x[b as usize][ax]), x[a as usize][ax].max(x[b as usize][ax]));
         return l1 <= h2 && l2 <= h1;
     }
     true
@@ -165,11 +138,7 @@ fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
 
 /// Closed 2D point-in-triangle (coplanar, axis `k` dropped).
 fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
-    let s = [
-        orient2(x, k, t[0], t[1], p),
-        orient2(x, k, t[1], t[2], p),
-        orient2(x, k, t[2], t[0], p),
-    ];
+    let s = [orient2(x, k, t[0], t[1], p), orient2(x, k, t[1], t[2], p), orient2(x, k, t[2], t[0], p)];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
@@ -186,11 +155,7 @@ fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
             || in_tri2(x, k, q, t)
             || (0..3).any(|e| seg_seg2(x, k, p, q, t[e], t[(e + 1) % 3]));
     }
-    let s = [
-        orient(x, p, q, t[0], t[1]),
-        orient(x, p, q, t[1], t[2]),
-        orient(x, p, q, t[2], t[0]),
-    ];
+    let s = [orient(x, p, q, t[0], t[1]), orient(x, p, q, t[1], t[2]), orient(x, p, q, t[2], t[0])];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
@@ -198,28 +163,16 @@ fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
 /// of their components perpendicular to `ab`)?
 fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
     fn f<R: Ring>(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> R {
-        let p = |i: u32| {
-            [
-                R::of(x[i as usize][0]),
-                R::of(x[i as usize][1]),
-                R::of(x[i as usize][2]),
-            ]
-        };
+        let p = |i: u32| [R::of(x[i as usize][0]), R::of(x[i as usize][1]), R::of(x[i as usize][2])];
         let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
         let e: [R; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
         let u: [R; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
         let w: [R; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
-        let dot =
-            |p: &[R; 3], q: &[R; 3]| p[0].mul(&q[0]).add(&p[1].mul(&q[1])).add(&p[2].mul(&q[2]));
+        let dot = |p: &[R; 3], q: &[R; 3]| p[0].mul(&q[0]).add(&p[1].mul(&q[1])).add(&p[2].mul(&q[2]));
         // (u.w)|e|^2 - (u.e)(w.e) = |e|^2 (u_perp . w_perp)
-        dot(&u, &w)
-            .mul(&dot(&e, &e))
-            .sub(&dot(&u, &e).mul(&dot(&w, &e)))
+        dot(&u, &w).mul(&dot(&e, &e)).sub(&dot(&u, &e).mul(&dot(&w, &e)))
     }
-    filtered_sign(
-        || f::<Interval>(x, a, b, c, d),
-        || f::<Exact>(x, a, b, c, d),
-    ) == Sign::Positive
+    filtered_sign(|| f::<Interval>(x, a, b, c, d), || f::<Exact>(x, a, b, c, d)) == Sign::Positive
 }
 
 /// Sufficient test that two triangles meet at most in shared vertices:
@@ -231,19 +184,10 @@ fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
 fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
     let n = {
         let (a, b, c) = (x[t1[0] as usize], x[t1[1] as usize], x[t1[2] as usize]);
-        let (u, v) = (
-            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-        );
-        [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ]
+        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
+        [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
     };
-    let k = (0..3)
-        .max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
-        .unwrap();
+    let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
     for (ta, tb) in [(t1, t2), (t2, t1)] {
         let inner = orient2(x, k, ta[0], ta[1], ta[2]);
         if inner == Sign::Zero {
@@ -371,23 +315,15 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
     }
     // cells about the size of a triangle: a surface mesh then puts a few
     // triangles in each occupied cell
-    let mean: f64 = boxes
-        .iter()
-        .map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max))
-        .sum::<f64>()
-        / n as f64;
+    let mean: f64 = boxes.iter().map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)).sum::<f64>() / n as f64;
     let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
     let res = ((ext / (1.5 * mean).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
-    let size: [f64; 3] =
-        std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
+    let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
     let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
     let key = |c: [usize; 3]| ((c[0] as u64 * res as u64 + c[1] as u64) * res as u64) + c[2] as u64;
     let mut entries: Vec<(u64, u32)> = Vec::new();
     for (t, b) in boxes.iter().enumerate() {
-        let (c0, c1) = (
-            [0, 1, 2].map(|k| cell(b.0[k], k)),
-            [0, 1, 2].map(|k| cell(b.1[k], k)),
-        );
+        let (c0, c1) = ([0, 1, 2].map(|k| cell(b.0[k], k)), [0, 1, 2].map(|k| cell(b.1[k], k)));
         for i in c0[0]..=c1[0] {
             for j in c0[1]..=c1[1] {
                 for l in c0[2]..=c1[2] {
@@ -436,10 +372,7 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
         })
         .min();
     match bad {
-        Some((a, b)) => Err(CutError::SelfIntersection {
-            first: a as usize,
-            second: b as usize,
-        }),
+        Some((a, b)) => Err(CutError::SelfIntersection { first: a as usize, second: b as usize }),
         None => Ok(()),
     }
 }
@@ -450,13 +383,7 @@ mod tests {
 
     #[test]
     fn static_filter_agrees_with_exact_orientation() {
-        let x = [
-            [0.1, 0.2, 0.3],
-            [1.7, -0.4, 0.2],
-            [0.3, 2.1, -0.6],
-            [0.5, 0.5, 1.9],
-            [0.9, 0.7, 0.05],
-        ];
+        let x = [[0.1, 0.2, 0.3], [1.7, -0.4, 0.2], [0.3, 2.1, -0.6], [0.5, 0.5, 1.9], [0.9, 0.7, 0.05]];
         for a in 0..5u32 {
             for b in 0..5u32 {
                 for c in 0..5u32 {
@@ -476,26 +403,13 @@ mod overlap_tests {
     #[test]
     fn coplanar_triangles_sharing_a_vertex() {
         // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
-        let x = [
-            [0.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [0.0, 2.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-        ];
+        let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
         // edge 0-3 runs along edge 0-1: overlapping
         assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
         // (0, 5, ..) pokes into t1's angle
         assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
         // mirrored below the x axis: touch only at the shared vertex
-        let y = [
-            [0.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [0.0, 2.0, 0.0],
-            [1.0, -0.5, 0.0],
-            [1.0, -1.0, 0.0],
-        ];
+        let y = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.5, 0.0], [1.0, -1.0, 0.0]];
         assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
     }
 }

@@ -12,14 +12,8 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
         return vec![[l[0], l[1], l[2]]];
     }
     // project dropping the dominant normal axis, keeping orientation
-    let k = (0..3)
-        .max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))
-        .unwrap();
-    let (i, j) = if normal[k] >= 0.0 {
-        ((k + 1) % 3, (k + 2) % 3)
-    } else {
-        ((k + 2) % 3, (k + 1) % 3)
-    };
+    let k = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs())).unwrap();
+    let (i, j) = if normal[k] >= 0.0 { ((k + 1) % 3, (k + 2) % 3) } else { ((k + 2) % 3, (k + 1) % 3) };
     let p = |v: u32| [x[v as usize][i], x[v as usize][j]];
     let mut poly: Vec<u32> = loops[0].clone();
     let mut holes: Vec<&Vec<u32>> = loops[1..].iter().collect();
@@ -27,11 +21,7 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
     let maxx = |l: &Vec<u32>| l.iter().map(|&v| p(v)[0]).fold(f64::NEG_INFINITY, f64::max);
     holes.sort_by(|a, b| maxx(b).total_cmp(&maxx(a)));
     for h in holes {
-        let (mi, &m) = h
-            .iter()
-            .enumerate()
-            .max_by(|a, b| p(*a.1)[0].total_cmp(&p(*b.1)[0]))
-            .unwrap();
+        let (mi, &m) = h.iter().enumerate().max_by(|a, b| p(*a.1)[0].total_cmp(&p(*b.1)[0])).unwrap();
         let pm = p(m);
         // candidate outer vertices by distance; take the first visible one
         let mut cands: Vec<usize> = (0..poly.len()).collect();
@@ -51,11 +41,7 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
                 a != m && b != m && proper_cross(pm, pc, p(a), p(b))
             })
         };
-        let c = cands
-            .iter()
-            .copied()
-            .find(|&c| visible(c))
-            .unwrap_or(cands[0]);
+        let c = cands.iter().copied().find(|&c| visible(c)).unwrap_or(cands[0]);
         let mut merged = Vec::with_capacity(poly.len() + h.len() + 2);
         merged.extend_from_slice(&poly[..=c]);
         for s in 0..=h.len() {

@@ -40,10 +40,7 @@ impl CutCellMesh {
     /// Triangles of each cut-face (no new vertices; holes bridged), for
     /// output and rendering.
     pub fn triangulate_faces(&self) -> Vec<Vec<[u32; 3]>> {
-        self.faces
-            .iter()
-            .map(|f| triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f)))
-            .collect()
+        self.faces.iter().map(|f| triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f))).collect()
     }
 
     /// Checks: every cut-face bounds one (boundary) or two distinct
@@ -60,8 +57,7 @@ impl CutCellMesh {
                     }
                 }
                 Support::Plane(_) => {
-                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1]
-                    {
+                    if f.cells[0] == u32::MAX || f.cells[1] == u32::MAX || f.cells[0] == f.cells[1] {
                         return Err(CutError::Inconsistent(format!(
                             "plane face {i} does not bound two distinct cells"
                         )));
@@ -71,11 +67,7 @@ impl CutCellMesh {
         }
         let total: f64 = self.cell_volumes.iter().sum();
         let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
-        let min = self
-            .cell_volumes
-            .iter()
-            .copied()
-            .fold(f64::INFINITY, f64::min);
+        let min = self.cell_volumes.iter().copied().fold(f64::INFINITY, f64::min);
         if err > 1e-9 {
             return Err(CutError::Inconsistent(format!(
                 "cell volumes sum to {total}, mesh volume {}",
@@ -119,13 +111,11 @@ impl CutCellMesh {
         let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
         let non_ball = chi2.iter().filter(|&&x| x != 2).count();
         Ok(Validation {
-            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
-                - c.cut_cells as i64,
+            euler: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - c.cut_cells as i64,
             volume_relative_error: err,
             min_cell_volume: min,
             domain_euler: self.mesh_euler / 2,
-            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64
-                - sum_chi,
+            euler_by_cell: c.cut_vertices as i64 - c.cut_edges as i64 + c.cut_faces as i64 - sum_chi,
             non_ball_cells: non_ball,
         })
     }

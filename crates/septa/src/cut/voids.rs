@@ -22,9 +22,7 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
             }
         }
     }
-    let voids: Vec<usize> = (0..n)
-        .filter(|&k| only_tri[k] && out.cell_volumes[k] < 0.0)
-        .collect();
+    let voids: Vec<usize> = (0..n).filter(|&k| only_tri[k] && out.cell_volumes[k] < 0.0).collect();
     if voids.is_empty() {
         return (0, 0);
     }
@@ -34,11 +32,7 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
         for &fi in &faces_of[cell] {
             let f = &out.faces[fi];
             if let Support::Plane(p) = f.support {
-                sig[p as usize] = if f.cells[0] == cell as u32 {
-                    Sign::Negative
-                } else {
-                    Sign::Positive
-                };
+                sig[p as usize] = if f.cells[0] == cell as u32 { Sign::Negative } else { Sign::Positive };
             }
         }
         for (q, s) in sig.iter_mut().enumerate() {
@@ -61,13 +55,7 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
         sig
     };
     let sigs: Vec<Option<Vec<Sign>>> = (0..n)
-        .map(|k| {
-            if out.cell_volumes[k] > 0.0 || voids.contains(&k) {
-                Some(signature(k))
-            } else {
-                None
-            }
-        })
+        .map(|k| if out.cell_volumes[k] > 0.0 || voids.contains(&k) { Some(signature(k)) } else { None })
         .collect();
     let mut target: Vec<u32> = (0..n as u32).collect();
     let (mut attached, mut unresolved) = (0, 0);
@@ -76,11 +64,9 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
         let cands: Vec<usize> = (0..n)
             .filter(|&k| out.cell_volumes[k] > 0.0)
             .filter(|&k| {
-                sigs[k].as_ref().is_some_and(|s| {
-                    s.iter()
-                        .zip(sv)
-                        .all(|(a, b)| *a == Sign::Zero || *b == Sign::Zero || a == b)
-                })
+                sigs[k]
+                    .as_ref()
+                    .is_some_and(|s| s.iter().zip(sv).all(|(a, b)| *a == Sign::Zero || *b == Sign::Zero || a == b))
             })
             .collect();
         if cands.len() == 1 {

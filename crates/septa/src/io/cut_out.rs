@@ -5,21 +5,8 @@
 
 use crate::cut::CutCellMesh;
 use std::fmt::Write as _;
-use std::io::Write as _;
-use std::path::Path;
 
-/// Writes `text` to `path` atomically (temp file in the same folder, then rename).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("out");
-    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-    }
-    std::fs::rename(&tmp, path)
-}
+pub use super::atomic::write_atomic;
 
 /// Boundary polygons of each cell, oriented outwards. A face with holes is
 /// written as its triangles (no new vertices), so every polygon is simple.
@@ -39,10 +26,7 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
             cells[f.cells[0] as usize].push(polys.clone());
         }
         if f.cells[1] != u32::MAX {
-            let rev: Vec<Vec<u32>> = polys
-                .iter()
-                .map(|l| l.iter().rev().copied().collect())
-                .collect();
+            let rev: Vec<Vec<u32>> = polys.iter().map(|l| l.iter().rev().copied().collect()).collect();
             cells[f.cells[1] as usize].push(rev);
         }
     }
@@ -54,12 +38,7 @@ pub fn vtu(m: &CutCellMesh) -> String {
     let cells = cell_faces(m);
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>");
-    let _ = writeln!(
-        s,
-        "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
-        m.vertices.len(),
-        m.num_cells
-    );
+    let _ = writeln!(s, "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", m.vertices.len(), m.num_cells);
     s.push_str("<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
     for v in &m.vertices {
         let _ = writeln!(s, "{:?} {:?} {:?}", v[0], v[1], v[2]);
@@ -101,9 +80,7 @@ pub fn vtu(m: &CutCellMesh) -> String {
     for x in &faces_stream {
         let _ = write!(s, "{x} ");
     }
-    s.push_str(
-        "\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n",
-    );
+    s.push_str("\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n");
     for x in &face_offsets {
         let _ = write!(s, "{x} ");
     }
@@ -150,13 +127,7 @@ pub fn obj(m: &CutCellMesh, explode: f64) -> String {
         let _ = writeln!(s, "g cell_{i}");
         for &v in &used {
             let x = m.vertices[v as usize];
-            let _ = writeln!(
-                s,
-                "v {:?} {:?} {:?}",
-                x[0] + shift[0],
-                x[1] + shift[1],
-                x[2] + shift[2]
-            );
+            let _ = writeln!(s, "v {:?} {:?} {:?}", x[0] + shift[0], x[1] + shift[1], x[2] + shift[2]);
         }
         let local = |v: u32| base + used.binary_search(&v).unwrap();
         for f in c {

@@ -25,54 +25,30 @@ pub struct ReadError {
 
 impl ReadError {
     pub(crate) fn new(path: &Path, line: usize, message: impl Into<String>) -> ReadError {
-        ReadError {
-            path: path.to_path_buf(),
-            line,
-            message: message.into(),
-        }
+        ReadError { path: path.to_path_buf(), line, message: message.into() }
     }
 }
 
 /// Reads a triangle mesh, choosing the format by extension
 /// (`.obj`, `.off`, `.ply`, `.stl`).
 pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let bytes =
-        std::fs::read(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
+    let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let bytes = std::fs::read(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
     match ext.as_str() {
         "obj" => super::mesh_obj::parse_obj(path, &bytes),
         "off" => super::mesh_off::parse_off(path, &bytes),
         "stl" => super::mesh_stl::parse_stl(path, &bytes),
         "ply" => super::mesh_ply::parse_ply(path, &bytes),
-        _ => Err(ReadError::new(
-            path,
-            0,
-            format!("unknown mesh extension '{ext}' (use .obj, .off, .ply or .stl)"),
-        )),
+        _ => Err(ReadError::new(path, 0, format!("unknown mesh extension '{ext}' (use .obj, .off, .ply or .stl)"))),
     }
 }
 
 /// Parses one finite double, naming the file and line on failure.
-pub(crate) fn parse_f64(
-    path: &Path,
-    line: usize,
-    tok: Option<&str>,
-    what: &str,
-) -> Result<f64, ReadError> {
+pub(crate) fn parse_f64(path: &Path, line: usize, tok: Option<&str>, what: &str) -> Result<f64, ReadError> {
     let tok = tok.ok_or_else(|| ReadError::new(path, line, format!("missing {what}")))?;
-    let v: f64 = tok
-        .parse()
-        .map_err(|_| ReadError::new(path, line, format!("{what} '{tok}' is not a number")))?;
+    let v: f64 = tok.parse().map_err(|_| ReadError::new(path, line, format!("{what} '{tok}' is not a number")))?;
     if !v.is_finite() {
-        return Err(ReadError::new(
-            path,
-            line,
-            format!("{what} '{tok}' is not finite"),
-        ));
+        return Err(ReadError::new(path, line, format!("{what} '{tok}' is not finite")));
     }
     Ok(v)
 }

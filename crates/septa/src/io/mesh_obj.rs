@@ -6,8 +6,7 @@ use std::path::Path;
 
 /// Parses OBJ text.
 pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
+    let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
     let mut mesh = TriMesh::default();
     let mut poly: Vec<u32> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
@@ -24,9 +23,9 @@ pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                 poly.clear();
                 for tok in it {
                     let idx = tok.split('/').next().unwrap_or("");
-                    let k: i64 = idx.parse().map_err(|_| {
-                        ReadError::new(path, line, format!("face index '{tok}' is not an integer"))
-                    })?;
+                    let k: i64 = idx
+                        .parse()
+                        .map_err(|_| ReadError::new(path, line, format!("face index '{tok}' is not an integer")))?;
                     let n = mesh.vertices.len() as i64;
                     let k0 = if k > 0 {
                         k - 1

@@ -5,8 +5,7 @@ use std::path::Path;
 
 /// Parses OFF text.
 pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
+    let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
     // Tokens with their line numbers, comments stripped.
     let mut toks: Vec<(usize, &str)> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
@@ -15,10 +14,7 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     }
     let mut pos = 0usize;
     let mut next = |what: &str| -> Result<(usize, &str), ReadError> {
-        let t = toks
-            .get(pos)
-            .copied()
-            .ok_or_else(|| ReadError::new(path, 0, format!("file ends before {what}")))?;
+        let t = toks.get(pos).copied().ok_or_else(|| ReadError::new(path, 0, format!("file ends before {what}")))?;
         pos += 1;
         Ok(t)
     };
@@ -28,8 +24,7 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     }
     let mut count = |what: &str| -> Result<usize, ReadError> {
         let (l, t) = next(what)?;
-        t.parse()
-            .map_err(|_| ReadError::new(path, l, format!("{what} '{t}' is not a count")))
+        t.parse().map_err(|_| ReadError::new(path, l, format!("{what} '{t}' is not a count")))
     };
     let nv = count("vertex count")?;
     let nf = count("face count")?;
@@ -46,21 +41,14 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     let mut poly = Vec::new();
     for _ in 0..nf {
         let (l, t) = next("face")?;
-        let n: usize = t
-            .parse()
-            .map_err(|_| ReadError::new(path, l, format!("face size '{t}' is not a count")))?;
+        let n: usize = t.parse().map_err(|_| ReadError::new(path, l, format!("face size '{t}' is not a count")))?;
         poly.clear();
         for _ in 0..n {
             let (l, t) = next("face index")?;
-            let k: usize = t.parse().map_err(|_| {
-                ReadError::new(path, l, format!("face index '{t}' is not an integer"))
-            })?;
+            let k: usize =
+                t.parse().map_err(|_| ReadError::new(path, l, format!("face index '{t}' is not an integer")))?;
             if k >= nv {
-                return Err(ReadError::new(
-                    path,
-                    l,
-                    format!("face index {k} out of range (have {nv} vertices)"),
-                ));
+                return Err(ReadError::new(path, l, format!("face index {k} out of range (have {nv} vertices)")));
             }
             poly.push(k as u32);
         }

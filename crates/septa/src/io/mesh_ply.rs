@@ -53,23 +53,15 @@ struct Elem {
 
 enum Src<'a> {
     Ascii(std::iter::Peekable<std::vec::IntoIter<(usize, &'a str)>>),
-    Bin {
-        data: &'a [u8],
-        pos: usize,
-        big: bool,
-    },
+    Bin { data: &'a [u8], pos: usize, big: bool },
 }
 
 impl Src<'_> {
     fn read(&mut self, path: &Path, t: Ty) -> Result<f64, ReadError> {
         match self {
             Src::Ascii(it) => {
-                let (l, tok) = it
-                    .next()
-                    .ok_or_else(|| ReadError::new(path, 0, "file ends inside the data"))?;
-                let v: f64 = tok
-                    .parse()
-                    .map_err(|_| ReadError::new(path, l, format!("'{tok}' is not a number")))?;
+                let (l, tok) = it.next().ok_or_else(|| ReadError::new(path, 0, "file ends inside the data"))?;
+                let v: f64 = tok.parse().map_err(|_| ReadError::new(path, l, format!("'{tok}' is not a number")))?;
                 if !v.is_finite() {
                     return Err(ReadError::new(path, l, format!("'{tok}' is not finite")));
                 }
@@ -97,11 +89,7 @@ impl Src<'_> {
                     Ty::F64 => f64::from_le_bytes(b),
                 };
                 if !v.is_finite() {
-                    return Err(ReadError::new(
-                        path,
-                        0,
-                        format!("non-finite value at byte {}", *pos - n),
-                    ));
+                    return Err(ReadError::new(path, 0, format!("non-finite value at byte {}", *pos - n)));
                 }
                 Ok(v)
             }
@@ -111,12 +99,9 @@ impl Src<'_> {
 
 /// Parses PLY.
 pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let end = bytes
-        .windows(10)
-        .position(|w| w == b"end_header")
-        .ok_or_else(|| ReadError::new(path, 1, "no end_header"))?;
-    let head = std::str::from_utf8(&bytes[..end])
-        .map_err(|_| ReadError::new(path, 1, "header is not text"))?;
+    let end =
+        bytes.windows(10).position(|w| w == b"end_header").ok_or_else(|| ReadError::new(path, 1, "no end_header"))?;
+    let head = std::str::from_utf8(&bytes[..end]).map_err(|_| ReadError::new(path, 1, "header is not text"))?;
     let mut body = end + 10;
     while body < bytes.len() && (bytes[body] == b'\r' || bytes[body] == b' ') {
         body += 1;
@@ -138,47 +123,27 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                     .get(2)
                     .and_then(|c| c.parse().ok())
                     .ok_or_else(|| ReadError::new(path, line, "bad element line"))?;
-                elems.push(Elem {
-                    name: w.get(1).unwrap_or(&"").to_string(),
-                    count,
-                    props: Vec::new(),
-                });
+                elems.push(Elem { name: w.get(1).unwrap_or(&"").to_string(), count, props: Vec::new() });
             }
             Some("property") => {
-                let e = elems
-                    .last_mut()
-                    .ok_or_else(|| ReadError::new(path, line, "property before element"))?;
+                let e = elems.last_mut().ok_or_else(|| ReadError::new(path, line, "property before element"))?;
                 let bad = || ReadError::new(path, line, format!("unsupported property '{raw}'"));
                 if w.get(1) == Some(&"list") {
                     let lt = w.get(2).and_then(|t| ty(t)).ok_or_else(bad)?;
                     let it = w.get(3).and_then(|t| ty(t)).ok_or_else(bad)?;
-                    e.props.push(Prop {
-                        name: w.get(4).unwrap_or(&"").to_string(),
-                        list: Some(lt),
-                        ty: it,
-                    });
+                    e.props.push(Prop { name: w.get(4).unwrap_or(&"").to_string(), list: Some(lt), ty: it });
                 } else {
                     let t = w.get(1).and_then(|t| ty(t)).ok_or_else(bad)?;
-                    e.props.push(Prop {
-                        name: w.get(2).unwrap_or(&"").to_string(),
-                        list: None,
-                        ty: t,
-                    });
+                    e.props.push(Prop { name: w.get(2).unwrap_or(&"").to_string(), list: None, ty: t });
                 }
             }
-            Some(other) => {
-                return Err(ReadError::new(
-                    path,
-                    line,
-                    format!("unknown header keyword '{other}'"),
-                ))
-            }
+            Some(other) => return Err(ReadError::new(path, line, format!("unknown header keyword '{other}'"))),
         }
     }
     let mut src = match format {
         "ascii" => {
-            let text = std::str::from_utf8(&bytes[body..])
-                .map_err(|_| ReadError::new(path, 0, "ascii body is not text"))?;
+            let text =
+                std::str::from_utf8(&bytes[body..]).map_err(|_| ReadError::new(path, 0, "ascii body is not text"))?;
             let toks: Vec<(usize, &str)> = text
                 .lines()
                 .enumerate()
@@ -186,16 +151,8 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                 .collect();
             Src::Ascii(toks.into_iter().peekable())
         }
-        "binary_little_endian" => Src::Bin {
-            data: &bytes[body..],
-            pos: 0,
-            big: false,
-        },
-        "binary_big_endian" => Src::Bin {
-            data: &bytes[body..],
-            pos: 0,
-            big: true,
-        },
+        "binary_little_endian" => Src::Bin { data: &bytes[body..], pos: 0, big: false },
+        "binary_big_endian" => Src::Bin { data: &bytes[body..], pos: 0, big: true },
         f => return Err(ReadError::new(path, 2, format!("unknown PLY format '{f}'"))),
     };
     let mut mesh = TriMesh::default();
@@ -210,9 +167,7 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                     for _ in 0..n {
                         poly.push(src.read(path, pr.ty)?);
                     }
-                    if e.name == "face"
-                        && (pr.name == "vertex_indices" || pr.name == "vertex_index")
-                    {
+                    if e.name == "face" && (pr.name == "vertex_indices" || pr.name == "vertex_index") {
                         let nv = mesh.vertices.len();
                         let mut idx = Vec::with_capacity(n);
                         for &k in &poly {
@@ -226,11 +181,7 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                             idx.push(k as u32);
                         }
                         if n < 3 {
-                            return Err(ReadError::new(
-                                path,
-                                0,
-                                format!("face {r} has fewer than 3 corners"),
-                            ));
+                            return Err(ReadError::new(path, 0, format!("face {r} has fewer than 3 corners")));
                         }
                         push_fan(&mut mesh.triangles, &idx);
                     }

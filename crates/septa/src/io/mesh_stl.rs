@@ -28,18 +28,9 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
                     let mut p = [0.0f64; 3];
                     for (k, pk) in p.iter_mut().enumerate() {
                         let o = base + 12 * c + 4 * k;
-                        let v = f32::from_le_bytes([
-                            bytes[o],
-                            bytes[o + 1],
-                            bytes[o + 2],
-                            bytes[o + 3],
-                        ]) as f64;
+                        let v = f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]) as f64;
                         if !v.is_finite() {
-                            return Err(ReadError::new(
-                                path,
-                                0,
-                                format!("triangle {t}: non-finite coordinate"),
-                            ));
+                            return Err(ReadError::new(path, 0, format!("triangle {t}: non-finite coordinate")));
                         }
                         *pk = v;
                     }
@@ -50,8 +41,7 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
             return Ok(mesh);
         }
     }
-    let text = std::str::from_utf8(bytes)
-        .map_err(|_| ReadError::new(path, 0, "neither binary STL nor ASCII text"))?;
+    let text = std::str::from_utf8(bytes).map_err(|_| ReadError::new(path, 0, "neither binary STL nor ASCII text"))?;
     let mut corner = Vec::with_capacity(3);
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
@@ -65,11 +55,7 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
             }
             Some("endloop") => {
                 if corner.len() != 3 {
-                    return Err(ReadError::new(
-                        path,
-                        line,
-                        format!("facet with {} vertices (need 3)", corner.len()),
-                    ));
+                    return Err(ReadError::new(path, line, format!("facet with {} vertices (need 3)", corner.len())));
                 }
                 mesh.triangles.push([corner[0], corner[1], corner[2]]);
                 corner.clear();

@@ -1,5 +1,6 @@
 //! Readers and writers.
 
+mod atomic;
 pub mod cut_out;
 pub mod functions;
 pub mod mesh;
@@ -12,3 +13,5 @@ pub mod network_out;
 pub mod npz;
 pub mod planes;
 pub mod regions_out;
+
+pub use atomic::{write_atomic, write_atomic_with};

@@ -5,31 +5,11 @@
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+use super::atomic::write_atomic_with;
 use crate::complex::NONE;
 use crate::network::{Mode, Network};
-
-/// Writes `path` atomically: `write` fills a temporary sibling file, which
-/// is then renamed over `path`. On error the temporary file is removed.
-pub fn write_atomic(
-    path: &Path,
-    write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
-) -> std::io::Result<()> {
-    let dir = path.parent().unwrap_or(Path::new("."));
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
-    let result = (|| {
-        let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
-        write(&mut w)?;
-        w.into_inner().map_err(|e| e.into_error())?.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
 
 fn list<W: Write, T: std::fmt::Display>(w: &mut W, xs: impl IntoIterator<Item = T>) -> std::io::Result<()> {
     w.write_all(b"[")?;
@@ -67,7 +47,7 @@ fn cell_label(net: &Network, c: usize) -> String {
 /// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
 /// Everything but `"seconds"` (written last) depends only on the input.
 pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
-    write_atomic(path, |w| {
+    write_atomic_with(path, |w| {
         let mode = match net.mode {
             Mode::Ia => "ia",
             Mode::Mi => "mi",
@@ -178,7 +158,7 @@ pub fn patch_colour(p: u32) -> [u8; 3] {
 /// Writes a binary little-endian PLY: vertices (double x, y, z) and
 /// polygons with `patch`, `label0`, `label1` and face colour.
 pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
-    write_atomic(path, |w| {
+    write_atomic_with(path, |w| {
         write!(
             w,
             "ply\nformat binary_little_endian 1.0\ncomment septa surface network\n\
@@ -214,7 +194,7 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
 
 /// Writes an OBJ: a group `patch_<p>` per patch and an `l` polyline per chain.
 pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
-    write_atomic(path, |w| {
+    write_atomic_with(path, |w| {
         writeln!(w, "# septa surface network: {} patches, {} chains", net.patches.len(), net.chains.len())?;
         for p in &net.points {
             writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
@@ -249,7 +229,7 @@ pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
 /// polygons with cell data `patch`, `label` (2 components) and `cells`
 /// (the cells on the positive and negative side, -1 outside the grid).
 pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
-    write_atomic(path, |w| {
+    write_atomic_with(path, |w| {
         let nf = net.num_faces();
         let np = net.points.len();
         // Appended arrays, in order, each preceded by its UInt64 byte count.

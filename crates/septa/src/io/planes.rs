@@ -9,8 +9,7 @@ use std::path::Path;
 
 /// Reads a plane file (with or without the `N 4` header line).
 pub fn read_planes(path: &Path) -> Result<Vec<[f64; 4]>, ReadError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
+    let text = std::fs::read_to_string(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
     parse_planes(path, &text)
 }
 
@@ -26,9 +25,7 @@ pub fn parse_planes(path: &Path, text: &str) -> Result<Vec<[f64; 4]>, ReadError>
             continue;
         }
         if out.is_empty() && expected.is_none() && toks.len() == 2 {
-            let n = toks[0]
-                .parse::<usize>()
-                .map_err(|_| ReadError::new(path, line, "header must be 'N 4'"))?;
+            let n = toks[0].parse::<usize>().map_err(|_| ReadError::new(path, line, "header must be 'N 4'"))?;
             if toks[1] != "4" {
                 return Err(ReadError::new(path, line, "header must be 'N 4'"));
             }
@@ -36,11 +33,7 @@ pub fn parse_planes(path: &Path, text: &str) -> Result<Vec<[f64; 4]>, ReadError>
             continue;
         }
         if toks.len() != 4 {
-            return Err(ReadError::new(
-                path,
-                line,
-                format!("expected 4 numbers 'a b c d', found {}", toks.len()),
-            ));
+            return Err(ReadError::new(path, line, format!("expected 4 numbers 'a b c d', found {}", toks.len())));
         }
         let mut p = [0.0; 4];
         for k in 0..4 {
@@ -50,11 +43,7 @@ pub fn parse_planes(path: &Path, text: &str) -> Result<Vec<[f64; 4]>, ReadError>
     }
     if let Some(n) = expected {
         if n != out.len() {
-            return Err(ReadError::new(
-                path,
-                1,
-                format!("header announces {n} planes, file has {}", out.len()),
-            ));
+            return Err(ReadError::new(path, 1, format!("header announces {n} planes, file has {}", out.len())));
         }
     }
     Ok(out)

@@ -61,7 +61,8 @@ pub fn document(r: &RegionSurfaces) -> Value {
 pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let net = &r.network;
-    let polys: Vec<&[u32]> = (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
+    let polys: Vec<&[u32]> =
+        (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
     write_atomic(&dir.join("network.json"), document(r).to_string().as_bytes())?;
     let mut obj = String::from("# Septa region surfaces: a group per surface, curves as polylines\n");
     for p in &net.points {
