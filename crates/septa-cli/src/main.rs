@@ -7,6 +7,7 @@ mod cut;
 mod demo;
 mod labels;
 mod network;
+mod progress;
 mod regions;
 mod stress;
 mod view;

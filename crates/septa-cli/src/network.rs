@@ -86,6 +86,14 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     opts.lookup = !args.no_lookup;
     opts.block = args.block;
     opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
+    let bar = crate::progress::bar(args.json, "blocks");
+    if let Some(bar) = &bar {
+        let bar = bar.clone();
+        opts.progress = Some(network::Progress(std::sync::Arc::new(move |done, total| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+        })));
+    }
     let mut pool = rayon::ThreadPoolBuilder::new();
     if let Some(t) = args.threads {
         pool = pool.num_threads(t.max(1));
@@ -101,6 +109,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         let t_read = t0.elapsed().as_secs_f64();
         (pool.install(|| network::compute(&grid, &values, k, &opts))?, grid.num_tets(), t_read, None)
     };
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
     let mut extra = vec![("read", t_read)];
     if !args.no_output {
         let t = Instant::now();

@@ -16,7 +16,7 @@ pub struct Options {
     pub float: bool,
     /// Use the look-up tables for IA with 1-2 functions and MI with 2-3
     /// (Sec. 6); they give the same complex as the incremental
-    /// construction. Ignored with `float`. Default value: `true`.
+    /// construction; with `float` their branch predicates are naive too. Default value: `true`.
     pub lookup: bool,
 }
 
@@ -118,7 +118,7 @@ impl Complex {
         self.mode = Some(mode);
         self.num_functions = values.len();
         let preds = Predicates { values, mode, float: options.float };
-        if options.lookup && !options.float {
+        if options.lookup {
             if let Some(table) = super::lookup::table(mode, values.len()) {
                 if let Some(t) = super::lookup::find(table, &preds, values.len()) {
                     self.decode(&table.data[t as usize..]);

@@ -106,12 +106,33 @@ pub struct NetworkOptions {
     /// allows it (a box, no network vertex at a grid vertex); otherwise, or
     /// when false, by cell grouping.
     pub raytrace: bool,
+    /// Called with `(blocks done, blocks in all)` as blocks finish, from
+    /// worker threads (for progress bars). Default value: none.
+    pub progress: Option<Progress>,
+}
+
+/// A progress callback `(done, total)`; see [`NetworkOptions::progress`].
+#[derive(Clone)]
+pub struct Progress(pub std::sync::Arc<dyn Fn(usize, usize) + Send + Sync>);
+
+impl std::fmt::Debug for Progress {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Progress(..)")
+    }
+}
+
+impl Progress {
+    /// Counts one finished block out of `total` and reports it.
+    pub(crate) fn tick(&self, done: &std::sync::atomic::AtomicUsize, total: usize) {
+        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        (self.0)(n, total);
+    }
 }
 
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions { mode, float: false, lookup: true, block: 16, volumes: false, raytrace: true }
+        NetworkOptions { mode, float: false, lookup: true, block: 16, volumes: false, raytrace: true, progress: None }
     }
 }
 
@@ -257,8 +278,17 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         sparse: None,
     };
     let blocks = grid.blocks(options.block);
-    let outs: Vec<block::BlockOut> =
-        blocks.par_iter().map_init(block::Worker::default, |w, b| w.run(&ctx, b)).collect::<Result<_, _>>()?;
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let outs: Vec<block::BlockOut> = blocks
+        .par_iter()
+        .map_init(block::Worker::default, |w, b| {
+            let out = w.run(&ctx, b);
+            if let Some(p) = &options.progress {
+                p.tick(&done, blocks.len());
+            }
+            out
+        })
+        .collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     canon::canonicalize_merged(&mut m);

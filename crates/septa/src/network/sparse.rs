@@ -227,6 +227,7 @@ pub fn compute_sparse(
     stats.skipped = blocks.len() - keep.len();
     // 2. Sample and process each kept block; its values die with it.
     let g = Grid::Box(grid.clone());
+    let done = std::sync::atomic::AtomicUsize::new(0);
     let outs: Vec<(BlockOut, bool, usize)> = keep
         .par_iter()
         .map_init(Worker::default, |w, b| {
@@ -234,7 +235,11 @@ pub fn compute_sparse(
             let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
             let nv = bv.data.len() / k;
             let c = ctx(&g, k, options, &bv);
-            Ok((w.run(&c, b)?, clean, nv))
+            let out = w.run(&c, b)?;
+            if let Some(p) = &options.progress {
+                p.tick(&done, keep.len());
+            }
+            Ok((out, clean, nv))
         })
         .collect::<Result<_, NetworkError>>()?;
     stats.sampled_vertices = outs.iter().map(|o| o.2).sum();
