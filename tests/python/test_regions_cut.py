@@ -69,3 +69,26 @@ def test_cut_rejects_bad_planes():
         septa.cut_mesh(v, t, [[1, 0, 0]])
     with pytest.raises(septa.InputError):
         septa.cut_mesh(v, t, [[np.nan, 0, 0, 1]])
+
+
+def test_ctrl_c_stops_a_long_arrangement():
+    import os
+    import signal
+    import threading
+    import time
+
+    g = septa.grid.box(60)
+    rng = np.random.default_rng(0)
+    centres = rng.uniform(-0.6, 0.6, (12, 3))
+    values = np.stack([0.35 - np.linalg.norm(g.vertices - c, axis=1) for c in centres], axis=1)
+    t0 = time.perf_counter()
+    septa.arrangement(g, values, threads=1)
+    full = time.perf_counter() - t0
+    timer = threading.Timer(0.05, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        septa.arrangement(g, values, threads=1)
+    stopped = time.perf_counter() - t0
+    timer.join()
+    assert stopped < full, (stopped, full)

@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 
 mod checks;
 mod cut;
+mod interrupt;
 mod network;
 mod regions;
 mod viewer;

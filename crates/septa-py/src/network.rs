@@ -51,7 +51,9 @@ pub fn network<'py>(
     let mut options = NetworkOptions::new(mode);
     options.lookup = lookup;
     options.raytrace = raytrace;
-    let result: Result<Network, String> = py.detach(|| {
+    let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    options.cancel = Some(cancel.clone());
+    let result: Result<Network, String> = crate::interrupt::run_interruptible(py, &cancel, || {
         let grid = match r#box {
             Some((res, bounds, split)) => {
                 let split = match split {
@@ -74,7 +76,7 @@ pub fn network<'py>(
             }
             None => run(),
         }
-    });
+    })?;
     let net = result.map_err(InputError::new_err)?;
     to_dict(py, &net)
 }

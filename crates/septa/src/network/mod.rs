@@ -78,6 +78,9 @@ pub enum NetworkError {
         /// Function.
         function: usize,
     },
+    /// The run was cancelled through [`NetworkOptions::cancel`].
+    #[error("cancelled")]
+    Cancelled,
     /// The per-tet construction failed.
     #[error("tet {tet}: {message}")]
     Tet {
@@ -109,6 +112,16 @@ pub struct NetworkOptions {
     /// Called with `(blocks done, blocks in all)` as blocks finish, from
     /// worker threads (for progress bars). Default value: none.
     pub progress: Option<Progress>,
+    /// Set it to stop the run: blocks not yet started are skipped and the
+    /// run returns [`NetworkError::Cancelled`] (never a panic). Default value: none.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+}
+
+impl NetworkOptions {
+    /// Whether [`NetworkOptions::cancel`] has been set.
+    pub(crate) fn cancelled(&self) -> bool {
+        self.cancel.as_ref().is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
+    }
 }
 
 /// A progress callback `(done, total)`; see [`NetworkOptions::progress`].
@@ -132,7 +145,16 @@ impl Progress {
 impl NetworkOptions {
     /// Defaults for a mode: exact, 16^3-cube blocks, no volumes.
     pub fn new(mode: Mode) -> NetworkOptions {
-        NetworkOptions { mode, float: false, lookup: true, block: 16, volumes: false, raytrace: true, progress: None }
+        NetworkOptions {
+            mode,
+            float: false,
+            lookup: true,
+            block: 16,
+            volumes: false,
+            raytrace: true,
+            progress: None,
+            cancel: None,
+        }
     }
 }
 
@@ -282,6 +304,9 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     let outs: Vec<block::BlockOut> = blocks
         .par_iter()
         .map_init(block::Worker::default, |w, b| {
+            if options.cancelled() {
+                return Err(NetworkError::Cancelled);
+            }
             let out = w.run(&ctx, b);
             if let Some(p) = &options.progress {
                 p.tick(&done, blocks.len());

@@ -231,6 +231,9 @@ pub fn compute_sparse(
     let outs: Vec<(BlockOut, bool, usize)> = keep
         .par_iter()
         .map_init(Worker::default, |w, b| {
+            if options.cancelled() {
+                return Err(NetworkError::Cancelled);
+            }
             let (lo, hi) = cubes(b);
             let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
             let nv = bv.data.len() / k;
