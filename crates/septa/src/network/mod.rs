@@ -320,10 +320,23 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     let t2 = Instant::now();
     let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
     canon::canonicalize_topology(&mut topo);
-    // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
+    label_free_cells(&mut topo, options.mode, &values[..k]);
+    let t3 = Instant::now();
+    if !ctx.grouping && topo.cells_method != "raytrace" {
+        // Cannot happen when the preconditions hold; never answer without cells.
+        let mut o = options.clone();
+        o.raytrace = false;
+        return compute(grid, values, k, &o);
+    }
+    Ok(assemble(options.mode, k, m, topo, [t1 - t0, t2 - t1, t3 - t2]))
+}
+
+/// A cell bounded by no face (no network at all) takes the label of the
+/// values `row` of one grid vertex (IA sign bits; MI argmax).
+pub(crate) fn label_free_cells(topo: &mut topology::Topology, mode: Mode, row: &[f64]) {
+    let k = row.len();
     for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
-        let row = &values[..k];
-        cell.label = match options.mode {
+        cell.label = match mode {
             Mode::Ia => {
                 let mut l: SmallVec<[u64; 2]> = SmallVec::from_elem(0, k.div_ceil(64));
                 for (f, &x) in row.iter().enumerate() {
@@ -339,15 +352,19 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
             }
         };
     }
-    let t3 = Instant::now();
-    if !ctx.grouping && topo.cells_method != "raytrace" {
-        // Cannot happen when the preconditions hold; never answer without cells.
-        let mut o = options.clone();
-        o.raytrace = false;
-        return compute(grid, values, k, &o);
-    }
-    Ok(Network {
-        mode: options.mode,
+}
+
+/// The network from merged polygons and their topology; `stages` are the
+/// durations of the tets, merge and topology stages.
+pub(crate) fn assemble(
+    mode: Mode,
+    k: usize,
+    m: merge::Merged,
+    topo: topology::Topology,
+    stages: [std::time::Duration; 3],
+) -> Network {
+    Network {
+        mode,
         functions: k,
         points: m.points,
         keys: m.keys,
@@ -367,9 +384,9 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         active_tets: m.active_tets,
         cells_method: topo.cells_method,
         seconds: vec![
-            ("tets", (t1 - t0).as_secs_f64()),
-            ("merge", (t2 - t1).as_secs_f64()),
-            ("topology", (t3 - t2).as_secs_f64()),
+            ("tets", stages[0].as_secs_f64()),
+            ("merge", stages[1].as_secs_f64()),
+            ("topology", stages[2].as_secs_f64()),
         ],
-    })
+    }
 }

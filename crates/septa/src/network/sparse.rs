@@ -21,7 +21,6 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
-use smallvec::SmallVec;
 
 use super::block::{BlockOut, Ctx, Worker};
 use super::{merge, topology, Network, NetworkError, NetworkOptions};
@@ -263,51 +262,9 @@ pub fn compute_sparse(
         return fallback(stats);
     }
     super::canon::canonicalize_topology(&mut topo);
-    // A cell bounded by no face (no network at all) takes the label of grid vertex 0.
-    for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
-        let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
-        cell.label = match options.mode {
-            Mode::Ia => {
-                let mut l: SmallVec<[u64; 2]> = SmallVec::from_elem(0, k.div_ceil(64));
-                for (f, &x) in row.iter().enumerate() {
-                    if x > 0.0 {
-                        l[f / 64] |= 1 << (f % 64);
-                    }
-                }
-                l
-            }
-            Mode::Mi => {
-                let m = (0..k).fold(0, |b, f| if row[f] > row[b] { f } else { b });
-                SmallVec::from_elem(m as u64, 1)
-            }
-        };
-    }
+    let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
+    super::label_free_cells(&mut topo, options.mode, &row);
     let t3 = Instant::now();
-    let net = Network {
-        mode: options.mode,
-        functions: k,
-        points: m.points,
-        keys: m.keys,
-        face_start: m.face_start,
-        face_verts: m.face_verts,
-        face_label: m.face_label,
-        face_cells: topo.face_cells,
-        face_patch: topo.face_patch,
-        edges: topo.edges,
-        patches: topo.patches,
-        chains: topo.chains,
-        corners: topo.corners,
-        shells: topo.shells,
-        cells: topo.cells,
-        chain_patches: topo.chain_patches,
-        components: topo.components,
-        active_tets: m.active_tets,
-        cells_method: topo.cells_method,
-        seconds: vec![
-            ("tets", (t1 - t0).as_secs_f64()),
-            ("merge", (t2 - t1).as_secs_f64()),
-            ("topology", (t3 - t2).as_secs_f64()),
-        ],
-    };
+    let net = super::assemble(options.mode, k, m, topo, [t1 - t0, t2 - t1, t3 - t2]);
     Ok((net, stats))
 }
