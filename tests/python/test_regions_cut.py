@@ -77,18 +77,21 @@ def test_ctrl_c_stops_a_long_arrangement():
     import threading
     import time
 
-    g = septa.grid.box(60)
+    # A deliberately slow job (cell grouping, no tables): about 0.4 s.
+    g = septa.grid.box(64)
     rng = np.random.default_rng(0)
-    centres = rng.uniform(-0.6, 0.6, (12, 3))
+    centres = rng.uniform(-0.6, 0.6, (16, 3))
     values = np.stack([0.35 - np.linalg.norm(g.vertices - c, axis=1) for c in centres], axis=1)
+    slow = dict(threads=1, cells="grouping", lookup=False)
     t0 = time.perf_counter()
-    septa.arrangement(g, values, threads=1)
+    septa.arrangement(g, values, **slow)
     full = time.perf_counter() - t0
-    timer = threading.Timer(0.05, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer = threading.Timer(0.03, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
     t0 = time.perf_counter()
     with pytest.raises(KeyboardInterrupt):
-        septa.arrangement(g, values, threads=1)
+        septa.arrangement(g, values, **slow)
     stopped = time.perf_counter() - t0
     timer.join()
-    assert stopped < full, (stopped, full)
+    # Signals are polled every 20 ms and the core stops at its next block.
+    assert stopped < 0.5 * full, (stopped, full)

@@ -18,7 +18,7 @@ pub fn run_interruptible<T: Send>(
         loop {
             let finished = py.detach(|| {
                 let start = Instant::now();
-                while !handle.is_finished() && start.elapsed() < Duration::from_millis(100) {
+                while !handle.is_finished() && start.elapsed() < Duration::from_millis(20) {
                     std::thread::sleep(Duration::from_millis(2));
                 }
                 handle.is_finished()
