@@ -87,6 +87,8 @@ pub(crate) struct Worker {
     /// IA: the active functions of the next tet as a bit mask, if known.
     pub(crate) active_hint: Option<u64>,
     cell_labels: Vec<Label>,
+    /// IA: sign bits of every function at corner 0 of the current tet.
+    base_label: Label,
 }
 
 /// Block-local maps, dropped with the block.
@@ -221,6 +223,12 @@ impl Worker {
         for &f in &self.active {
             self.vals.push(row(f as usize));
         }
+        if ctx.mode == Mode::Ia {
+            self.base_label = ia_base_label(&tet, ctx);
+        }
+        if super::simple::simple_tet(ctx, st, &tet, &self.active, &self.vals, &self.base_label) {
+            return Ok(());
+        }
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
             .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
@@ -233,10 +241,7 @@ impl Worker {
         }
         // Region labels and nodes.
         let base = st.uf.len() as u32;
-        let base_label = match ctx.mode {
-            Mode::Ia => ia_base_label(&tet, ctx),
-            Mode::Mi => SmallVec::new(),
-        };
+        let base_label = std::mem::take(&mut self.base_label);
         self.cell_labels.clear();
         for cell in c.cells() {
             let label: Label = match ctx.mode {
@@ -259,6 +264,7 @@ impl Worker {
             st.node_volume.push(0.0);
             self.cell_labels.push(label);
         }
+        self.base_label = base_label;
         if ctx.volumes {
             let corners = tet.map(|v| ctx.grid.vertex(v));
             for (ci, cell) in c.cells().iter().enumerate() {
@@ -506,15 +512,24 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
         return w.vid[v as usize];
     }
     let key = vertex_key(ctx.mode, c, v, tet, &w.active);
+    let id = vertex_id_by_key(ctx, st, key, || {
+        let corners = tet.map(|g| ctx.grid.vertex(g));
+        c.vertex_position(v as usize, &corners, &w.vals)
+    });
+    w.vid[v as usize] = id;
+    id
+}
+
+/// Block id of the vertex with global key `key`; `position` is asked for
+/// only when the key is new to the block.
+pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
     let next = st.out.keys.len() as u32;
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
         st.out.keys.push(key);
         st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
-        let corners = tet.map(|g| ctx.grid.vertex(g));
-        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
+        st.out.points.push(position());
     }
-    w.vid[v as usize] = id;
     id
 }
 

@@ -14,6 +14,7 @@ mod boxfast;
 mod canon;
 mod merge;
 mod raytrace;
+mod simple;
 pub mod sparse;
 pub use sparse::{compute_sparse, SparseStats};
 mod topology;
