@@ -59,7 +59,15 @@ pub(crate) fn barycentric(mode: Option<Mode>, simplex: u8, functions: &[u16], va
     for j in 0..n {
         a[n - 1][j] = 1.0;
     }
-    let x = solve(&mut a, n);
+    let x = if n == 2 {
+        // On a tet edge: the zero of a linear function between two values of
+        // opposite signs, in a form symmetric in the two ends (the same
+        // rounding whichever tet, hence corner order, computes it).
+        let (g0, g1) = (a[0][0], a[0][1]);
+        normalize([g1 / (g1 - g0), g0 / (g0 - g1), 0.0, 0.0], 2)
+    } else {
+        solve(&mut a, n)
+    };
     let mut out = [0.0; 4];
     for j in 0..n {
         out[s[j] as usize] = x[j];
@@ -95,7 +103,11 @@ fn solve(a: &mut [[f64; 4]; 4], n: usize) -> [f64; 4] {
         }
         x[r] = if a[r][r] != 0.0 { s / a[r][r] } else { 0.0 };
     }
-    // Clamp tiny rounding excursions so points stay in the tet.
+    normalize(x, n)
+}
+
+/// Clamps tiny rounding excursions so points stay in the tet.
+fn normalize(mut x: [f64; 4], n: usize) -> [f64; 4] {
     let total: f64 = x[..n].iter().map(|v| v.max(0.0)).sum();
     for v in x[..n].iter_mut() {
         *v = v.max(0.0) / if total > 0.0 { total } else { 1.0 };

@@ -86,6 +86,8 @@ pub(crate) struct Worker {
     edge_net: Vec<u32>,
     /// IA: the active functions of the next tet as a bit mask, if known.
     pub(crate) active_hint: Option<u64>,
+    /// IA: the sign bits at corner 0 of the next tet (k <= 63), if known.
+    pub(crate) base_hint: Option<u64>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -224,7 +226,10 @@ impl Worker {
             self.vals.push(row(f as usize));
         }
         if ctx.mode == Mode::Ia {
-            self.base_label = ia_base_label(&tet, ctx);
+            self.base_label = match self.base_hint {
+                Some(b) => SmallVec::from_elem(b, 1),
+                None => ia_base_label(&tet, ctx),
+            };
         }
         if super::simple::simple_tet(ctx, st, &tet, &self.active, &self.vals, &self.base_label) {
             return Ok(());
@@ -322,10 +327,12 @@ impl Worker {
         // Region contacts across tet faces (cell grouping), once per (face, cell).
         self.pairs.sort_unstable();
         self.pairs.dedup();
-        for j in 0..self.pairs.len() {
-            let (i, cell) = self.pairs[j];
-            let label = self.cell_labels[cell as usize].clone();
-            contact(st, face_key(&tet, i as usize), &label, base + cell);
+        if st.grouping {
+            for j in 0..self.pairs.len() {
+                let (i, cell) = self.pairs[j];
+                let label = self.cell_labels[cell as usize].clone();
+                contact(st, face_key(&tet, i as usize), &label, base + cell);
+            }
         }
         // Shell connectivity (Sec. 7): around an edge of the network, the two
         // faces of a cell there bound the same wedge, so their sides facing the
