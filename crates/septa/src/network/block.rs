@@ -91,6 +91,9 @@ pub(crate) struct Worker {
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
+    /// The block's vertex map, kept between blocks so its table is
+    /// allocated once per thread.
+    vmap: FxHashMap<VKey, u32>,
 }
 
 /// Block-local maps, dropped with the block.
@@ -165,13 +168,14 @@ impl Worker {
                 Block::Cubes { lo, hi } => Some((*lo, *hi)),
                 Block::Tets(_) => None,
             },
+            vmap: std::mem::take(&mut self.vmap),
             ..State::default()
         };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
             if super::boxfast::applies(ctx) {
                 self.run_box(ctx, &mut st, g, *lo, *hi)?;
                 st.out.tets = (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
-                return Ok(finish(st));
+                return Ok(self.finish(st));
             }
         }
         let mut tets = std::mem::take(&mut self.tets);
@@ -181,7 +185,16 @@ impl Worker {
         }
         st.out.tets = tets.len();
         self.tets = tets;
-        Ok(finish(st))
+        Ok(self.finish(st))
+    }
+
+    /// Hands the block's vertex map back for the next block and compresses
+    /// the block's output.
+    fn finish(&mut self, mut st: State) -> BlockOut {
+        let mut vmap = std::mem::take(&mut st.vmap);
+        vmap.clear();
+        self.vmap = vmap;
+        finish(st)
     }
 
     /// The per-tet step (active functions, complex, extraction); look-up
