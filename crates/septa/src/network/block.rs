@@ -94,6 +94,8 @@ pub(crate) struct Worker {
     /// The block's vertex map, kept between blocks so its table is
     /// allocated once per thread.
     vmap: FxHashMap<VKey, u32>,
+    /// Tet programs by look-up table template (`None`: not programmable).
+    programs: FxHashMap<u64, Option<super::program::Program>>,
 }
 
 /// Block-local maps, dropped with the block.
@@ -247,6 +249,19 @@ impl Worker {
         if super::simple::simple_tet(ctx, st, &tet, &self.active, &self.vals, &self.base_label) {
             return Ok(());
         }
+        // Table tets: replay the template's program, or record it.
+        let template = if st.grouping || ctx.volumes {
+            None
+        } else {
+            Complex::template_key(ctx.mode, &self.vals, &ctx.options)
+        };
+        if let Some(key) = template {
+            if let Some(Some(p)) = self.programs.get(&key) {
+                super::program::run(p, ctx, st, &tet, &self.active, &self.vals, &self.base_label);
+                return Ok(());
+            }
+        }
+        let mark = super::program::Mark::of(st);
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
             .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
@@ -420,6 +435,10 @@ impl Worker {
                 }
             }
         }
+        if let Some(key) = template {
+            let program = super::program::record(c, &self.active, &self.vid, st, mark);
+            self.programs.insert(key, program);
+        }
         self.complex = owned;
         Ok(())
     }
@@ -496,17 +515,24 @@ fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32
 /// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
 pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
     let vert = c.vertices()[v as usize];
+    key_of(mode, vert.simplex(), vert.functions(), tet, active)
+}
+
+/// Global key of the vertex on tet element `simplex` defined by the local
+/// functions `funcs` (Sec. 5.1: sorted grid vertices of the element, sorted
+/// global function ids; an MI tet corner is keyed by its grid vertex alone).
+pub(crate) fn key_of(mode: Mode, simplex: u8, funcs: &[u16], tet: &[u32; 4], active: &[u16]) -> VKey {
     let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
     let mut n = 0;
     for i in 0..4 {
-        if vert.simplex() >> i & 1 == 1 {
+        if simplex >> i & 1 == 1 {
             key.grid[n] = tet[i];
             n += 1;
         }
     }
     key.grid[..n].sort_unstable();
-    if !(mode == Mode::Mi && vert.dim() == 0) {
-        for (j, &f) in vert.functions().iter().enumerate() {
+    if !(mode == Mode::Mi && n == 1) {
+        for (j, &f) in funcs.iter().enumerate() {
             key.funcs[j] = active[f as usize];
         }
         key.funcs.sort_unstable();

@@ -14,6 +14,7 @@ mod boxfast;
 mod canon;
 mod merge;
 mod raytrace;
+mod program;
 mod simple;
 pub mod sparse;
 pub use sparse::{compute_sparse, SparseStats};
