@@ -566,6 +566,25 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
     id
 }
 
+/// Position of the vertex on tet element `simplex` defined by the local
+/// functions `funcs` (rows of `vals`). Only the element's corners are
+/// looked up: the other barycentric weights are exactly 0, and adding
+/// `0 * corner` never changes a sum that starts at `+0.0`, so this rounds
+/// exactly like `Complex::vertex_position` over all four corners.
+pub(crate) fn position_on(ctx: &Ctx, tet: &[u32; 4], simplex: u8, funcs: &[u16], vals: &[[f64; 4]]) -> [f64; 3] {
+    let b = crate::complex::barycentric(Some(ctx.mode), simplex, funcs, vals);
+    let mut p = [0.0; 3];
+    for i in 0..4 {
+        if simplex >> i & 1 == 1 {
+            let corner = ctx.grid.vertex(tet[i]);
+            for k in 0..3 {
+                p[k] += b[i] * corner[k];
+            }
+        }
+    }
+    p
+}
+
 /// Block id of the vertex with global key `key`; `position` is asked for
 /// only when the key is new to the block.
 pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {

@@ -16,8 +16,8 @@
 
 use smallvec::SmallVec;
 
-use super::block::{key_of, vertex_id_by_key, BlockOut, Ctx, Label, SRef, State};
-use crate::complex::{barycentric, Complex, Mode};
+use super::block::{key_of, position_on, vertex_id_by_key, BlockOut, Ctx, Label, SRef, State};
+use crate::complex::{Complex, Mode};
 
 /// A complex vertex: tet element and local functions.
 #[derive(Clone, Copy, Debug)]
@@ -161,22 +161,11 @@ pub(crate) fn run(
         st.node_label.push(label);
         st.node_volume.push(0.0);
     }
-    let mut corners: Option<[[f64; 3]; 4]> = None;
     let mut ids: SmallVec<[u32; 32]> = SmallVec::new();
     for v in &program.verts {
         let funcs = &v.funcs[..v.len as usize];
         let key = key_of(ctx.mode, v.simplex, funcs, tet, active);
-        ids.push(vertex_id_by_key(ctx, st, key, || {
-            let c = *corners.get_or_insert_with(|| tet.map(|g| ctx.grid.vertex(g)));
-            let b = barycentric(Some(ctx.mode), v.simplex, funcs, vals);
-            let mut p = [0.0; 3];
-            for (i, corner) in c.iter().enumerate() {
-                for k in 0..3 {
-                    p[k] += b[i] * corner[k];
-                }
-            }
-            p
-        }));
+        ids.push(vertex_id_by_key(ctx, st, key, || position_on(ctx, tet, v.simplex, funcs, vals)));
     }
     let poly_base = st.out.poly_label.len() as u32;
     if st.out.poly_start.is_empty() {

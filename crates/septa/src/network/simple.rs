@@ -20,9 +20,9 @@ use std::sync::OnceLock;
 
 use smallvec::SmallVec;
 
-use super::block::{Ctx, Label, State};
+use super::block::{position_on, vertex_id_by_key, Ctx, Label, State};
 use super::VKey;
-use crate::complex::{barycentric, Complex, Mode, Options, Plane};
+use crate::complex::{Complex, Mode, Options, Plane};
 
 /// One vertex of the template polygon: on the tet edge `simplex` (bit mask
 /// of its two corners), defined by local functions `funcs[..len]`.
@@ -152,7 +152,6 @@ pub(crate) fn simple_tet(
     if st.out.poly_start.is_empty() {
         st.out.poly_start.push(0);
     }
-    let mut corners: Option<[[f64; 3]; 4]> = None;
     for tv in &t.verts {
         let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
         let (a, b) = (tv.simplex.trailing_zeros() as usize, 31 - (tv.simplex as u32).leading_zeros() as usize);
@@ -162,17 +161,8 @@ pub(crate) fn simple_tet(
             key.funcs[j] = active[tv.funcs[j] as usize];
         }
         key.funcs[..tv.len as usize].sort_unstable();
-        let id = super::block::vertex_id_by_key(ctx, st, key, || {
-            let c = *corners.get_or_insert_with(|| tet.map(|g| ctx.grid.vertex(g)));
-            let bary = barycentric(Some(ctx.mode), tv.simplex, &tv.funcs[..tv.len as usize], vals);
-            let mut p = [0.0; 3];
-            for (i, corner) in c.iter().enumerate() {
-                for k in 0..3 {
-                    p[k] += bary[i] * corner[k];
-                }
-            }
-            p
-        });
+        let funcs = &tv.funcs[..tv.len as usize];
+        let id = vertex_id_by_key(ctx, st, key, || position_on(ctx, tet, tv.simplex, funcs, vals));
         st.out.poly_verts.push(id);
     }
     st.out.poly_start.push(st.out.poly_verts.len() as u32);
