@@ -108,13 +108,27 @@ impl TriMesh {
     }
 
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        lipschitz(|p| self.eval(p), 1.0, lo, hi)
+        let err = mesh_error(self, super::rounding::box_mag(lo, hi));
+        lipschitz(|p| self.eval(p), 1.0, lo, hi, err)
     }
 
     /// Largest absolute vertex coordinate.
     pub(crate) fn magnitude(&self) -> f64 {
         self.vertices.iter().map(|v| mag(*v)).fold(0.0, f64::max)
     }
+}
+
+/// Error of the computed signed distance against the exact one, for the
+/// Lipschitz bound (signed distance is 1-Lipschitz). The closest point on a
+/// triangle is a few dozen roundings of coordinates of size `A + |mesh|`,
+/// so `1e-10` of that is a margin of about a million. The sign is the one
+/// assumption: the winding number must be on the right side of 1/2. It is
+/// computed exactly (sum of solid angles) near the surface and by a far
+/// field expansion whose error is far below 1/2 elsewhere, for a closed,
+/// consistently oriented mesh; a mesh with holes can be misclassified there
+/// and then no bound holds (use `--dense` for such meshes).
+pub(crate) fn mesh_error(m: &TriMesh, a: f64) -> f64 {
+    1e-10 * (1.0 + a + m.magnitude())
 }
 
 /// Read a closed triangle mesh file (`.obj`, `.off`, `.ply`, `.stl`, by
