@@ -10,7 +10,7 @@
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa::scene::{load_function_list, Primitive};
+use septa::scene::{load_function_list, Primitive, TriMesh};
 use serde_json::{json, Value};
 
 /// One of every primitive type (and combinator), through the JSON reader.
@@ -122,7 +122,7 @@ fn primitives() -> Vec<(String, Primitive)> {
 fn check_box(name: &str, f: &Primitive, lo: [f64; 3], hi: [f64; 3], rng: &mut ChaCha8Rng) -> bool {
     let (blo, bhi) = f.bounds(lo, hi);
     assert!(!blo.is_nan() && !bhi.is_nan() && blo <= bhi, "{name}: bound [{blo}, {bhi}]");
-    let mut at = |p: [f64; 3]| {
+    let at = |p: [f64; 3]| {
         let v = f.eval(p);
         assert!(
             blo <= v && v <= bhi,
@@ -301,4 +301,20 @@ fn grid_vertices_exactly_on_the_surface() {
         }
         assert!(on > 0, "function {fi}: no grid vertex on the surface");
     }
+}
+
+#[test]
+fn open_meshes_get_no_bound_closed_ones_do() {
+    // A tet with one triangle missing: its winding number is not 0 or 1
+    // off the surface, so the sign of eval may flip anywhere: no bound.
+    let v = vec![[-0.4, -0.4, -0.4], [0.4, -0.4, -0.4], [0.0, 0.4, -0.4], [0.0, 0.0, 0.4]];
+    let closed = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    let m = |t: &[[u32; 3]]| Primitive::Mesh(std::sync::Arc::new(TriMesh::new(v.clone(), t.to_vec()).unwrap()));
+    let (lo, hi) = ([2.0; 3], [2.5; 3]);
+    let (l, h) = m(&closed).bounds(lo, hi);
+    assert!(l.is_finite() && h < 0.0, "closed: [{l}, {h}]");
+    let (l, h) = m(&closed[..3]).bounds(lo, hi);
+    assert!(l == f64::NEG_INFINITY && h == f64::INFINITY, "open: [{l}, {h}]");
+    assert!(septa::scene::block_may_be_active_ia(&[m(&closed[..3])], lo, hi));
+    assert!(!septa::scene::block_may_be_active_ia(&[m(&closed)], lo, hi));
 }
