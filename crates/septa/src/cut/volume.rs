@@ -50,6 +50,13 @@ fn fan(out: &CutCellMesh, faces: &[usize], cell: u32) -> Vec<([u32; 3], bool)> {
 /// contains 0 (cannot happen for a valid cut-vertex, but then the exact
 /// path decides).
 fn volume_interval(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Option<Interval> {
+    // Relative to a float point `o` near the cell (exactly representable,
+    // so the sum is unchanged: a closed surface's fan sum does not depend
+    // on the origin), keeping the terms as small as the cell.
+    let o = match tris.first() {
+        Some((t, _)) => out.vertices[t[0] as usize].map(Interval::point),
+        None => return Some(Interval::point(0.0)),
+    };
     let mut pts: Vec<Option<V3<Interval>>> = vec![None; out.vertex_defs.len()];
     let mut acc = Interval::point(0.0);
     for (t, positive) in tris {
@@ -57,7 +64,7 @@ fn volume_interval(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Opt
         for &v in t {
             if pts[v as usize].is_none() {
                 let (h, w) = c.hom::<Interval>(out.vertex_defs[v as usize]);
-                let q = [h[0].div(&w)?, h[1].div(&w)?, h[2].div(&w)?];
+                let q = [h[0].div(&w)?.sub(&o[0]), h[1].div(&w)?.sub(&o[1]), h[2].div(&w)?.sub(&o[2])];
                 pts[v as usize] = Some(q);
             }
             p.push(pts[v as usize].clone().unwrap());
