@@ -15,6 +15,7 @@
 //! evaluation of the same sum on the divided points decides almost every
 //! cell first (a proven filter: it encloses the exact volume).
 
+use rayon::prelude::*;
 use septa_exact::{Exact, Interval, Ring, Sign};
 
 use super::geom::{cross3, dot3, Ctx, V3};
@@ -57,19 +58,20 @@ fn volume_interval(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Opt
         Some((t, _)) => out.vertices[t[0] as usize].map(Interval::point),
         None => return Some(Interval::point(0.0)),
     };
-    let mut pts: Vec<Option<V3<Interval>>> = vec![None; out.vertex_defs.len()];
+    // The cell's own vertices (a few dozen): a sorted list, not a map
+    // over every cut-vertex.
+    let mut ids: Vec<u32> = tris.iter().flat_map(|(t, _)| *t).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let mut pts: Vec<V3<Interval>> = Vec::with_capacity(ids.len());
+    for &v in &ids {
+        let (h, w) = c.hom::<Interval>(out.vertex_defs[v as usize]);
+        pts.push([h[0].div(&w)?.sub(&o[0]), h[1].div(&w)?.sub(&o[1]), h[2].div(&w)?.sub(&o[2])]);
+    }
     let mut acc = Interval::point(0.0);
     for (t, positive) in tris {
-        let mut p: Vec<V3<Interval>> = Vec::with_capacity(3);
-        for &v in t {
-            if pts[v as usize].is_none() {
-                let (h, w) = c.hom::<Interval>(out.vertex_defs[v as usize]);
-                let q = [h[0].div(&w)?.sub(&o[0]), h[1].div(&w)?.sub(&o[1]), h[2].div(&w)?.sub(&o[2])];
-                pts[v as usize] = Some(q);
-            }
-            p.push(pts[v as usize].clone().unwrap());
-        }
-        let d = det(&p[0], &p[1], &p[2]);
+        let p = t.map(|v| &pts[ids.binary_search(&v).unwrap()]);
+        let d = det(p[0], p[1], p[2]);
         acc = if *positive { acc.add(&d) } else { acc.sub(&d) };
     }
     Some(acc)
@@ -115,6 +117,7 @@ pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh) -> Vec<Sign> {
         }
     }
     (0..out.num_cells)
+        .into_par_iter()
         .map(|k| {
             let tris = fan(out, &faces_of[k], k as u32);
             match volume_interval(c, out, &tris).and_then(|v| v.sign()) {
