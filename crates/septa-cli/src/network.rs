@@ -282,7 +282,12 @@ fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), B
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
     if json.is_object() && json.get("input").is_none() {
         let scene = septa::scene::Scene::load(&name)?;
-        let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
+        // A reference config has no split: `--split`, as on the dense path.
+        let split = match json.get("grid") {
+            Some(_) if scene.grid.split == 6 => Split::Six,
+            Some(_) => Split::Five,
+            None => split(args)?,
+        };
         let mut res = scene.grid.resolution;
         let mut bounds = scene.grid.bounds;
         if json.get("gridResolution").is_none() && json.get("grid").is_none() {
