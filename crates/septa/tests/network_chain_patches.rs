@@ -114,3 +114,25 @@ fn chains_on_tet_edges_and_faces_list_their_patches() {
         }
     }
 }
+
+#[test]
+fn material_chains_on_grid_edges_list_their_patches() {
+    // Materials x, y and 0: the triple line x = y = 0 runs along grid
+    // edges (the z axis), the interfaces x = 0, y = 0 lie in tet faces and
+    // x = y along cube-face diagonals.
+    let fs = vec![
+        Primitive::plane([0.0; 3], [1.0, 0.0, 0.0]),
+        Primitive::plane([0.0; 3], [0.0, 1.0, 0.0]),
+        Primitive::Constant(0.0),
+    ];
+    for n in [4, 6, 7] {
+        for split in [Split::Five, Split::Six] {
+            for raytrace in [true, false] {
+                let what = format!("materials x, y, 0 n={n} {split:?} raytrace={raytrace}");
+                let net = network(&fs, n, Mode::Mi, split, raytrace);
+                let chains = check(&net, &what);
+                assert!(chains > 0 || n % 2 == 1, "{what}: no chain");
+            }
+        }
+    }
+}

@@ -7,13 +7,15 @@
 //!
 //! 1. **The same expression, in intervals.** When `bounds` evaluates
 //!    exactly the operations of `eval`, in the same order, on intervals
-//!    that enclose the operands, every rounded result is enclosed: IEEE
-//!    rounding is monotone, so for `x` in `[a, b]` and `y` in `[c, d]`,
-//!    `fl(x + y)` lies in `[fl(a + c), fl(b + d)]`, and likewise for `-`,
-//!    `*` (the extreme products), `/` (a divisor without 0), `sqrt`, `abs`,
-//!    `min`, `max`. [`Interval`] rounds its ends one ulp further out, so it
-//!    also encloses the exact results. Rust never contracts `a * b + c` into
-//!    a fused multiply-add, so `eval` performs exactly the operations written.
+//!    that enclose the operands, every rounded result is enclosed. Each
+//!    [`Interval`] operation returns float ends `[l, h]` enclosing the exact
+//!    result `x op y` for all `x`, `y` in the operand intervals (outward
+//!    rounding); IEEE rounding is monotone and fixes floats, so `l <= x op y
+//!    <= h` gives `l <= fl(x op y) <= h`: the rounded result is enclosed too,
+//!    for `+ - * /`, `sqrt`, `abs`, `min`, `max` alike. By induction over the
+//!    expression, the final interval encloses `eval`'s value. Rust never
+//!    contracts `a * b + c` into a fused multiply-add, so `eval` performs
+//!    exactly the operations written.
 //!    Plane, half-space, sphere (all kinds), ellipsoid, box and point set are
 //!    bounded this way, and the combinators (sum, scale, abs, min, max,
 //!    transform) combine their operands' enclosures of the rounded values
