@@ -136,3 +136,17 @@ fn material_chains_on_grid_edges_list_their_patches() {
         }
     }
 }
+
+#[test]
+fn reference_specs_every_chain_lists_its_patches() {
+    for (name, mode) in [("ia18", Mode::Ia), ("mi18", Mode::Mi), ("nested8", Mode::Ia)] {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("../../data/specs/{name}.json"));
+        let text = std::fs::read_to_string(&path).unwrap();
+        let fs = septa::scene::load_function_list(&text, name, None).unwrap();
+        for n in [10, 20] {
+            let net = network(&fs, n, mode, Split::Five, true);
+            let chains = check(&net, &format!("{name} n={n}"));
+            assert!(chains > 0 || name == "nested8", "{name} {n}: no chain");
+        }
+    }
+}
