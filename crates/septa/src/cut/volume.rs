@@ -106,6 +106,15 @@ fn volume_exact(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Sign {
     acc.sign().mul(l_sign)
 }
 
+/// Exact sign of the volume of `cell`, bounded by the faces `faces`.
+pub(crate) fn cell_volume_sign(c: &Ctx, out: &CutCellMesh, faces: &[usize], cell: u32) -> Sign {
+    let tris = fan(out, faces, cell);
+    match volume_interval(c, out, &tris).and_then(|v| v.sign()) {
+        Some(s) => s,
+        None => volume_exact(c, out, &tris),
+    }
+}
+
 /// Exact sign of every cell's volume (after voids are attached).
 pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh) -> Vec<Sign> {
     let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); out.num_cells];
@@ -116,14 +125,5 @@ pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh) -> Vec<Sign> {
             }
         }
     }
-    (0..out.num_cells)
-        .into_par_iter()
-        .map(|k| {
-            let tris = fan(out, &faces_of[k], k as u32);
-            match volume_interval(c, out, &tris).and_then(|v| v.sign()) {
-                Some(s) => s,
-                None => volume_exact(c, out, &tris),
-            }
-        })
-        .collect()
+    (0..out.num_cells).into_par_iter().map(|k| cell_volume_sign(c, out, &faces_of[k], k as u32)).collect()
 }
