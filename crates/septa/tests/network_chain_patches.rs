@@ -87,6 +87,16 @@ fn chains_on_tet_edges_and_faces_list_their_patches() {
             "grid plane and sphere",
             vec![Primitive::plane([0.0; 3], [1.0, 0.0, 0.0]), Primitive::sphere([0.013, 0.021, -0.017], 0.61)],
         ),
+        // |x| touches zero on the grid plane x = 0 without changing sign:
+        // two wedges around the chain x = y = 0 carry the same sign vector
+        // (different cells, separated by the sheet x = 0).
+        (
+            "touching grid plane",
+            vec![
+                Primitive::Abs(Box::new(Primitive::plane([0.0; 3], [1.0, 0.0, 0.0]))),
+                Primitive::plane([0.0; 3], [0.0, 1.0, 0.0]),
+            ],
+        ),
         // Generic: chains inside tets (the wedges of one complex).
         (
             "three spheres",
