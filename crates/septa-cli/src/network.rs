@@ -67,11 +67,35 @@ pub struct Args {
     /// Block edge in cubes.
     #[arg(long, default_value_t = 16)]
     block: usize,
-    /// Sparse evaluation (function JSON, reference config or scene on a box
-    /// grid): skip blocks the functions' bounds prove empty, sample the rest
-    /// block by block; same output, memory following the surface.
+    /// Sample every grid vertex (the dense path). By default, analytic
+    /// functions on a box grid (a function JSON, reference config or scene)
+    /// are evaluated sparsely: blocks the functions' bounds prove empty are
+    /// skipped, the rest sampled block by block; the output is identical
+    /// (the bounds enclose the rounded samples; docs/sparse.md).
+    #[arg(long, conflicts_with = "sparse")]
+    dense: bool,
+    /// Accepted for compatibility: sparse evaluation is the default
+    /// wherever it applies (no effect on `.npz` input or a tet mesh).
     #[arg(long)]
     sparse: bool,
+}
+
+/// Whether the input is analytic functions on a box grid (sparse
+/// evaluation applies): not sampled values (`.npz`), not a tet mesh (given
+/// by `--mesh` or a reference config's `tetMeshFile`).
+fn sparse_applies(args: &Args) -> bool {
+    if args.mesh.is_some() || args.input.extension().and_then(|e| e.to_str()) == Some("npz") {
+        return false;
+    }
+    let name = args.input.display().to_string();
+    if name.starts_with("builtin:") {
+        return true;
+    }
+    let Ok(text) = std::fs::read_to_string(&args.input) else { return false };
+    match serde_json::from_str::<serde_json::Value>(&text) {
+        Ok(json) => json.get("tetMeshFile").is_none(),
+        Err(_) => false,
+    }
 }
 
 /// Runs `septa ia|mi`.
@@ -99,8 +123,19 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         pool = pool.num_threads(t.max(1));
     }
     let pool = pool.build()?;
-    let (net, tets, t_read, stats) = if args.sparse {
-        let (g, funcs) = load_sparse(&args)?;
+    // Sparse by default where it applies. Should the scene reader reject a
+    // function file the reference reader accepts, the dense path reads it
+    // (and reports its own error if it is bad).
+    let sparse_input = if !args.dense && sparse_applies(&args) {
+        match load_sparse(&args) {
+            Ok(x) => Some(x),
+            Err(e) if args.sparse => return Err(e),
+            Err(_) => None,
+        }
+    } else {
+        None
+    };
+    let (net, tets, t_read, stats) = if let Some((g, funcs)) = sparse_input {
         let t_read = t0.elapsed().as_secs_f64();
         let (net, stats) = pool.install(|| network::sparse::compute_sparse(&g, &funcs, &opts))?;
         (net, g.num_tets(), t_read, Some(stats))
@@ -231,12 +266,12 @@ pub fn sparse_json(s: &network::sparse::SparseStats) -> serde_json::Value {
     })
 }
 
-/// Reads a box grid and analytic functions for `--sparse`: a function
+/// Reads a box grid and analytic functions for sparse evaluation: a function
 /// list sampled on `--grid`, or a reference config / scene file (its grid).
 fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), Box<dyn std::error::Error>> {
     let name = args.input.display().to_string();
     if args.mesh.is_some() || args.input.extension().and_then(|e| e.to_str()) == Some("npz") {
-        return Err(format!("{name}: --sparse needs analytic functions on a box grid (a function JSON, config or scene), not sampled values or a tet mesh").into());
+        return Err(format!("{name}: sparse evaluation needs analytic functions on a box grid (a function JSON, config or scene), not sampled values or a tet mesh").into());
     }
     if name.starts_with("builtin:") {
         let scene = septa::scene::Scene::load(&name)?;
@@ -247,7 +282,12 @@ fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), B
     let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
     if json.is_object() && json.get("input").is_none() {
         let scene = septa::scene::Scene::load(&name)?;
-        let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
+        // A reference config has no split: `--split`, as on the dense path.
+        let split = match json.get("grid") {
+            Some(_) if scene.grid.split == 6 => Split::Six,
+            Some(_) => Split::Five,
+            None => split(args)?,
+        };
         let mut res = scene.grid.resolution;
         let mut bounds = scene.grid.bounds;
         if json.get("gridResolution").is_none() && json.get("grid").is_none() {

@@ -23,8 +23,12 @@ pub struct Args {
     /// Print one JSON object with counts, surfaces and curves.
     #[arg(long)]
     json: bool,
-    /// Sparse evaluation: skip blocks the functions' bounds prove empty
-    /// (same output; memory follows the surface).
+    /// Sample every grid vertex. By default blocks the functions' bounds
+    /// prove empty are skipped (identical output; memory follows the
+    /// surface; docs/sparse.md).
+    #[arg(long, conflicts_with = "sparse")]
+    dense: bool,
+    /// Accepted for compatibility: sparse evaluation is the default.
     #[arg(long)]
     sparse: bool,
 }
@@ -41,7 +45,7 @@ pub fn run(a: Args) -> CliResult {
         return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
     };
     let scene = Scene::load(&path)?;
-    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: a.sparse })?;
+    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: !a.dense })?;
     if let Some(dir) = &a.output {
         regions_out::write(&r, dir)?;
     }

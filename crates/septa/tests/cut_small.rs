@@ -40,3 +40,45 @@ fn cube_one_plane() {
     assert_eq!(c.cut_faces, 21);
     out.validate().unwrap();
 }
+
+/// The corner tet `x, y, z >= 0, x + y + z <= 1` cut by the planes
+/// `x, y, z = 1/3, 2/3` (as doubles): the 10 grid cubes with `i + j + k <=
+/// 2` meet the tet, and because `fl(1/3) + fl(1/3) + fl(1/3)` and `fl(1/3) +
+/// fl(2/3)` fall just below 1, so do the 7 cubes with `i + j + k = 3`, each
+/// in a corner tet of volume ~1e-48: 17 cells, all of positive exact
+/// volume although their floating-point volume is 0.
+#[test]
+fn corner_tet_thirds_has_tiny_cells_of_positive_volume() {
+    let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let t = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+    let mut planes = vec![];
+    for a in 0..3 {
+        for x in [1.0 / 3.0, 2.0 / 3.0] {
+            let mut p = [0.0; 4];
+            p[a] = 1.0;
+            p[3] = -x;
+            planes.push(p);
+        }
+    }
+    let out = cut_mesh(&v, &t, &planes, &CutOptions::default()).unwrap();
+    assert_eq!(out.counts.cut_cells, 17);
+    let tiny = out.cell_volumes.iter().filter(|&&x| x.abs() < 1e-30).count();
+    assert_eq!(tiny, 7, "{:?}", out.cell_volumes);
+    assert!(out.cell_volume_signs.iter().all(|s| *s == septa_exact::Sign::Positive));
+    let check = out.validate().unwrap();
+    assert_eq!((check.euler, check.domain_euler, check.euler_by_cell), (1, 1, 1));
+    // The same cut with planes at exact dyadic values meets the face
+    // exactly: only the 10 cubes, no sliver.
+    let planes: Vec<[f64; 4]> = (0..3)
+        .flat_map(|a| {
+            [0.25, 0.5].map(move |x| {
+                let mut p = [0.0; 4];
+                p[a] = 1.0;
+                p[3] = -x;
+                p
+            })
+        })
+        .collect();
+    let out = cut_mesh(&v, &t, &planes, &CutOptions::default()).unwrap();
+    out.validate().unwrap();
+}

@@ -57,6 +57,7 @@ pub mod selfx;
 pub mod triangulate;
 mod validate;
 pub mod voids;
+mod volume;
 
 pub use error::CutError;
 pub use validate::Validation;
@@ -160,6 +161,10 @@ pub struct CutCellMesh {
     pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
     pub cell_volumes: Vec<f64>,
+    /// Exact sign of each cell's volume (from the cut-vertices' exact
+    /// homogeneous coordinates; `volume.rs`): what [`CutCellMesh::validate`]
+    /// checks, since a legitimate cell can be too small for `cell_volumes`.
+    pub cell_volume_signs: Vec<Sign>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
 }
@@ -394,6 +399,7 @@ fn cut_impl(
     let (attached, unresolved) = voids::attach_voids(&c, &mut out);
     stats.voids_attached = attached;
     stats.voids_unresolved = unresolved;
+    out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.planes = planes.clone();
     out.tri_normals = triangles

@@ -3,6 +3,7 @@
 
 use super::{CutCellMesh, CutError, CutFace, Support};
 use crate::cut::triangulate;
+use septa_exact::Sign;
 
 /// Results of [`CutCellMesh::validate`].
 #[derive(Clone, Debug, serde::Serialize)]
@@ -11,7 +12,8 @@ pub struct Validation {
     pub euler: i64,
     /// `|sum of cell volumes - mesh volume| / mesh volume`.
     pub volume_relative_error: f64,
-    /// Smallest cell volume.
+    /// Smallest cell volume (floating point; may be 0 or negative for a
+    /// cell too small to measure in `f64` whose exact volume is positive).
     pub min_cell_volume: f64,
     /// Euler characteristic of the domain, `chi(mesh) / 2`.
     pub domain_euler: i64,
@@ -44,7 +46,8 @@ impl CutCellMesh {
     }
 
     /// Checks: every cut-face bounds one (boundary) or two distinct
-    /// (interior) cells, cell volumes are positive and sum to the mesh
+    /// (interior) cells, cell volumes are positive (exactly: the sign of
+    /// each cell's volume from the exact cut-vertices) and sum to the mesh
     /// volume within `1e-9` relative.
     pub fn validate(&self) -> Result<Validation, CutError> {
         for (i, f) in self.faces.iter().enumerate() {
@@ -74,7 +77,17 @@ impl CutCellMesh {
                 self.mesh_volume
             )));
         }
-        if min <= 0.0 {
+        // Zero volume is decided exactly: a legitimate cell may be far too
+        // small for its floating-point volume (volume.rs). Without exact
+        // signs (a mesh not made by `cut_mesh`), the floating-point volume.
+        if self.cell_volume_signs.len() == self.num_cells {
+            if let Some(k) = self.cell_volume_signs.iter().position(|s| *s != Sign::Positive) {
+                return Err(CutError::Inconsistent(format!(
+                    "cell {k} has volume {} (exact sign {:?})",
+                    self.cell_volumes[k], self.cell_volume_signs[k]
+                )));
+            }
+        } else if min <= 0.0 {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
         }
         let c = &self.counts;

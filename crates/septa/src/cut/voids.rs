@@ -7,7 +7,7 @@
 
 use super::geom::{Ctx, Def};
 use super::{CutCellMesh, Support};
-use septa_exact::{Exact, Sign};
+use septa_exact::Sign;
 
 /// Attaches voids; returns `(attached, left unresolved)`.
 pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
@@ -29,6 +29,13 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
     if voids.is_empty() {
         return (0, 0);
     }
+    // The cells a void may belong to: positive volume, decided exactly (a
+    // legitimate cell can be too small for its floating-point volume).
+    let positive: Vec<bool> = (0..n)
+        .map(|k| {
+            !voids.contains(&k) && super::volume::cell_volume_sign(c, out, &faces_of[k], k as u32) == Sign::Positive
+        })
+        .collect();
     let np = c.planes.len();
     let signature = |cell: usize| -> Vec<Sign> {
         let mut sig = vec![Sign::Zero; np];
@@ -57,15 +64,14 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
         }
         sig
     };
-    let sigs: Vec<Option<Vec<Sign>>> = (0..n)
-        .map(|k| if out.cell_volumes[k] > 0.0 || voids.contains(&k) { Some(signature(k)) } else { None })
-        .collect();
+    let sigs: Vec<Option<Vec<Sign>>> =
+        (0..n).map(|k| if positive[k] || voids.contains(&k) { Some(signature(k)) } else { None }).collect();
     let mut target: Vec<u32> = (0..n as u32).collect();
     let (mut attached, mut unresolved) = (0, 0);
     for &v in &voids {
         let sv = sigs[v].as_ref().unwrap();
         let cands: Vec<usize> = (0..n)
-            .filter(|&k| out.cell_volumes[k] > 0.0)
+            .filter(|&k| positive[k])
             .filter(|&k| {
                 sigs[k]
                     .as_ref()
@@ -110,41 +116,8 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
     (attached, unresolved)
 }
 
-/// Exact sign of the signed volume of cell `cell` from its faces (the sum
-/// of `det[p0, pk, pk+1]` over each loop's fan, as `output::loop_volume`),
-/// on the input coordinates when every vertex is an input vertex; from the
-/// floating-point volume otherwise (a triangle-only cell whose vertices are
-/// cut-vertices only arises where planes touch the mesh).
+/// Exact sign of the signed volume of cell `cell` from its faces: on the
+/// exact cut-vertices (`volume.rs`), whatever their kind.
 fn volume_sign(c: &Ctx, out: &CutCellMesh, faces: &[usize], cell: usize) -> Sign {
-    let input = |v: u32| match out.vertex_defs[v as usize] {
-        Def::V(i) => Some(c.verts[i as usize]),
-        _ => None,
-    };
-    let mut acc = Exact::zero();
-    for &i in faces {
-        let f = &out.faces[i];
-        // Loops contribute + to cells[0] and - to cells[1] (see `cut_impl`).
-        let sign = match (f.cells[0] as usize == cell, f.cells[1] as usize == cell) {
-            (true, false) => 1.0,
-            (false, true) => -1.0,
-            _ => continue,
-        };
-        for lp in &f.loops {
-            let Some(pts) = lp.iter().map(|&v| input(v)).collect::<Option<Vec<_>>>() else {
-                return Sign::of_f64(out.cell_volumes[cell]);
-            };
-            let e = |x: f64| Exact::from_f64(x);
-            for k in 1..pts.len().saturating_sub(1) {
-                let (o, a, b) = (pts[0], pts[k], pts[k + 1]);
-                let cross = [
-                    &(&e(a[1]) * &e(b[2])) - &(&e(a[2]) * &e(b[1])),
-                    &(&e(a[2]) * &e(b[0])) - &(&e(a[0]) * &e(b[2])),
-                    &(&e(a[0]) * &e(b[1])) - &(&e(a[1]) * &e(b[0])),
-                ];
-                let det = &(&(&e(o[0]) * &cross[0]) + &(&e(o[1]) * &cross[1])) + &(&e(o[2]) * &cross[2]);
-                acc = if sign > 0.0 { &acc + &det } else { &acc - &det };
-            }
-        }
-    }
-    acc.sign()
+    super::volume::cell_volume_sign(c, out, faces, cell as u32)
 }

@@ -208,8 +208,9 @@ pub struct Network {
     pub patches: Vec<Patch>,
     /// Chains as vertex paths (a closed chain repeats its first vertex).
     pub chains: Vec<Vec<u32>>,
-    /// Per chain, the patches around it in cyclic order (empty where the
-    /// chain's first edge lies on a tet face).
+    /// Per chain, the patches around it in cyclic order, one per face
+    /// around the chain (`topology.rs` says how it is found on tet faces;
+    /// empty only where a cell fills two wedges at every chain edge).
     pub chain_patches: Vec<Vec<u32>>,
     /// Corner vertices.
     pub corners: Vec<u32>,

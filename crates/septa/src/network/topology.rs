@@ -61,6 +61,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     let mut vert_uf = UnionFind::new(nv);
     let mut chain_edges = Vec::new();
     let mut sheet_uf = UnionFind::new(nf);
+    // Faces around each chain edge (3 or more), for the cyclic order.
+    let mut chain_faces: rustc_hash::FxHashMap<[u32; 2], Vec<u32>> = Default::default();
     let mut i = 0;
     while i < ef.len() {
         let mut j = i;
@@ -76,7 +78,10 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         match j - i {
             2 => patch_uf.union(ef[i].1, ef[i + 1].1),
             1 => {}
-            _ => chain_edges.push([a, b]),
+            _ => {
+                chain_edges.push([a, b]);
+                chain_faces.insert([a, b], ef[i..j].iter().map(|x| x.1).collect());
+            }
         }
         i = j;
     }
@@ -88,7 +93,6 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);
-    let chain_patches = cyclic_patches(m, &chains, &face_patch);
     let (vertex_comp, components) = vert_uf.components();
     // Shells: components of face sides joined around edges (block unions),
     // and every side of a half-patch together.
@@ -144,9 +148,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         )
     });
     if let Some((shell_cell, ncells)) = rays {
-        return ray_topology(
+        let mut t = ray_topology(
             m,
-            chain_patches,
             edges,
             face_patch,
             patches,
@@ -158,6 +161,8 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
             shell_cell,
             ncells,
         );
+        t.chain_patches = cyclic_patches(m, &t.chains, &t.face_patch, &t.face_cells, &chain_faces);
+        return t;
     }
     let (region_cell, ncells) = m.region_uf.components();
     let mut cells: Vec<CellInfo> =
@@ -186,6 +191,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
             cells[c as usize].shells.push(s as u32);
         }
     }
+    let chain_patches = cyclic_patches(m, &chains, &face_patch, &face_cells, &chain_faces);
     Topology {
         edges,
         face_patch,
@@ -206,7 +212,6 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
 #[allow(clippy::too_many_arguments)]
 fn ray_topology(
     m: &Merged,
-    chain_patches: Vec<Vec<u32>>,
     edges: Vec<[u32; 2]>,
     face_patch: Vec<u32>,
     patches: Vec<Patch>,
@@ -247,7 +252,7 @@ fn ray_topology(
         cells,
         face_cells,
         cells_method: "raytrace",
-        chain_patches,
+        chain_patches: Vec::new(),
     }
 }
 
@@ -313,45 +318,101 @@ fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
     (out, corners)
 }
 
-/// The patches around each chain in cyclic order, read from the wedges of
-/// the per-tet complex at the chain's first edge (empty when that edge lies
-/// on a tet face, where no single complex sees the whole star).
-fn cyclic_patches(m: &Merged, chains: &[Vec<u32>], face_patch: &[u32]) -> Vec<Vec<u32>> {
+/// The patches around each chain in cyclic order (the order is the same
+/// along the whole chain: a chain is where the same sheets meet).
+///
+/// First from the wedges of the per-tet complexes (Sec. 7), at the first
+/// chain edge that lies inside a tet: there one complex sees the whole star
+/// of the edge. A chain lying entirely on tet faces or tet edges (functions
+/// vanishing on grid faces, planes through grid nodes) has no such edge; its
+/// star is split among several tets. Then the cells decide: the faces around
+/// an edge in cyclic order bound one wedge between each consecutive pair,
+/// and when every cell met at the edge fills exactly one wedge (two face
+/// sides facing it), the pairs of face sides by cell *are* the wedges. A
+/// chain where neither applies (a cell filling two wedges at every edge,
+/// which needs a function touching zero along the chain without changing
+/// sign) keeps an empty list.
+fn cyclic_patches(
+    m: &Merged,
+    chains: &[Vec<u32>],
+    face_patch: &[u32],
+    face_cells: &[[u32; 2]],
+    chain_faces: &rustc_hash::FxHashMap<[u32; 2], Vec<u32>>,
+) -> Vec<Vec<u32>> {
     let mut by_edge: rustc_hash::FxHashMap<[u32; 2], Vec<(u32, u32)>> = Default::default();
     for &(e, x, y) in &m.wedges {
         by_edge.entry(e).or_default().push((x, y));
     }
+    let edge = |c: &[u32], k: usize| [c[k].min(c[k + 1]), c[k].max(c[k + 1])];
     chains
         .iter()
         .map(|c| {
-            let e = [c[0].min(c[1]), c[0].max(c[1])];
-            let Some(pairs) = by_edge.get(&e) else { return Vec::new() };
-            let start = pairs[0].0;
-            let mut cur = start;
-            let mut out = Vec::new();
-            for _ in 0..=pairs.len() {
-                // The next face around, facing the same cell as `cur`.
-                let next = pairs.iter().find_map(|&(x, y)| {
-                    if x == cur {
-                        Some(y)
-                    } else if y == cur {
-                        Some(x)
-                    } else {
-                        None
-                    }
-                });
-                let Some(next) = next else { return Vec::new() };
-                out.push(face_patch[next as usize / 2]);
-                cur = next ^ 1; // cross the face
-                if cur == start || next == start {
-                    break;
-                }
-            }
-            if cur == start {
-                out
-            } else {
-                Vec::new()
-            }
+            let n = c.len().saturating_sub(1);
+            (0..n)
+                .find_map(|k| by_edge.get(&edge(c, k)).and_then(|pairs| wedge_cycle(pairs, face_patch)))
+                .or_else(|| {
+                    (0..n).find_map(|k| {
+                        let faces = chain_faces.get(&edge(c, k))?;
+                        cell_cycle(faces, face_cells, face_patch)
+                    })
+                })
+                .unwrap_or_default()
         })
         .collect()
+}
+
+/// The cycle of faces around an edge from one complex's wedges (pairs of
+/// face sides `2 f + s` facing the same cell), or `None` if it does not close.
+fn wedge_cycle(pairs: &[(u32, u32)], face_patch: &[u32]) -> Option<Vec<u32>> {
+    let start = pairs[0].0;
+    let mut cur = start;
+    let mut out = Vec::new();
+    for _ in 0..=pairs.len() {
+        // The next face around, facing the same cell as `cur`.
+        let next = pairs.iter().find_map(|&(x, y)| {
+            if x == cur {
+                Some(y)
+            } else if y == cur {
+                Some(x)
+            } else {
+                None
+            }
+        })?;
+        out.push(face_patch[next as usize / 2]);
+        cur = next ^ 1; // cross the face
+        if cur == start || next == start {
+            break;
+        }
+    }
+    (cur == start).then_some(out)
+}
+
+/// The cycle of faces around an edge with faces `faces`, pairing face sides
+/// by the cell they face; `None` unless every cell there is faced by
+/// exactly two sides (then each pair is one wedge) and the walk closes
+/// through every face.
+fn cell_cycle(faces: &[u32], face_cells: &[[u32; 2]], face_patch: &[u32]) -> Option<Vec<u32>> {
+    let sides: Vec<(u32, u32)> =
+        faces.iter().flat_map(|&f| [0, 1].map(|s| (face_cells[f as usize][s], 2 * f + s as u32))).collect();
+    if sides.iter().any(|x| x.0 == NONE) {
+        return None;
+    }
+    let partner = |x: u32| -> Option<u32> {
+        let cell = face_cells[x as usize / 2][x as usize % 2];
+        let mut same = sides.iter().filter(|s| s.0 == cell && s.1 != x);
+        let p = same.next()?.1;
+        same.next().is_none().then_some(p)
+    };
+    let start = 2 * faces.iter().min()?;
+    let mut cur = start;
+    let mut out = Vec::new();
+    for _ in 0..faces.len() {
+        let next = partner(cur)?;
+        out.push(face_patch[next as usize / 2]);
+        cur = next ^ 1;
+        if cur == start {
+            break;
+        }
+    }
+    (cur == start && out.len() == faces.len()).then_some(out)
 }

@@ -42,14 +42,22 @@ pub use labels::label_surfaces;
 pub use surfaces::Surface;
 
 /// Options of [`region_surfaces`].
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct RegionOptions {
     /// Compute per-vertex normals (one vertex copy per region pair) from
     /// the analytic gradients. Default value: `false`.
     pub normals: bool,
     /// Sparse evaluation (issue 6): sample only blocks that the functions'
-    /// bounds do not prove empty; same output. Default value: `false`.
+    /// bounds do not prove empty; the output is identical, because the
+    /// bounds enclose the rounded samples (docs/sparse.md). Default value:
+    /// `true`; `false` samples every grid vertex.
     pub sparse: bool,
+}
+
+impl Default for RegionOptions {
+    fn default() -> RegionOptions {
+        RegionOptions { normals: false, sparse: true }
+    }
 }
 
 /// The surfaces and curves of interest of a region rule.

@@ -83,8 +83,12 @@ impl Transform {
             let m = self.inverse[i];
             o[0].scale(m[0]).add(o[1].scale(m[1])).add(o[2].scale(m[2]))
         });
-        // Pad for the rounding of the local coordinates in `eval`.
-        let q = q.map(|x| x.pad(1e-15 * (1.0 + x.mag())));
+        // `q` encloses the exact local coordinates; pad by the error of
+        // computing them (rounding.rs), so the box holds every *computed*
+        // `local(p)`. The inner bound encloses the inner `eval` at every
+        // point of that box, hence this `eval` at every `p`: no further pad.
+        let err = self.local_error(&o);
+        let q = [0, 1, 2].map(|i| q[i].pad(err[i]));
         self.inner.bounds_interval(q.map(|x| x.lo), q.map(|x| x.hi))
     }
 }
@@ -146,15 +150,27 @@ impl Wyvill {
         scale(w, k)
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
+        // `dist` encloses the computed distance: without an axis, by the
+        // same expression in intervals (rounding.rs, kind 1); with one, by
+        // a Lipschitz bound padded by the error of `offset` (the cylinder's
+        // perpendicular part, same bound as the cylinder's).
         let dist = match self.axis {
             None => norm3(offset_box(lo, hi, self.center)),
-            Some(_) => lipschitz(|p| norm(self.offset(p)), 1.0, lo, hi),
+            Some(u) => {
+                let axis = super::shapes::Cylinder { point: self.center, axis: u, radius: 0.0, squared: false };
+                let err = axis.rho_error(super::rounding::box_mag(lo, hi));
+                lipschitz(|p| norm(self.offset(p)), 1.0, lo, hi, err)
+            }
         };
         // W is non-increasing in d >= 0 (dW/du = -2(6u-11)(u-1)/9 <= 0 for
-        // u = d^2 in [0, 1]), so its range is [W(d_hi), W(d_lo)].
+        // u = d^2 in [0, 1]), so its range is [W(d_hi), W(d_lo)]; `d / r`
+        // is rounded monotonically, so the computed `d / r` lies in
+        // [d_lo, d_hi]. The computed polynomial is within ~8u (4 + 17 + 22)
+        // / 9 + 2u < 1e-14 of the exact one at any `d`, at the ends as at
+        // the point: pad 4e-14. The final `height * W` rounds monotonically.
         let d_lo = (dist.lo.max(0.0) / self.radius) * (1.0 - 1e-15);
         let d_hi = (dist.hi / self.radius) * (1.0 + 1e-15);
-        let w = Interval::new(wyvill(d_hi), wyvill(d_lo)).pad(1e-14);
+        let w = Interval::new(wyvill(d_hi), wyvill(d_lo)).pad(4e-14);
         w.scale(self.height)
     }
 }
@@ -169,6 +185,8 @@ pub(crate) fn sum_gradient(terms: &[Primitive], p: V3) -> V3 {
     terms.iter().fold([0.0; 3], |g, t| add(g, t.gradient(p)))
 }
 
+/// Encloses the computed sum: `sum_eval` adds left to right from 0, and so
+/// do these intervals, each enclosing a term's computed values (rounding.rs).
 pub(crate) fn sum_bounds(terms: &[Primitive], lo: V3, hi: V3) -> Interval {
     terms.iter().fold(Interval::point(0.0), |s, t| s.add(t.bounds_interval(lo, hi)))
 }

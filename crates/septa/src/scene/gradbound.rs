@@ -42,7 +42,9 @@ impl Primitive {
                 let o = offset_box(lo, hi, c.point);
                 let t = o[0].scale(c.axis[0]).add(o[1].scale(c.axis[1])).add(o[2].scale(c.axis[2]));
                 let perp = [0, 1, 2].map(|a| o[a].sub(t.scale(c.axis[a])));
-                let rho = lipschitz(|p| norm(c.perp(p)), 1.0, lo, hi);
+                // Encloses the exact distance to the axis (rounding.rs).
+                let err = c.rho_error(super::rounding::box_mag(lo, hi));
+                let rho = lipschitz(|p| norm(c.perp(p)), 1.0, lo, hi, err);
                 Some(perp.map(|x| x.div(rho).neg()))
             }
             _ => None,
@@ -65,12 +67,16 @@ pub(crate) fn difference_lower(f: &Primitive, g: &Primitive, lo: V3, hi: V3) -> 
             let h = (hi[a] - c[a]).max(c[a] - lo[a]) * (1.0 + 1e-15);
             var = var.add(gf[a].sub(gg[a]).abs().mul(Interval::point(h)));
         }
-        // Rounding: f, g at c and at the point, each within eval_error.
-        let err = 2.0 * (f.eval_error(lo, hi, bf) + g.eval_error(lo, hi, bg));
-        let at_c = Interval::point(f.eval(c)).sub(Interval::point(g.eval(c)));
-        let mv = at_c.sub(Interval::point(var.hi)).pad(err).lo;
-        if mv.is_finite() {
-            best = best.max(mv);
+        // The mean value form holds for the exact functions; the computed
+        // values at `c` and at the point each differ from them by at most
+        // eval_error (rounding.rs).
+        if let (Some(ef), Some(eg)) = (f.eval_error(lo, hi), g.eval_error(lo, hi)) {
+            let err = 2.0 * (ef + eg);
+            let at_c = Interval::point(f.eval(c)).sub(Interval::point(g.eval(c)));
+            let mv = at_c.sub(Interval::point(var.hi)).pad(err).lo;
+            if mv.is_finite() {
+                best = best.max(mv);
+            }
         }
     }
     best

@@ -74,6 +74,7 @@ mod normals;
 mod patch;
 mod primitive;
 mod regions;
+mod rounding;
 mod sample;
 #[allow(clippy::module_inception)]
 mod scene;

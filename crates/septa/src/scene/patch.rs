@@ -136,7 +136,11 @@ impl BicubicPatch {
         let hx = meet(hx, net_x.scale(1.0 / self.size[0]).pad(1e-15 * net_x.mag() / self.size[0]));
         let hy = meet(hy, net_y.scale(1.0 / self.size[1]).pad(1e-15 * net_y.mag() / self.size[1]));
         let w = Interval::point(1.0).add(hx.sqr()).add(hy.sqr()).sqrt();
-        Interval::new(lo[2], hi[2]).sub(h).div(w)
+        // This encloses the exact values (a different formula from eval's
+        // and the blossom nets): pad by eval's rounding error (rounding.rs).
+        let exact = Interval::new(lo[2], hi[2]).sub(h).div(w);
+        let z_mag = lo[2].abs().max(hi[2].abs());
+        exact.pad(self.eval_error(s, t, z_mag, exact))
     }
 
     /// Hulls of the Bezier nets of `h`, `dh/ds`, `dh/dt` restricted to the

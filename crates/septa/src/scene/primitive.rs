@@ -8,7 +8,7 @@ use super::interval::Interval;
 use super::mesh::TriMesh;
 use super::patch::BicubicPatch;
 use super::shapes::*;
-use super::vec3::{mag, normalize, V3};
+use super::vec3::{normalize, V3};
 
 /// A real function of a point in space.
 ///
@@ -70,10 +70,6 @@ pub enum Primitive {
     /// Pointwise maximum (non-empty).
     Max(Vec<Primitive>),
 }
-
-/// Relative padding of every bound: covers the rounding of `eval` (a few
-/// ulps of the magnitudes involved) with a wide margin.
-const PAD_REL: f64 = 256.0 * f64::EPSILON;
 
 impl Primitive {
     /// Sphere `r - |p - c|`.
@@ -176,10 +172,12 @@ impl Primitive {
 
     /// A guaranteed enclosure `(lo, hi)` of the values [`Primitive::eval`]
     /// returns at any point of the box `[min, max]` (corners included),
-    /// float rounding included: interval arithmetic with outward rounding,
-    /// or a Lipschitz bound around the box centre, then padded by
-    /// `256 eps` times the magnitudes involved. Used to skip empty blocks
-    /// (issue 6). May be infinite, never NaN.
+    /// float rounding included: interval arithmetic on eval's own
+    /// expression (monotone rounding), or an enclosure of the exact value
+    /// padded by a stated bound on eval's rounding error (`rounding.rs`
+    /// says which and why). Used to skip empty blocks (issue 6): sparse
+    /// evaluation is identical to dense because of this. May be infinite,
+    /// never NaN.
     pub fn bounds(&self, min: V3, max: V3) -> (f64, f64) {
         let i = self.bounds_interval(min, max);
         (i.lo, i.hi)
@@ -187,7 +185,8 @@ impl Primitive {
 
     pub(crate) fn bounds_interval(&self, lo: V3, hi: V3) -> Interval {
         use Primitive::*;
-        let raw = match self {
+        // Each arm encloses eval's computed values (rounding.rs).
+        match self {
             Constant(v) => Interval::point(*v),
             Plane(s) => s.bounds(lo, hi),
             HalfSpace(s) => s.bounds(lo, hi).neg(),
@@ -209,50 +208,6 @@ impl Primitive {
             Abs(t) => t.bounds_interval(lo, hi).abs(),
             Min(t) => composite::extreme_bounds(t, lo, hi, false),
             Max(t) => composite::extreme_bounds(t, lo, hi, true),
-        };
-        if matches!(self, Constant(_)) {
-            return raw;
-        }
-        raw.pad(self.eval_error(lo, hi, raw))
-    }
-
-    /// Bound on the rounding error of [`Primitive::eval`] anywhere in the
-    /// box, given an enclosure `range` of its values there: `256 eps` times
-    /// the magnitudes involved (meshes: `1e-10` times).
-    pub(crate) fn eval_error(&self, lo: V3, hi: V3, range: Interval) -> f64 {
-        if matches!(self, Primitive::Constant(_)) {
-            return 0.0;
-        }
-        let m = 1.0 + mag(lo).max(mag(hi)) + self.magnitude() + range.mag().min(1e300);
-        let rel = if matches!(self, Primitive::Mesh(_)) { 1e-10 } else { PAD_REL };
-        rel * m
-    }
-
-    /// Largest absolute parameter (positions, radii), for the rounding pad.
-    pub(crate) fn magnitude(&self) -> f64 {
-        use Primitive::*;
-        match self {
-            Constant(v) => v.abs(),
-            Plane(s) | HalfSpace(s) => mag(s.point),
-            Sphere(s) => mag(s.center) + s.radius.abs().powi(2).max(s.radius.abs()),
-            Ellipsoid(s) => mag(s.center) + mag(s.radii),
-            Box(s) => mag(s.center) + mag(s.half),
-            Cylinder(s) => mag(s.point) + s.radius.abs().powi(2).max(s.radius.abs()),
-            CappedCylinder(s) => mag(s.a).max(mag(s.b)) + s.radius.abs(),
-            Cone(s) => mag(s.apex),
-            Torus(s) => mag(s.center) + s.major.abs() + s.minor.abs(),
-            Capsule(s) => mag(s.a).max(mag(s.b)) + s.radius.abs(),
-            Points(s) => s.points.iter().zip(&s.weights).map(|(p, w)| mag(*p) + w.abs()).fold(0.0, f64::max),
-            Mesh(m) => m.magnitude(),
-            Patch(p) => {
-                let h = p.heights.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
-                h + p.origin[0].abs().max(p.origin[1].abs()) + p.size[0].max(p.size[1])
-            }
-            Wyvill(w) => mag(w.center) + w.height.abs(),
-            Transform(t) => mag(t.translation) + t.inner.magnitude(),
-            Sum(t) | Min(t) | Max(t) => t.iter().map(|x| x.magnitude()).fold(0.0, f64::max),
-            Scale(k, t) => k.abs() * (1.0 + t.magnitude()),
-            Abs(t) => t.magnitude(),
         }
     }
 }

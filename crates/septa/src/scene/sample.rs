@@ -56,12 +56,18 @@ fn children(lo: V3, hi: V3) -> impl Iterator<Item = (V3, V3)> {
 }
 
 /// The strict sign `f` provably keeps on the box, if any.
+///
+/// Exactness (sparse equals dense): the bound encloses every *rounded*
+/// value `eval` returns in the box (`rounding.rs`), and every grid vertex of
+/// a block lies in the block's box (vertex coordinates `lo + (hi - lo) i / n`
+/// are monotone in `i`). A finite bound also proves every sample finite, so
+/// the dense path would not have stopped on a non-finite value there either.
 fn ia_sign(f: &Primitive, lo: V3, hi: V3, depth: u32) -> Option<bool> {
     let (l, h) = f.bounds(lo, hi);
-    if l > 0.0 {
+    if l > 0.0 && h < f64::INFINITY {
         return Some(true);
     }
-    if h < 0.0 {
+    if h < 0.0 && l > f64::NEG_INFINITY {
         return Some(false);
     }
     if depth == 0 {
@@ -85,7 +91,15 @@ fn mi_owner(functions: &[Primitive], lo: V3, hi: V3, depth: u32) -> Option<usize
     let owner =
         (0..functions.len()).max_by(|&i, &j| functions[i].eval(c).total_cmp(&functions[j].eval(c))).unwrap_or(0);
     let f = &functions[owner];
-    if functions.iter().enumerate().all(|(j, g)| j == owner || difference_lower(f, g, lo, hi) > 0.0) {
+    // `difference_lower` bounds the difference of the *rounded* values
+    // (rounding.rs), so the owner's sample is strictly the largest at every
+    // grid vertex of the box; finite bounds prove every sample finite.
+    if functions.iter().enumerate().all(|(j, g)| j == owner || difference_lower(f, g, lo, hi) > 0.0)
+        && functions.iter().all(|g| {
+            let (l, h) = g.bounds(lo, hi);
+            l.is_finite() && h.is_finite()
+        })
+    {
         return Some(owner);
     }
     if depth == 0 {

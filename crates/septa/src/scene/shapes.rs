@@ -10,14 +10,21 @@
 //! the bit (checked against `ia4_R20.npz` in `tests/scene_reference.rs`).
 
 use super::interval::{dot3, norm3, offset_box, Interval};
+use super::rounding::box_mag;
 use super::vec3::*;
 
-/// Lipschitz enclosure: `f(c) ± L * r` over a box of centre `c` and
-/// half-diagonal `r` (the caller pads for the rounding of `f(c)`).
-pub(crate) fn lipschitz(f: impl Fn(V3) -> f64, l: f64, lo: V3, hi: V3) -> Interval {
+/// Lipschitz enclosure of a function whose exact version is `l`-Lipschitz
+/// and whose computed version errs by at most `err` on the box: over a box
+/// of centre `c` and half-diagonal `r`, the exact value at any `p` is within
+/// `l r` of the exact `f(c)`, itself within `err` of the computed `f(c)`;
+/// the computed value at `p` is within `err` of the exact one. So
+/// `f(c) ± (l r + 2 err)` encloses both the exact and the computed values
+/// (rounding of the ends outward, and a relative `1e-15` on `l r`).
+pub(crate) fn lipschitz(f: impl Fn(V3) -> f64, l: f64, lo: V3, hi: V3, err: f64) -> Interval {
     let (c, r) = box_center_radius(lo, hi);
     let v = f(c);
-    Interval::rounded(v - l * r * (1.0 + 1e-15), v + l * r * (1.0 + 1e-15))
+    let w = (l * r * (1.0 + 1e-15) + 2.0 * err) * (1.0 + 1e-15);
+    Interval::rounded(v - w, v + w)
 }
 
 /// Plane `n . (p - point)` with unit normal `n` (reference `plane`).
@@ -220,14 +227,18 @@ impl Cylinder {
         scale(unit_or_zero(w), -1.0)
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        let rho = lipschitz(|p| norm(self.perp(p)), 1.0, lo, hi);
+        let a = box_mag(lo, hi);
+        if !self.squared {
+            // Kind 2 (rounding.rs): the whole value is 1-Lipschitz.
+            return lipschitz(|p| self.eval(p), 1.0, lo, hi, self.eval_error(a));
+        }
+        // Squared: the exact distance to the axis is enclosed by `rho`
+        // (not the computed one: `eval` squares `w` itself), so
+        // `r^2 - rho^2` encloses the exact value; pad by eval's error.
+        let rho = lipschitz(|p| norm(self.perp(p)), 1.0, lo, hi, self.rho_error(a));
         let rho = rho.max(Interval::point(0.0));
         let r = Interval::point(self.radius);
-        if self.squared {
-            r.sqr().sub(rho.sqr())
-        } else {
-            r.sub(rho)
-        }
+        r.sqr().sub(rho.sqr()).pad(self.eval_error(a))
     }
 }
 
@@ -261,7 +272,7 @@ impl Capsule {
         scale(unit_or_zero(sub(p, q)), -1.0)
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        lipschitz(|p| self.eval(p), 1.0, lo, hi)
+        lipschitz(|p| self.eval(p), 1.0, lo, hi, self.eval_error(box_mag(lo, hi)))
     }
 }
 
@@ -309,7 +320,8 @@ impl CappedCylinder {
         }
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        lipschitz(|p| self.eval(p), 1.0, lo, hi)
+        // An exact signed distance is 1-Lipschitz.
+        lipschitz(|p| self.eval(p), 1.0, lo, hi, self.eval_error(box_mag(lo, hi)))
     }
 }
 
@@ -343,7 +355,7 @@ impl Cone {
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
         // |grad| <= |u| + |cos| |v/|v||.
-        lipschitz(|p| self.eval(p), 1.0 + self.cos_angle.abs(), lo, hi)
+        lipschitz(|p| self.eval(p), 1.0 + self.cos_angle.abs(), lo, hi, self.eval_error(box_mag(lo, hi)))
     }
 }
 
@@ -394,7 +406,19 @@ impl Torus {
         }
     }
     pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        lipschitz(|p| self.eval(p), 1.0, lo, hi)
+        // `minor - distance to the core circle` is 1-Lipschitz. eval's
+        // formula cancels near the core circle (rounding.rs): first the
+        // error bound valid everywhere, then, when that proves the box away
+        // from the core circle, the much smaller one it allows there.
+        let a = box_mag(lo, hi);
+        let f = |p| self.eval(p);
+        let wide = lipschitz(f, 1.0, lo, hi, self.eval_error(a, 0.0));
+        let s_min = self.minor - wide.hi;
+        if s_min > 0.0 {
+            let narrow = lipschitz(f, 1.0, lo, hi, self.eval_error(a, s_min));
+            return Interval::new(wide.lo.max(narrow.lo), wide.hi.min(narrow.hi));
+        }
+        wide
     }
 }
 

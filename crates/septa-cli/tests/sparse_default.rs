@@ -1,0 +1,77 @@
+//! `septa ia|mi|regions` evaluate analytic functions sparsely by default:
+//! the JSON summary reports the blocks, `--dense` opts out with identical
+//! output files, `--sparse` is accepted as a no-op, and input that sparse
+//! evaluation cannot take (sampled values) still runs, densely.
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("septa-sparse-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn septa(args: &[&str]) -> serde_json::Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_septa")).args(args).output().unwrap();
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// network.json without its trailing "seconds" object.
+fn network_json(dir: &Path) -> Vec<u8> {
+    let bytes = std::fs::read(dir.join("network.json")).unwrap();
+    let cut = bytes.windows(11).rposition(|w| w == b"\"seconds\":{").expect("seconds written last");
+    bytes[..cut].to_vec()
+}
+
+#[test]
+fn ia_and_mi_are_sparse_by_default_and_equal_dense() {
+    for (mode, spec) in [("ia", "nested8"), ("mi", "mi18")] {
+        let spec = root().join(format!("data/specs/{spec}.json"));
+        let spec = spec.to_str().unwrap();
+        let (a, b, c) =
+            (scratch(&format!("{mode}-default")), scratch(&format!("{mode}-dense")), scratch(&format!("{mode}-alias")));
+        let base = [mode, spec, "--grid", "24", "--block", "4", "--json", "-o"];
+        let sparse = septa(&[&base[..], &[a.to_str().unwrap()]].concat());
+        let dense = septa(&[&base[..], &[b.to_str().unwrap(), "--dense"]].concat());
+        let alias = septa(&[&base[..], &[c.to_str().unwrap(), "--sparse"]].concat());
+        let blocks = &sparse["blocks"];
+        assert_eq!(blocks["total"], 216, "{mode}: {sparse}");
+        let n = |k: &str| blocks[k].as_u64().unwrap();
+        assert_eq!(n("skipped") + n("sampled"), 216);
+        assert!(n("active") <= n("sampled") && n("skipped") > 0, "{mode}: {blocks}");
+        assert!(dense.get("blocks").is_none(), "{mode}: --dense reports no blocks");
+        assert_eq!(alias["blocks"], sparse["blocks"]);
+        for k in ["active_tets", "patches", "chains", "cells", "faces", "vertices"] {
+            assert_eq!(sparse[k], dense[k], "{mode}: {k}");
+        }
+        assert_eq!(network_json(&a), network_json(&b), "{mode}: network.json");
+        assert_eq!(network_json(&a), network_json(&c), "{mode}: network.json");
+    }
+}
+
+#[test]
+fn regions_sparse_by_default_and_npz_stays_dense() {
+    let r = septa(&["regions", "builtin:sphere-with-hole", "--json"]);
+    let d = septa(&["regions", "builtin:sphere-with-hole", "--json", "--dense"]);
+    assert!(r["blocks"]["skipped"].as_u64().unwrap() > 0, "{r}");
+    assert!(d.get("blocks").is_none());
+    assert_eq!(r["network"], d["network"]);
+    assert_eq!(r["curves"].as_array().unwrap().len(), d["curves"].as_array().unwrap().len());
+    // Sampled values (the reference's ia4_R20.npz): the dense path, no
+    // blocks, even with --sparse.
+    let shared = std::env::var("SEPTA_SHARED").map(PathBuf::from).unwrap_or_else(|_| root().join("../shared"));
+    let npz = [shared.join("data/isn/ia4_R20.npz"), PathBuf::from("/work/shared/data/isn/ia4_R20.npz")]
+        .into_iter()
+        .find(|p| p.exists())
+        .expect("reference data shared/data not found: set SEPTA_SHARED to the shared/ folder");
+    let out = scratch("npz");
+    let s = septa(&["ia", npz.to_str().unwrap(), "--json", "--sparse", "-o", out.to_str().unwrap()]);
+    assert!(s.get("blocks").is_none(), "{s}");
+    assert_eq!(s["cells"], 16, "{s}");
+}
