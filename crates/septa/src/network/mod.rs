@@ -15,9 +15,10 @@ mod canon;
 mod merge;
 mod raytrace;
 pub mod sparse;
-pub use sparse::{compute_sparse, SparseStats};
+pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
 pub mod uf;
+pub mod wire;
 
 use std::time::Instant;
 
@@ -81,6 +82,10 @@ pub enum NetworkError {
     /// The run was cancelled through [`NetworkOptions::cancel`].
     #[error("cancelled")]
     Cancelled,
+    /// Block results handed to [`finish_sparse`] do not match its plan
+    /// (missing, repeated, or from another job).
+    #[error("block results: {0}")]
+    BlockResults(String),
     /// The per-tet construction failed.
     #[error("tet {tet}: {message}")]
     Tet {
