@@ -31,3 +31,18 @@ def cut(
     threads: int = 0,
 ) -> str:
     """Planar cut-cell mesh as JSON text (counts, points, cells' outward polygons)."""
+
+def sparse_plan(job: str) -> tuple[int, list[int], bool]:
+    """Step 1 of a sparse job (JSON text): (blocks, kept block indices, dense)."""
+
+def sparse_blocks(job: str, indices: list[int]) -> list[bytes]:
+    """Step 2: the given blocks' parts of the network, one ``bytes`` each."""
+
+def sparse_finish(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> dict:
+    """Step 3: merge in block order, topology; the network dict (as ``network``)."""
+
+def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> str:
+    """Step 3 for a scene's region surfaces: ``network.json`` text (as ``regions``)."""
+
+def sparse_network(job: str, dense: bool = False, threads: int | None = None) -> dict:
+    """The whole job in this process (``compute_sparse``, or the dense path)."""

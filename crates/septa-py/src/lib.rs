@@ -10,6 +10,7 @@ use pyo3::prelude::*;
 
 mod checks;
 mod cut;
+mod distributed;
 mod interrupt;
 mod network;
 mod regions;
@@ -33,5 +34,10 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_blocks, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_finish, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_finish_regions, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_network, m)?)?;
     Ok(())
 }

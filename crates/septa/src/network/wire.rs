@@ -10,7 +10,8 @@
 //! make the merge index out of bounds.
 //!
 //! Layout (all integers little-endian; `len` is a u64 count):
-//! `b"SEPTABLK"`, version u16, then the job key (mode u8, split u8,
+//! `b"SEPTABLK"`, version u16, total length u64 (so a cut-off payload is
+//! reported as truncated), then the job key (mode u8, split u8,
 //! functions u32, resolution 3 x u64, bounds 6 x f64 bits, block u64), the
 //! block (index u64, clean u8, sampled vertices u64), the `BlockOut`
 //! fields in declaration order, and an FNV-1a 64 checksum of everything
@@ -250,6 +251,7 @@ impl BlockResult {
         let mut w = W(Vec::with_capacity(128 + keys.len() * 48 + poly_verts.len() * 4));
         w.0.extend_from_slice(MAGIC);
         w.u16(VERSION);
+        w.u64(0); // total length, patched below
         w.u8(match j.mode {
             Mode::Ia => 0,
             Mode::Mi => 1,
@@ -317,6 +319,8 @@ impl BlockResult {
         }
         w.len(*active_tets);
         w.len(*tets);
+        let total = (w.0.len() + 8) as u64;
+        w.0[10..18].copy_from_slice(&total.to_le_bytes());
         let sum = fnv1a(&w.0);
         w.u64(sum);
         w.0
@@ -333,8 +337,16 @@ impl BlockResult {
         if found != VERSION {
             return Err(WireError::Version { found });
         }
-        if bytes.len() < r.at + 8 {
-            return Err(WireError::Truncated { offset: r.at, field: "job", len: bytes.len() });
+        let total = r.u64("length")?;
+        if (bytes.len() as u64) < total || bytes.len() < r.at + 8 {
+            return Err(WireError::Truncated { offset: bytes.len(), field: "the block (length)", len: bytes.len() });
+        }
+        if bytes.len() as u64 > total {
+            return Err(WireError::Invalid {
+                offset: total as usize,
+                field: "end",
+                message: format!("{} bytes after the block", bytes.len() as u64 - total),
+            });
         }
         let (body, sum) = bytes.split_at(bytes.len() - 8);
         if fnv1a(body) != u64::from_le_bytes(sum.try_into().unwrap()) {
