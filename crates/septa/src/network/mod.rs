@@ -12,6 +12,7 @@ pub mod bench;
 mod block;
 mod boxfast;
 mod canon;
+pub mod continuation;
 mod merge;
 mod raytrace;
 pub mod sparse;
@@ -86,6 +87,9 @@ pub enum NetworkError {
     /// (missing, repeated, or from another job).
     #[error("block results: {0}")]
     BlockResults(String),
+    /// Continuation: a seed or the field's values are wrong (the message says which).
+    #[error("continuation: {0}")]
+    Continuation(String),
     /// The per-tet construction failed.
     #[error("tet {tet}: {message}")]
     Tet {

@@ -53,11 +53,11 @@ pub struct SparseStats {
 }
 
 /// The values of one block's vertices, `lo..=hi` in grid coordinates.
-struct BlockValues {
+pub(crate) struct BlockValues {
     lo: [usize; 3],
     vn: [usize; 3],
     k: usize,
-    data: Vec<f64>,
+    pub(crate) data: Vec<f64>,
     /// Vertex id strides of i and j.
     stride: [u32; 2],
     /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
@@ -69,7 +69,7 @@ struct BlockValues {
 }
 
 impl BlockValues {
-    fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
+    pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
         let b = grid.res[2] as u32 + 1;
         let a = (grid.res[1] as u32 + 1) * b;
         BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
@@ -162,7 +162,7 @@ fn sample_block(
     Ok((BlockValues::new(grid, lo, vn, k, data), clean))
 }
 
-fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
+pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
     Ctx {
         grid,
         values: &[],
@@ -283,7 +283,7 @@ impl BlockResult {
 }
 
 /// Checks the function count, as the dense path does.
-fn check_functions(k: usize) -> Result<(), NetworkError> {
+pub(crate) fn check_functions(k: usize) -> Result<(), NetworkError> {
     if k == 0 {
         return Err(NetworkError::NoFunctions);
     }
@@ -293,7 +293,7 @@ fn check_functions(k: usize) -> Result<(), NetworkError> {
     Ok(())
 }
 
-fn cubes(b: &Block) -> ([usize; 3], [usize; 3]) {
+pub(crate) fn cubes(b: &Block) -> ([usize; 3], [usize; 3]) {
     match b {
         Block::Cubes { lo, hi } => (*lo, *hi),
         Block::Tets(_) => unreachable!("a box grid has cube blocks"),
@@ -386,18 +386,32 @@ pub fn finish_sparse(
     functions: &[Primitive],
     options: &NetworkOptions,
     plan: &SparsePlan,
+    results: Vec<BlockResult>,
+) -> Result<(Network, SparseStats), NetworkError> {
+    check_functions(functions.len())?;
+    let pv = PointValues { grid, functions };
+    finish_with(grid, functions.len(), options, plan, results, &pv, || dense(grid, functions, options))
+}
+
+/// [`finish_sparse`] with values on demand from `pv` and the dense path
+/// given as `dense` (shared with continuation).
+pub(crate) fn finish_with(
+    grid: &BoxGrid,
+    k: usize,
+    options: &NetworkOptions,
+    plan: &SparsePlan,
     mut results: Vec<BlockResult>,
+    pv: &dyn Values,
+    dense: impl FnOnce() -> Result<Network, NetworkError>,
 ) -> Result<(Network, SparseStats), NetworkError> {
     let t0 = Instant::now();
-    let k = functions.len();
-    check_functions(k)?;
     let mut stats = SparseStats { blocks: plan.blocks, ..SparseStats::default() };
     let fallback = |mut stats: SparseStats| {
         stats.dense_fallback = true;
         stats.skipped = 0;
         stats.sampled = stats.blocks;
         stats.sampled_vertices = grid.num_vertices();
-        Ok((dense(grid, functions, options)?, stats))
+        Ok((dense()?, stats))
     };
     if plan.dense {
         return fallback(stats);
@@ -433,8 +447,7 @@ pub fn finish_sparse(
     super::canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
     let g = Grid::Box(grid.clone());
-    let pv = PointValues { grid, functions };
-    let c = ctx(&g, k, options, &pv);
+    let c = ctx(&g, k, options, pv);
     let mut topo = topology::topology(&mut m, Some(&c));
     if topo.cells_method != "raytrace" {
         return fallback(stats);
