@@ -18,7 +18,7 @@ from . import grid, shapes
 from .network import Network, load
 from .jobs import arrangement, material_interface, region_surfaces, cut_mesh
 from .viewer import view
-from . import distributed
+from . import continuation, distributed
 
 __all__ = [
     "__version__",
@@ -33,4 +33,5 @@ __all__ = [
     "cut_mesh",
     "view",
     "distributed",
+    "continuation",
 ]

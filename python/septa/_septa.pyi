@@ -46,3 +46,17 @@ def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: 
 
 def sparse_network(job: str, dense: bool = False, threads: int | None = None) -> dict:
     """The whole job in this process (``compute_sparse``, or the dense path)."""
+
+def continuation(
+    f: object,
+    k: int,
+    mode: str,
+    resolution: list[int],
+    bounds: list[list[float]],
+    split: int = 5,
+    block: int = 8,
+    seeds: list[tuple[float, float, float]] | None = None,
+    dense: bool = False,
+    threads: int | None = None,
+) -> dict:
+    """Network of a callable ``f((n, 3)) -> (n, k)`` by continuation from seeds (or a coarse scan)."""

@@ -9,6 +9,7 @@
 use pyo3::prelude::*;
 
 mod checks;
+mod continuation;
 mod cut;
 mod distributed;
 mod interrupt;
@@ -34,6 +35,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_plan, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_blocks, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_finish, m)?)?;
