@@ -51,6 +51,8 @@ def main():
         "faces": s["faces"], "cells": s["cells"], "blocks": s["blocks"],
         "seconds": {"local_1_thread": round(t_local1, 3), "local_all_threads": round(t_local, 3),
                     "dask_local_cluster": round(t_dist, 3)},
+        "dask_steps": {k: round(dist.seconds[k], 3) for k in ("plan", "blocks", "finish")},
+        "local_stages": {k: round(v, 3) for k, v in local1.seconds.items()},
         "ratio_dask_over_local_1_thread": round(t_dist / t_local1, 3),
         "identical": bool(same),
     }, indent=1))

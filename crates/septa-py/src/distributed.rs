@@ -12,6 +12,7 @@
 use crate::InputError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
+use rayon::prelude::*;
 use septa::grid::{BoxGrid, Split};
 use septa::network::{
     compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Mode, Network, NetworkOptions,
@@ -160,8 +161,9 @@ pub fn sparse_blocks<'py>(py: Python<'py>, job: &str, indices: Vec<usize>) -> Py
 }
 
 fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, SparseStats), String> {
+    // Decoded in parallel: the client's share of the work besides the merge.
     let blocks = results
-        .iter()
+        .par_iter()
         .enumerate()
         .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
         .collect::<Result<Vec<_>, _>>()?;

@@ -526,7 +526,7 @@ mod tests {
             assert_eq!((b.index, b.clean, b.sampled_vertices), (a.index, a.clean, a.sampled_vertices));
             assert!(b.job.same(&a.job));
             assert_eq!(format!("{:?}", a.out), format!("{:?}", b.out));
-            nonempty += (a.out.poly_label.len() > 0) as usize;
+            nonempty += !a.out.poly_label.is_empty() as usize;
         }
         assert!(nonempty > 0);
     }
