@@ -310,85 +310,136 @@ fn dense(grid: &BoxGrid, field: &dyn Field, options: &NetworkOptions) -> Result<
     super::compute(&g, &values, field.functions(), options)
 }
 
+/// Seed blocks of a continuation job (indices into `grid.blocks(options.block)`,
+/// ascending), from points or the coarse scan.
+pub fn continuation_seeds(
+    grid: &BoxGrid,
+    field: &dyn Field,
+    seeds: &Seeds,
+    options: &NetworkOptions,
+) -> Result<Vec<usize>, NetworkError> {
+    check_functions(field.functions())?;
+    seed_blocks(grid, field, options.mode, options.block.max(1), seeds)
+}
+
+fn continuation_block_with(
+    w: &mut Worker,
+    g: &Grid,
+    grid: &BoxGrid,
+    field: &dyn Field,
+    options: &NetworkOptions,
+    index: usize,
+) -> Result<(BlockResult, Vec<usize>), NetworkError> {
+    let k = field.functions();
+    let size = options.block.max(1);
+    let b = block_at(grid, size, index)
+        .ok_or_else(|| NetworkError::BlockResults(format!("block {index} does not exist in this grid")))?;
+    let (lo, hi) = cubes(&b);
+    let mut ids = Vec::new();
+    for i in lo[0]..=hi[0] {
+        for j in lo[1]..=hi[1] {
+            for l in lo[2]..=hi[2] {
+                ids.push(grid.vertex_index([i, j, l]));
+            }
+        }
+    }
+    let points: Vec<[f64; 3]> = ids.iter().map(|&v| grid.vertex(v)).collect();
+    let (data, clean) = eval_checked(field, options.mode, &points, &ids)?;
+    let vn = [0, 1, 2].map(|a| hi[a] - lo[a] + 1);
+    let bv = BlockValues::new(grid, lo, vn, k, data);
+    let next = touched_neighbours(grid, size, index, &bv, options.mode, k);
+    let c = ctx(g, k, options, &bv);
+    let out = w.run(&c, &b)?;
+    let job = JobKey::of(grid, k, options);
+    Ok((BlockResult { job, index, out, clean, sampled_vertices: ids.len() }, next))
+}
+
+/// One step of the search: samples block `index`, builds its part of the
+/// network and lists the face neighbours across the faces the network
+/// touches (the blocks to visit next). Independent of every other block.
+pub fn continuation_block(
+    grid: &BoxGrid,
+    field: &dyn Field,
+    options: &NetworkOptions,
+    index: usize,
+) -> Result<(BlockResult, Vec<usize>), NetworkError> {
+    check_functions(field.functions())?;
+    let g = Grid::Box(grid.clone());
+    continuation_block_with(&mut Worker::default(), &g, grid, field, options, index)
+}
+
+/// The end of the search: the visited blocks' results merged in block order,
+/// topology by ray shooting (values in unvisited blocks computed on demand
+/// from `field`), with the sparse path's dense fallback.
+pub fn finish_continuation(
+    grid: &BoxGrid,
+    field: &dyn Field,
+    options: &NetworkOptions,
+    results: Vec<BlockResult>,
+) -> Result<(Network, SparseStats), NetworkError> {
+    let k = field.functions();
+    check_functions(k)?;
+    let n = block_counts(grid, options.block.max(1));
+    let mut kept: Vec<usize> = results.iter().map(|r| r.index).collect();
+    kept.sort_unstable();
+    let plan = SparsePlan { blocks: n[0] * n[1] * n[2], kept, dense: options.volumes || !options.raytrace };
+    let pv = FieldValues { grid, field, cache: Mutex::default(), error: Mutex::default() };
+    let out = finish_with(grid, k, options, &plan, results, &pv, || dense(grid, field, options));
+    if let Some(e) = pv.error.lock().unwrap().take() {
+        return Err(e);
+    }
+    out
+}
+
 /// Computes the IA or MI network of `field` on `grid` by continuation from
 /// `seeds` (see the module doc): the network of the components the seeds
 /// reach, equal to [`compute`](super::compute) when they reach them all.
+/// It is [`continuation_seeds`], rounds of [`continuation_block`] over each
+/// frontier (in parallel on the current rayon pool) and
+/// [`finish_continuation`].
 pub fn compute_continuation(
     grid: &BoxGrid,
     field: &dyn Field,
     seeds: Seeds,
     options: &NetworkOptions,
 ) -> Result<(Network, ContinuationStats), NetworkError> {
-    let k = field.functions();
-    check_functions(k)?;
-    let size = options.block.max(1);
-    let n = block_counts(grid, size);
-    let nblocks = n[0] * n[1] * n[2];
-    let pv = FieldValues { grid, field, cache: Mutex::default(), error: Mutex::default() };
-    let dense_fn = || dense(grid, field, options);
+    check_functions(field.functions())?;
+    let n = block_counts(grid, options.block.max(1));
     let mut stats = ContinuationStats::default();
-    if options.volumes || !options.raytrace {
-        let plan = SparsePlan { blocks: nblocks, kept: Vec::new(), dense: true };
-        let (net, s) = finish_with(grid, k, options, &plan, Vec::new(), &pv, dense_fn)?;
-        stats.blocks = s;
-        return Ok((net, stats));
-    }
-    let mut frontier = seed_blocks(grid, field, options.mode, size, &seeds)?;
-    stats.seeds = frontier.len();
-    let mut visited = vec![false; nblocks];
-    frontier.iter().for_each(|&b| visited[b] = true);
-    let g = Grid::Box(grid.clone());
-    let job = JobKey::of(grid, k, options);
     let mut results: Vec<BlockResult> = Vec::new();
-    // Breadth-first, one frontier at a time; the blocks of a frontier in parallel.
-    while !frontier.is_empty() {
-        stats.rounds += 1;
-        let outs: Vec<(BlockResult, Vec<usize>)> = frontier
-            .par_iter()
-            .map_init(Worker::default, |w, &index| {
-                if options.cancelled() {
-                    return Err(NetworkError::Cancelled);
-                }
-                let b = block_at(grid, size, index).expect("a block of this grid");
-                let (lo, hi) = cubes(&b);
-                let mut ids = Vec::new();
-                for i in lo[0]..=hi[0] {
-                    for j in lo[1]..=hi[1] {
-                        for l in lo[2]..=hi[2] {
-                            ids.push(grid.vertex_index([i, j, l]));
-                        }
+    if !(options.volumes || !options.raytrace) {
+        let mut frontier = continuation_seeds(grid, field, &seeds, options)?;
+        stats.seeds = frontier.len();
+        let mut visited = vec![false; n[0] * n[1] * n[2]];
+        frontier.iter().for_each(|&b| visited[b] = true);
+        let g = Grid::Box(grid.clone());
+        // Breadth-first, one frontier at a time; the blocks of a frontier in parallel.
+        while !frontier.is_empty() {
+            stats.rounds += 1;
+            let outs: Vec<(BlockResult, Vec<usize>)> = frontier
+                .par_iter()
+                .map_init(Worker::default, |w, &index| {
+                    if options.cancelled() {
+                        return Err(NetworkError::Cancelled);
+                    }
+                    continuation_block_with(w, &g, grid, field, options, index)
+                })
+                .collect::<Result<_, NetworkError>>()?;
+            let mut next = Vec::new();
+            for (r, nbs) in outs {
+                for nb in nbs {
+                    if !visited[nb] {
+                        visited[nb] = true;
+                        next.push(nb);
                     }
                 }
-                let points: Vec<[f64; 3]> = ids.iter().map(|&v| grid.vertex(v)).collect();
-                let (data, clean) = eval_checked(field, options.mode, &points, &ids)?;
-                let vn = [0, 1, 2].map(|a| hi[a] - lo[a] + 1);
-                let bv = BlockValues::new(grid, lo, vn, k, data);
-                let next = touched_neighbours(grid, size, index, &bv, options.mode, k);
-                let c = ctx(&g, k, options, &bv);
-                let out = w.run(&c, &b)?;
-                Ok((BlockResult { job, index, out, clean, sampled_vertices: ids.len() }, next))
-            })
-            .collect::<Result<_, NetworkError>>()?;
-        let mut next = Vec::new();
-        for (r, nbs) in outs {
-            for nb in nbs {
-                if !visited[nb] {
-                    visited[nb] = true;
-                    next.push(nb);
-                }
+                results.push(r);
             }
-            results.push(r);
+            next.sort_unstable();
+            frontier = next;
         }
-        next.sort_unstable();
-        frontier = next;
     }
-    let kept: Vec<usize> = (0..nblocks).filter(|&b| visited[b]).collect();
-    let plan = SparsePlan { blocks: nblocks, kept, dense: false };
-    let out = finish_with(grid, k, options, &plan, results, &pv, dense_fn);
-    if let Some(e) = pv.error.lock().unwrap().take() {
-        return Err(e);
-    }
-    let (net, s) = out?;
+    let (net, s) = finish_continuation(grid, field, options, results)?;
     stats.blocks = s;
     Ok((net, stats))
 }
