@@ -60,3 +60,12 @@ def continuation(
     threads: int | None = None,
 ) -> dict:
     """Network of a callable ``f((n, 3)) -> (n, k)`` by continuation from seeds (or a coarse scan)."""
+
+def continuation_seeds(f: object, k: int, job: tuple, seeds: list | None = None) -> list[int]:
+    """Seed blocks of a continuation job ``(mode, resolution, bounds, split, block)``."""
+
+def continuation_blocks(f: object, k: int, job: tuple, indices: list[int]) -> list[tuple[bytes, list[int]]]:
+    """One search round's blocks: ``(block result bytes, next blocks)`` each."""
+
+def continuation_finish(f: object, k: int, job: tuple, results: list[bytes]) -> dict:
+    """The network of a continuation job from its block results."""

@@ -46,18 +46,54 @@ def _grid(grid):
     return res, bounds, int(grid.get("split", 5))
 
 
-def _run(mode, f, k, grid, seeds, block, threads, dense):
+def _blocks(f, k, job, indices):
+    """Worker task: one round's blocks as ``(bytes, next blocks)``."""
+    from septa import _septa as core
+
+    return core.continuation_blocks(f, k, tuple(job), list(indices))
+
+
+def _on_cluster(client, mode, f, k, res, bounds, split, block, seeds, batch):
+    """The search with each round's blocks on a Dask cluster (``client.map``);
+    seeds and the finish here. ``f`` travels to the workers pickled by Dask
+    (cloudpickle: closures and lambdas work)."""
+    job = (mode, res, bounds, split, int(block))
+    frontier = _septa.continuation_seeds(f, int(k), job, seeds)
+    n_seeds = len(frontier)
+    visited = set(frontier)
+    results, rounds = [], 0
+    threads = sum(client.nthreads().values()) or 1
+    while frontier:
+        rounds += 1
+        size = batch or max(1, -(-len(frontier) // (4 * threads)))
+        parts = [frontier[i:i + size] for i in range(0, len(frontier), size)]
+        futures = client.map(_blocks, [f] * len(parts), [int(k)] * len(parts), [job] * len(parts), parts, pure=False)
+        nxt = set()
+        for part in client.gather(futures):
+            for data, neighbours in part:
+                results.append(data)
+                nxt.update(n for n in neighbours if n not in visited)
+        visited |= nxt
+        frontier = sorted(nxt)
+    net = Network._from_core(_septa.continuation_finish(f, int(k), job, results))
+    net._counts["blocks"].update({"seeds": n_seeds, "rounds": rounds})
+    return net
+
+
+def _run(mode, f, k, grid, seeds, block, threads, dense, client=None, batch=None):
     if not callable(f):
         raise _septa.InputError(f"f: expected a callable f(points (n, 3)) -> (n, k), got {type(f).__name__}")
     res, bounds, split = _grid(grid)
     if seeds is not None:
         seeds = [tuple(float(x) for x in p) for p in np.asarray(seeds, dtype=np.float64).reshape(-1, 3)]
+    if client is not None and not dense:
+        return _on_cluster(client, mode, f, k, res, bounds, split, block, seeds, batch)
     d = _septa.continuation(f, int(k), mode, res, bounds, split=split, block=int(block), seeds=seeds, dense=dense,
                             threads=threads)
     return Network._from_core(d)
 
 
-def arrangement(f, k, *, grid=32, seeds=None, block=8, threads=None, dense=False) -> Network:
+def arrangement(f, k, *, grid=32, seeds=None, block=8, threads=None, dense=False, client=None, batch=None) -> Network:
     """Implicit arrangement of the ``k`` functions computed by ``f``.
 
     ``grid``: ``n`` or ``{"resolution": n or [nx, ny, nz], "bounds": [[..], [..]],
@@ -67,11 +103,17 @@ def arrangement(f, k, *, grid=32, seeds=None, block=8, threads=None, dense=False
     reports blocks visited (``sampled``), never visited (``skipped``), ``seeds``
     and search ``rounds``. Exceptions raised by ``f`` become
     :class:`septa.InputError` naming them.
+
+    ``client``: a ``dask.distributed.Client``: each round of the search runs
+    its blocks on the cluster (``client.map`` over batches of ``batch`` blocks,
+    ``f`` pickled to the workers by Dask); the seeds and the finish run here.
+    The result is the same network as without a client.
     """
-    return _run("ia", f, k, grid, seeds, block, threads, dense)
+    return _run("ia", f, k, grid, seeds, block, threads, dense, client, batch)
 
 
-def material_interface(f, k, *, grid=32, seeds=None, block=8, threads=None, dense=False) -> Network:
+def material_interface(f, k, *, grid=32, seeds=None, block=8, threads=None, dense=False, client=None,
+                       batch=None) -> Network:
     """Material interface (argmax partition) of the ``k`` functions computed
     by ``f``; the same arguments as :func:`arrangement`."""
-    return _run("mi", f, k, grid, seeds, block, threads, dense)
+    return _run("mi", f, k, grid, seeds, block, threads, dense, client, batch)

@@ -108,3 +108,27 @@ def test_bad_block_results_are_clear_errors():
         _septa.sparse_finish(other, plan, results)
     with pytest.raises(septa.InputError, match="grid"):
         sd.arrangement([septa.shapes.sphere([0, 0, 0], 0.5)], client=None)
+
+
+def test_continuation_of_a_python_function_on_the_cluster(client):
+    # A closure over numpy arrays, pickled to the workers by Dask.
+    from septa import continuation
+
+    c = np.array([[0.013, -0.007, 0.004], [0.4113, 0.3687, -0.2209]])
+    r = np.array([0.61, 0.3317])
+
+    def f(p):
+        d = p[:, None, :] - c[None]
+        return r[None] - np.sqrt(d[..., 0] * d[..., 0] + d[..., 1] * d[..., 1] + d[..., 2] * d[..., 2])
+
+    # IA: a point on sphere 0; MI: the point of the centres' segment where both are equal.
+    u = (c[1] - c[0]) / np.linalg.norm(c[1] - c[0])
+    t = (r[0] - r[1] + np.linalg.norm(c[1] - c[0])) / 2
+    for job, seed in ((continuation.arrangement, [c[0] + [r[0], 0, 0]]), (continuation.material_interface, [c[0] + t * u])):
+        dist = job(f, 2, grid=32, block=4, seeds=seed, client=client)
+        local = job(f, 2, grid=32, block=4, seeds=seed)
+        assert_same(dist, local, f"{job.__name__} continuation")
+        assert_same(dist, job(f, 2, grid=32, block=4, dense=True), f"{job.__name__} continuation vs dense")
+        b, lb = dist.summary()["blocks"], local.summary()["blocks"]
+        assert b["rounds"] == lb["rounds"] > 3 and b["seeds"] == lb["seeds"] == 1
+        assert b["sampled"] == lb["sampled"] and b["skipped"] > 0

@@ -7,9 +7,13 @@
 use crate::InputError;
 use numpy::{IntoPyArray, PyArrayMethods, PyUntypedArrayMethods};
 use pyo3::prelude::*;
+use pyo3::types::PyBytes;
 use pyo3::types::{PyDict, PyDictMethods};
 use septa::grid::{BoxGrid, Split};
-use septa::network::continuation::{compute_continuation, ContinuationStats, Field, Seeds};
+use septa::network::continuation::{
+    compute_continuation, continuation_block, continuation_seeds, finish_continuation, ContinuationStats, Field, Seeds,
+};
+use septa::network::BlockResult;
 use septa::network::{Mode, Network, NetworkOptions};
 
 /// A Python callable as a [`Field`].
@@ -144,6 +148,120 @@ pub fn continuation<'py>(
         b.set_item("dense_fallback", s.blocks.dense_fallback)?;
         b.set_item("seeds", s.seeds)?;
         b.set_item("rounds", s.rounds)?;
+        counts.set_item("blocks", b)?;
+    }
+    Ok(d)
+}
+
+/// A continuation job's grid and options: `(mode, resolution, bounds, split, block)`.
+type JobTuple = (String, [usize; 3], [[f64; 3]; 2], u8, usize);
+
+fn job_of(job: &JobTuple) -> Result<(BoxGrid, NetworkOptions), String> {
+    let mode = match job.0.as_str() {
+        "ia" => Mode::Ia,
+        "mi" => Mode::Mi,
+        m => return Err(format!("mode must be \"ia\" or \"mi\", not {m:?}")),
+    };
+    let split = match job.3 {
+        5 => Split::Five,
+        6 => Split::Six,
+        s => return Err(format!("split must be 5 or 6, not {s}")),
+    };
+    let grid = BoxGrid::new(job.1, job.2, split)?;
+    let mut options = NetworkOptions::new(mode);
+    options.block = job.4.max(1);
+    Ok((grid, options))
+}
+
+/// continuation_seeds(f, k, job, seeds=None)
+/// --
+///
+/// Seed blocks of a continuation job `(mode, resolution, bounds, split,
+/// block)`: the blocks holding `seeds`, or the coarse scan's.
+#[pyfunction]
+#[pyo3(name = "continuation_seeds", signature = (f, k, job, seeds = None))]
+pub fn continuation_seeds_py(
+    py: Python<'_>,
+    f: Py<PyAny>,
+    k: usize,
+    job: JobTuple,
+    seeds: Option<Vec<[f64; 3]>>,
+) -> PyResult<Vec<usize>> {
+    let field = PyField { f, k };
+    let r: Result<Vec<usize>, String> = py.detach(|| {
+        let (grid, options) = job_of(&job)?;
+        let s = match &seeds {
+            Some(p) => Seeds::Points(p),
+            None => Seeds::CoarseScan,
+        };
+        continuation_seeds(&grid, &field, &s, &options).map_err(|e| e.to_string())
+    });
+    r.map_err(InputError::new_err)
+}
+
+/// continuation_blocks(f, k, job, indices)
+/// --
+///
+/// One round of the search on this worker: per block, `(bytes, next)`: its
+/// part of the network (Septa's block layout) and the neighbour blocks
+/// across the faces the network touches.
+#[pyfunction]
+pub fn continuation_blocks<'py>(
+    py: Python<'py>,
+    f: Py<PyAny>,
+    k: usize,
+    job: JobTuple,
+    indices: Vec<usize>,
+) -> PyResult<Vec<(Bound<'py, PyBytes>, Vec<usize>)>> {
+    let field = PyField { f, k };
+    let r: Result<Vec<(Vec<u8>, Vec<usize>)>, String> = py.detach(|| {
+        let (grid, options) = job_of(&job)?;
+        indices
+            .iter()
+            .map(|&i| {
+                continuation_block(&grid, &field, &options, i)
+                    .map(|(b, next)| (b.to_bytes(), next))
+                    .map_err(|e| format!("block {i}: {e}"))
+            })
+            .collect()
+    });
+    Ok(r.map_err(InputError::new_err)?.into_iter().map(|(b, n)| (PyBytes::new(py, &b), n)).collect())
+}
+
+/// continuation_finish(f, k, job, results)
+/// --
+///
+/// The end of a continuation job from its block results (any order): the
+/// network dict, with `counts["blocks"]`.
+#[pyfunction]
+pub fn continuation_finish<'py>(
+    py: Python<'py>,
+    f: Py<PyAny>,
+    k: usize,
+    job: JobTuple,
+    results: Vec<Bound<'py, PyBytes>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let field = PyField { f, k };
+    let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
+    let r: Result<(Network, septa::network::SparseStats), String> = py.detach(|| {
+        let (grid, options) = job_of(&job)?;
+        let blocks = slices
+            .iter()
+            .enumerate()
+            .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
+            .collect::<Result<Vec<_>, _>>()?;
+        finish_continuation(&grid, &field, &options, blocks).map_err(|e| e.to_string())
+    });
+    let (net, s) = r.map_err(InputError::new_err)?;
+    let d = crate::network::to_dict(py, &net)?;
+    if let Some(counts) = d.get_item("counts")? {
+        let b = PyDict::new(py);
+        b.set_item("blocks", s.blocks)?;
+        b.set_item("skipped", s.skipped)?;
+        b.set_item("sampled", s.sampled)?;
+        b.set_item("active", s.active)?;
+        b.set_item("sampled_vertices", s.sampled_vertices)?;
+        b.set_item("dense_fallback", s.dense_fallback)?;
         counts.set_item("blocks", b)?;
     }
     Ok(d)

@@ -36,6 +36,9 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_seeds_py, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_blocks, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_finish, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_plan, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_blocks, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_finish, m)?)?;
