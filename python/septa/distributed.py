@@ -149,6 +149,8 @@ def _distributed(job: dict, client, batch, regions=False):
         net.curves = data["counts"]["curves"]
     else:
         net = Network._from_core(_septa.sparse_finish(text, plan, results))
+    if "blocks" in net._counts and isinstance(net._counts["blocks"], dict):
+        net._counts["blocks"]["bytes"] = sum(len(b) for b in results)  # block results received
     # Wall seconds of the three steps as seen here (the core's own stages stay in net.seconds).
     net.seconds.update({"plan": t1 - t0, "blocks": t2 - t1, "finish": time.perf_counter() - t2})
     return net
@@ -162,7 +164,8 @@ def arrangement(scene_or_functions, *, client, grid=None, block=16, batch=None) 
     edge in cubes; ``batch``: blocks per Dask task (default: about four tasks
     per worker thread). Returns the same :class:`septa.Network` as a local run,
     array for array; ``net.summary()["blocks"]`` says how many blocks were
-    skipped, sampled and active.
+    skipped, sampled and active and how many ``bytes`` of block results came
+    back; ``net.seconds`` has the ``plan``, ``blocks`` and ``finish`` steps.
 
     >>> from septa import shapes, distributed
     >>> fs = [shapes.plane([0, 0, 0], [1, 0, 0]), shapes.plane([0, 0, 0], [0, 1, 0])]
