@@ -4,14 +4,15 @@
 
 use std::path::{Path, PathBuf};
 
+mod common;
+
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, Network, NetworkOptions};
 
 fn data_dir() -> Option<PathBuf> {
-    let d = PathBuf::from("/work/shared/data/isn");
-    d.join("expected.json").exists().then_some(d)
+    Some(common::shared_data().join("isn"))
 }
 
 fn load(dir: &Path, name: &str) -> (Grid, Vec<f64>, usize) {

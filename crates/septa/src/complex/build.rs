@@ -95,6 +95,25 @@ impl Complex {
         result
     }
 
+    /// Which look-up table template [`Complex::build`] would decode for
+    /// these values, as a key unique over all tables (table number in the
+    /// high word, template offset in the low word); `None` when it would run
+    /// the incremental construction. Two inputs with the same key get the
+    /// same complex, numbering included.
+    pub(crate) fn template_key(mode: Mode, values: &[[f64; 4]], options: &Options) -> Option<u64> {
+        if !options.lookup || values.iter().flatten().any(|v| !v.is_finite()) {
+            return None;
+        }
+        let table = super::lookup::table(mode, values.len())?;
+        let preds = Predicates { values, mode, float: options.float };
+        let t = super::lookup::find(table, &preds, values.len())?;
+        let id: u64 = match (mode, values.len()) {
+            (Mode::Ia, k) => k as u64,
+            (Mode::Mi, k) => 8 + k as u64,
+        };
+        Some(id << 32 | t as u64)
+    }
+
     /// [`Complex::build`] with caller-owned scratch space (no allocation
     /// once the buffers have grown).
     pub(crate) fn build_with(

@@ -38,6 +38,7 @@ mod build;
 mod canonical;
 mod check;
 mod coords;
+pub(crate) use coords::barycentric;
 mod lookup;
 #[doc(hidden)]
 pub mod lookup_gen;

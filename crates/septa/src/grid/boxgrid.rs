@@ -145,15 +145,20 @@ impl BoxGrid {
         let k = cube % self.res[2];
         let j = (cube / self.res[2]) % self.res[1];
         let i = cube / (self.res[2] * self.res[1]);
-        let pattern = match self.split {
-            Split::Five if (i + j + k) % 2 == 0 => FIVE_EVEN[local],
-            Split::Five => FIVE_ODD[local],
-            Split::Six => SIX[local],
-        };
-        pattern.map(|p| {
+        self.tet_corners([i, j, k], local).map(|p| {
             let d = [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1];
             self.vertex_index([i + d[0], j + d[1], k + d[2]])
         })
+    }
+
+    /// The corners of tet `local` of cube `cube` as offsets from the cube's
+    /// first corner, bit 2 / 1 / 0 set for +1 along i / j / k.
+    pub fn tet_corners(&self, cube: [usize; 3], local: usize) -> [u8; 4] {
+        match self.split {
+            Split::Five if (cube[0] + cube[1] + cube[2]) % 2 == 0 => FIVE_EVEN[local],
+            Split::Five => FIVE_ODD[local],
+            Split::Six => SIX[local],
+        }
     }
 
     /// Blocks of `size^3` cubes (smaller at the far sides).

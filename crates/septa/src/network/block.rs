@@ -86,7 +86,16 @@ pub(crate) struct Worker {
     edge_net: Vec<u32>,
     /// IA: the active functions of the next tet as a bit mask, if known.
     pub(crate) active_hint: Option<u64>,
+    /// IA: the sign bits at corner 0 of the next tet (k <= 63), if known.
+    pub(crate) base_hint: Option<u64>,
     cell_labels: Vec<Label>,
+    /// IA: sign bits of every function at corner 0 of the current tet.
+    base_label: Label,
+    /// The block's vertex map, kept between blocks so its table is
+    /// allocated once per thread.
+    vmap: FxHashMap<VKey, u32>,
+    /// Tet programs by look-up table template (`None`: not programmable).
+    programs: FxHashMap<u64, Option<super::program::Program>>,
 }
 
 /// Block-local maps, dropped with the block.
@@ -161,13 +170,14 @@ impl Worker {
                 Block::Cubes { lo, hi } => Some((*lo, *hi)),
                 Block::Tets(_) => None,
             },
+            vmap: std::mem::take(&mut self.vmap),
             ..State::default()
         };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
             if super::boxfast::applies(ctx) {
                 self.run_box(ctx, &mut st, g, *lo, *hi)?;
                 st.out.tets = (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
-                return Ok(finish(st));
+                return Ok(self.finish(st));
             }
         }
         let mut tets = std::mem::take(&mut self.tets);
@@ -177,7 +187,16 @@ impl Worker {
         }
         st.out.tets = tets.len();
         self.tets = tets;
-        Ok(finish(st))
+        Ok(self.finish(st))
+    }
+
+    /// Hands the block's vertex map back for the next block and compresses
+    /// the block's output.
+    fn finish(&mut self, mut st: State) -> BlockOut {
+        let mut vmap = std::mem::take(&mut st.vmap);
+        vmap.clear();
+        self.vmap = vmap;
+        finish(st)
     }
 
     /// The per-tet step (active functions, complex, extraction); look-up
@@ -221,6 +240,28 @@ impl Worker {
         for &f in &self.active {
             self.vals.push(row(f as usize));
         }
+        if ctx.mode == Mode::Ia {
+            self.base_label = match self.base_hint {
+                Some(b) => SmallVec::from_elem(b, 1),
+                None => ia_base_label(&tet, ctx),
+            };
+        }
+        if super::simple::simple_tet(ctx, st, &tet, &self.active, &self.vals, &self.base_label) {
+            return Ok(());
+        }
+        // Table tets: replay the template's program, or record it.
+        let template = if st.grouping || ctx.volumes {
+            None
+        } else {
+            Complex::template_key(ctx.mode, &self.vals, &ctx.options)
+        };
+        if let Some(key) = template {
+            if let Some(Some(p)) = self.programs.get(&key) {
+                super::program::run(p, ctx, st, &tet, &self.active, &self.vals, &self.base_label);
+                return Ok(());
+            }
+        }
+        let mark = super::program::Mark::of(st);
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
             .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
@@ -233,10 +274,7 @@ impl Worker {
         }
         // Region labels and nodes.
         let base = st.uf.len() as u32;
-        let base_label = match ctx.mode {
-            Mode::Ia => ia_base_label(&tet, ctx),
-            Mode::Mi => SmallVec::new(),
-        };
+        let base_label = std::mem::take(&mut self.base_label);
         self.cell_labels.clear();
         for cell in c.cells() {
             let label: Label = match ctx.mode {
@@ -259,6 +297,7 @@ impl Worker {
             st.node_volume.push(0.0);
             self.cell_labels.push(label);
         }
+        self.base_label = base_label;
         if ctx.volumes {
             let corners = tet.map(|v| ctx.grid.vertex(v));
             for (ci, cell) in c.cells().iter().enumerate() {
@@ -316,10 +355,12 @@ impl Worker {
         // Region contacts across tet faces (cell grouping), once per (face, cell).
         self.pairs.sort_unstable();
         self.pairs.dedup();
-        for j in 0..self.pairs.len() {
-            let (i, cell) = self.pairs[j];
-            let label = self.cell_labels[cell as usize].clone();
-            contact(st, face_key(&tet, i as usize), &label, base + cell);
+        if st.grouping {
+            for j in 0..self.pairs.len() {
+                let (i, cell) = self.pairs[j];
+                let label = self.cell_labels[cell as usize].clone();
+                contact(st, face_key(&tet, i as usize), &label, base + cell);
+            }
         }
         // Shell connectivity (Sec. 7): around an edge of the network, the two
         // faces of a cell there bound the same wedge, so their sides facing the
@@ -393,6 +434,10 @@ impl Worker {
                     }
                 }
             }
+        }
+        if let Some(key) = template {
+            let program = super::program::record(c, &self.active, &self.vid, st, mark);
+            self.programs.insert(key, program);
         }
         self.complex = owned;
         Ok(())
@@ -470,17 +515,24 @@ fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32
 /// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
 pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
     let vert = c.vertices()[v as usize];
+    key_of(mode, vert.simplex(), vert.functions(), tet, active)
+}
+
+/// Global key of the vertex on tet element `simplex` defined by the local
+/// functions `funcs` (Sec. 5.1: sorted grid vertices of the element, sorted
+/// global function ids; an MI tet corner is keyed by its grid vertex alone).
+pub(crate) fn key_of(mode: Mode, simplex: u8, funcs: &[u16], tet: &[u32; 4], active: &[u16]) -> VKey {
     let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
     let mut n = 0;
     for i in 0..4 {
-        if vert.simplex() >> i & 1 == 1 {
+        if simplex >> i & 1 == 1 {
             key.grid[n] = tet[i];
             n += 1;
         }
     }
     key.grid[..n].sort_unstable();
-    if !(mode == Mode::Mi && vert.dim() == 0) {
-        for (j, &f) in vert.functions().iter().enumerate() {
+    if !(mode == Mode::Mi && n == 1) {
+        for (j, &f) in funcs.iter().enumerate() {
             key.funcs[j] = active[f as usize];
         }
         key.funcs.sort_unstable();
@@ -506,15 +558,24 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
         return w.vid[v as usize];
     }
     let key = vertex_key(ctx.mode, c, v, tet, &w.active);
+    let id = vertex_id_by_key(ctx, st, key, || {
+        let corners = tet.map(|g| ctx.grid.vertex(g));
+        c.vertex_position(v as usize, &corners, &w.vals)
+    });
+    w.vid[v as usize] = id;
+    id
+}
+
+/// Block id of the vertex with global key `key`; `position` is asked for
+/// only when the key is new to the block.
+pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
     let next = st.out.keys.len() as u32;
     let id = *st.vmap.entry(key).or_insert(next);
     if id == next {
         st.out.keys.push(key);
         st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
-        let corners = tet.map(|g| ctx.grid.vertex(g));
-        st.out.points.push(c.vertex_position(v as usize, &corners, &w.vals));
+        st.out.points.push(position());
     }
-    w.vid[v as usize] = id;
     id
 }
 

@@ -141,27 +141,32 @@ impl Worker {
                         st.node_volume.push(cube_vol);
                         node[local(i, j, k)] = id;
                     } else {
-                        for t in cube * per..(cube + 1) * per {
+                        for (lt, t) in (cube * per..(cube + 1) * per).enumerate() {
                             // IA: the active functions are the sign bits that differ
-                            // between the tet's corners (when none is zero).
+                            // between the tet's corners, the label at corner 0 the
+                            // base of its cells' labels (when no value is zero).
                             self.active_hint = None;
+                            self.base_hint = None;
                             if ctx.mode == Mode::Ia {
-                                let tet = g.tet(t);
-                                let (mut or, mut and, mut bad) = (0u64, u64::MAX, false);
-                                for v in tet {
-                                    let p = g.vertex_ijk(v);
-                                    let l = vl[((p[0] - lo[0]) * vn[1] + p[1] - lo[1]) * vn[2] + p[2] - lo[2]];
-                                    bad |= l == BAD;
+                                let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                                let corners = g.tet_corners(gc, lt).map(|p| {
+                                    let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
+                                    vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
+                                });
+                                let (mut or, mut and) = (0u64, u64::MAX);
+                                for l in corners {
                                     or |= l;
                                     and &= l;
                                 }
-                                if !bad {
+                                if !corners.contains(&BAD) {
                                     self.active_hint = Some(or ^ and);
+                                    self.base_hint = Some(corners[0]);
                                 }
                             }
                             self.process_tet(ctx, st, t)?;
                         }
                         self.active_hint = None;
+                        self.base_hint = None;
                     }
                 }
             }

@@ -15,6 +15,8 @@ mod canon;
 pub mod continuation;
 mod merge;
 mod raytrace;
+mod program;
+mod simple;
 pub mod sparse;
 pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
@@ -271,8 +273,16 @@ fn ray_applies(grid: &Grid, values: &[f64], k: usize, mode: Mode) -> bool {
     match mode {
         Mode::Ia => values.iter().all(|&x| x != 0.0),
         Mode::Mi => values.chunks_exact(k).all(|r| {
-            let m = r.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            r.iter().filter(|&&x| x == m).count() == 1
+            // One pass: the running maximum and whether it is tied.
+            let (mut m, mut tied) = (r[0], false);
+            for &x in &r[1..] {
+                if x > m {
+                    (m, tied) = (x, false);
+                } else if x == m {
+                    tied = true;
+                }
+            }
+            !tied
         }),
     }
 }
@@ -291,9 +301,26 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     if values.len() != n * k {
         return Err(NetworkError::ValueCount { expected: n * k, vertices: n, functions: k, got: values.len() });
     }
-    if let Some(i) = values.iter().position(|x| !x.is_finite()) {
+    // One branch-free pass (it vectorises) for NaN/inf and IA zeros; the
+    // position of a bad value is searched only when there is one.
+    let (mut nonfinite, mut zero) = (false, false);
+    for chunk in values.chunks(4096) {
+        for &x in chunk {
+            nonfinite |= !x.is_finite();
+            zero |= x == 0.0;
+        }
+    }
+    if nonfinite {
+        let i = values.iter().position(|x| !x.is_finite()).unwrap_or(0);
         return Err(NetworkError::NonFinite { vertex: i / k, function: i % k, value: values[i] });
     }
+    let ray = options.raytrace
+        && !options.volumes
+        && match options.mode {
+            Mode::Ia => !zero && matches!(grid, Grid::Box(_)),
+            Mode::Mi => ray_applies(grid, values, k, options.mode),
+        };
+    let t_check = Instant::now();
     let ctx = block::Ctx {
         grid,
         values,
@@ -305,7 +332,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
             o
         },
         volumes: options.volumes,
-        grouping: !(options.raytrace && !options.volumes && ray_applies(grid, values, k, options.mode)),
+        grouping: !ray,
         sparse: None,
     };
     let blocks = grid.blocks(options.block);
@@ -325,6 +352,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         .collect::<Result<_, _>>()?;
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
+    let t_merged = Instant::now();
     canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
     let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
@@ -337,7 +365,12 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         o.raytrace = false;
         return compute(grid, values, k, &o);
     }
-    Ok(assemble(options.mode, k, m, topo, [t1 - t0, t2 - t1, t3 - t2]))
+    let mut net = assemble(options.mode, k, m, topo, [t1 - t_check, t_merged - t1, t3 - t2]);
+    // Input checks and canonical numbering are neither extraction nor
+    // topology: report them apart (`septa bench grid` sums tets + merge).
+    net.seconds.insert(0, ("check", (t_check - t0).as_secs_f64()));
+    net.seconds.insert(3, ("canon", (t2 - t_merged).as_secs_f64()));
+    Ok(net)
 }
 
 /// A cell bounded by no face (no network at all) takes the label of the

@@ -37,6 +37,35 @@ pub(crate) struct RayInput<'a> {
     pub num_comps: usize,
 }
 
+/// Global vertex id by key. Rays look up only a few keys, so when the keys
+/// are in canonical order (sorted by grid element, as after
+/// `canon::canonicalize_merged`) a binary search beats hashing every vertex;
+/// otherwise a hash map is built.
+enum KeyIndex<'a> {
+    Sorted(&'a [VKey]),
+    Hashed(FxHashMap<VKey, u32>),
+}
+
+impl<'a> KeyIndex<'a> {
+    fn new(keys: &'a [VKey]) -> KeyIndex<'a> {
+        if keys.windows(2).all(|w| w[0].grid <= w[1].grid) {
+            KeyIndex::Sorted(keys)
+        } else {
+            KeyIndex::Hashed(keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect())
+        }
+    }
+
+    fn get(&self, key: VKey) -> Option<u32> {
+        match self {
+            KeyIndex::Sorted(keys) => {
+                let lo = keys.partition_point(|k| k.grid < key.grid);
+                keys[lo..].iter().take_while(|k| k.grid == key.grid).position(|k| *k == key).map(|i| (lo + i) as u32)
+            }
+            KeyIndex::Hashed(map) => map.get(&key).copied(),
+        }
+    }
+}
+
 /// A per-tet complex built on demand along a ray.
 struct TetView {
     tet: [u32; 4],
@@ -66,7 +95,7 @@ pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> 
             fill[v] += 1;
         }
     }
-    let vmap: FxHashMap<VKey, u32> = inp.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
+    let vmap = KeyIndex::new(inp.keys);
     // Smallest grid edge (v, u) carrying an edge-point, per component.
     let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); inp.num_comps];
     for (v, k) in inp.keys.iter().enumerate() {
@@ -110,7 +139,7 @@ fn walk(
     ctx: &Ctx,
     g: &BoxGrid,
     inp: &RayInput,
-    vmap: &FxHashMap<VKey, u32>,
+    vmap: &KeyIndex,
     start: &[u32],
     vf: &[u32],
     from: u32,
@@ -230,7 +259,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
 
 /// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
 /// to `b` (corners included), each with its global id if it is a network vertex.
-fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &FxHashMap<VKey, u32>) -> SmallVec<[Option<u32>; 8]> {
+fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &KeyIndex) -> SmallVec<[Option<u32>; 8]> {
     if view.complex.vertices().is_empty() {
         return SmallVec::from_elem(None, 2);
     }
@@ -239,7 +268,7 @@ fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &FxHashMap<VKey,
     view.complex
         .tet_edge_points(la, lb)
         .iter()
-        .map(|&cv| vmap.get(&vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)).copied())
+        .map(|&cv| vmap.get(vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)))
         .collect()
 }
 
@@ -251,7 +280,7 @@ fn facing_shell(
     ctx: &Ctx,
     inp: &RayInput,
     view: &TetView,
-    vmap: &FxHashMap<VKey, u32>,
+    vmap: &KeyIndex,
     start: &[u32],
     vf: &[u32],
     a: u32,
@@ -275,7 +304,7 @@ fn facing_shell(
     }
     let cell =
         c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
-    let gp = *vmap.get(&vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
+    let gp = vmap.get(vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
     for &fi in &c.cells()[cell as usize].faces {
         let face = &c.faces()[fi as usize];
         if !face.plane.is_network() || !face.vertices.contains(&p) {
@@ -283,7 +312,7 @@ fn facing_shell(
         }
         let mut keys: SmallVec<[u32; 8]> = SmallVec::new();
         for &v in &face.vertices {
-            keys.push(*vmap.get(&vertex_key(ctx.mode, c, v, &view.tet, &view.active))?);
+            keys.push(vmap.get(vertex_key(ctx.mode, c, v, &view.tet, &view.active))?);
         }
         keys.sort_unstable();
         for &gf in &vf[start[gp as usize] as usize..start[gp as usize + 1] as usize] {

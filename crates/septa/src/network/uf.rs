@@ -20,6 +20,11 @@ impl UnionFind {
         id
     }
 
+    /// Reserves room for `n` more elements.
+    pub fn reserve(&mut self, n: usize) {
+        self.parent.reserve(n);
+    }
+
     /// Number of elements.
     pub fn len(&self) -> usize {
         self.parent.len()
