@@ -18,6 +18,7 @@ from . import grid, shapes
 from .network import Network, load
 from .jobs import arrangement, material_interface, region_surfaces, cut_mesh
 from .viewer import view
+from . import continuation, distributed
 
 __all__ = [
     "__version__",
@@ -31,4 +32,6 @@ __all__ = [
     "region_surfaces",
     "cut_mesh",
     "view",
+    "distributed",
+    "continuation",
 ]

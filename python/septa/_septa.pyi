@@ -31,3 +31,41 @@ def cut(
     threads: int = 0,
 ) -> str:
     """Planar cut-cell mesh as JSON text (counts, points, cells' outward polygons)."""
+
+def sparse_plan(job: str) -> tuple[int, list[int], bool]:
+    """Step 1 of a sparse job (JSON text): (blocks, kept block indices, dense)."""
+
+def sparse_blocks(job: str, indices: list[int]) -> list[bytes]:
+    """Step 2: the given blocks' parts of the network, one ``bytes`` each."""
+
+def sparse_finish(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> dict:
+    """Step 3: merge in block order, topology; the network dict (as ``network``)."""
+
+def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> str:
+    """Step 3 for a scene's region surfaces: ``network.json`` text (as ``regions``)."""
+
+def sparse_network(job: str, dense: bool = False, threads: int | None = None) -> dict:
+    """The whole job in this process (``compute_sparse``, or the dense path)."""
+
+def continuation(
+    f: object,
+    k: int,
+    mode: str,
+    resolution: list[int],
+    bounds: list[list[float]],
+    split: int = 5,
+    block: int = 8,
+    seeds: list[tuple[float, float, float]] | None = None,
+    dense: bool = False,
+    threads: int | None = None,
+) -> dict:
+    """Network of a callable ``f((n, 3)) -> (n, k)`` by continuation from seeds (or a coarse scan)."""
+
+def continuation_seeds(f: object, k: int, job: tuple, seeds: list | None = None) -> list[int]:
+    """Seed blocks of a continuation job ``(mode, resolution, bounds, split, block)``."""
+
+def continuation_blocks(f: object, k: int, job: tuple, indices: list[int]) -> list[tuple[bytes, list[int]]]:
+    """One search round's blocks: ``(block result bytes, next blocks)`` each."""
+
+def continuation_finish(f: object, k: int, job: tuple, results: list[bytes]) -> dict:
+    """The network of a continuation job from its block results."""

@@ -9,7 +9,9 @@
 use pyo3::prelude::*;
 
 mod checks;
+mod continuation;
 mod cut;
+mod distributed;
 mod interrupt;
 mod network;
 mod regions;
@@ -33,5 +35,14 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_seeds_py, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_blocks, m)?)?;
+    m.add_function(wrap_pyfunction!(continuation::continuation_finish, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_plan, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_blocks, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_finish, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_finish_regions, m)?)?;
+    m.add_function(wrap_pyfunction!(distributed::sparse_network, m)?)?;
     Ok(())
 }

@@ -81,7 +81,7 @@ pub fn network<'py>(
     to_dict(py, &net)
 }
 
-fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let n = net.points.len();
     d.set_item("mode", if net.mode == Mode::Ia { "ia" } else { "mi" })?;

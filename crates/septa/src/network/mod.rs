@@ -12,14 +12,16 @@ pub mod bench;
 mod block;
 mod boxfast;
 mod canon;
+pub mod continuation;
 mod merge;
 mod raytrace;
 mod program;
 mod simple;
 pub mod sparse;
-pub use sparse::{compute_sparse, SparseStats};
+pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
 pub mod uf;
+pub mod wire;
 
 use std::time::Instant;
 
@@ -83,6 +85,13 @@ pub enum NetworkError {
     /// The run was cancelled through [`NetworkOptions::cancel`].
     #[error("cancelled")]
     Cancelled,
+    /// Block results handed to [`finish_sparse`] do not match its plan
+    /// (missing, repeated, or from another job).
+    #[error("block results: {0}")]
+    BlockResults(String),
+    /// Continuation: a seed or the field's values are wrong (the message says which).
+    #[error("continuation: {0}")]
+    Continuation(String),
     /// The per-tet construction failed.
     #[error("tet {tet}: {message}")]
     Tet {

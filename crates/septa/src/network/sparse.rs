@@ -53,11 +53,11 @@ pub struct SparseStats {
 }
 
 /// The values of one block's vertices, `lo..=hi` in grid coordinates.
-struct BlockValues {
+pub(crate) struct BlockValues {
     lo: [usize; 3],
     vn: [usize; 3],
     k: usize,
-    data: Vec<f64>,
+    pub(crate) data: Vec<f64>,
     /// Vertex id strides of i and j.
     stride: [u32; 2],
     /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
@@ -69,7 +69,7 @@ struct BlockValues {
 }
 
 impl BlockValues {
-    fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
+    pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
         let b = grid.res[2] as u32 + 1;
         let a = (grid.res[1] as u32 + 1) * b;
         BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
@@ -162,7 +162,7 @@ fn sample_block(
     Ok((BlockValues::new(grid, lo, vn, k, data), clean))
 }
 
-fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
+pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
     Ctx {
         grid,
         values: &[],
@@ -182,81 +182,272 @@ fn dense(grid: &BoxGrid, functions: &[Primitive], options: &NetworkOptions) -> R
     super::compute(&g, &values, functions.len(), options)
 }
 
-/// Computes the IA or MI network of analytic functions on a box grid by
-/// sparse evaluation (see the module doc); the result equals
-/// [`compute`](super::compute) on the functions sampled at every vertex.
-pub fn compute_sparse(
-    grid: &BoxGrid,
-    functions: &[Primitive],
-    options: &NetworkOptions,
-) -> Result<(Network, SparseStats), NetworkError> {
-    let t0 = Instant::now();
-    let k = functions.len();
+/// The first step of a sparse job: which blocks may hold a part of the
+/// network (classified by bounds, nothing sampled).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SparsePlan {
+    /// Blocks of the grid, `grid.blocks(options.block).len()`.
+    pub blocks: usize,
+    /// Indices (into `grid.blocks(options.block)`) of the blocks to sample, ascending.
+    pub kept: Vec<usize>,
+    /// The options ask for cell grouping (volumes, or ray shooting off):
+    /// the job runs on the dense path and no block is run.
+    pub dense: bool,
+}
+
+/// What identifies a sparse job, carried by every [`BlockResult`] so that
+/// results of another job (another grid, mode, function count or block
+/// size) are refused at [`finish_sparse`] instead of merged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct JobKey {
+    /// IA or MI.
+    pub mode: Mode,
+    /// Number of functions.
+    pub functions: usize,
+    /// Grid resolution.
+    pub res: [usize; 3],
+    /// Grid bounds.
+    pub bounds: [[f64; 3]; 2],
+    /// Tets per cube (5 or 6).
+    pub split: u8,
+    /// Block edge in cubes.
+    pub block: usize,
+}
+
+impl JobKey {
+    /// The key of a job.
+    pub fn of(grid: &BoxGrid, functions: usize, options: &NetworkOptions) -> JobKey {
+        JobKey {
+            mode: options.mode,
+            functions,
+            res: grid.res,
+            bounds: grid.bounds,
+            split: grid.split.tets_per_cube() as u8,
+            block: options.block.max(1),
+        }
+    }
+
+    /// Equality with floats compared bit for bit.
+    pub(crate) fn same(&self, o: &JobKey) -> bool {
+        let bits = |b: &[[f64; 3]; 2]| b.map(|c| c.map(f64::to_bits));
+        self.mode == o.mode
+            && self.functions == o.functions
+            && self.res == o.res
+            && bits(&self.bounds) == bits(&o.bounds)
+            && self.split == o.split
+            && self.block == o.block
+    }
+}
+
+/// One sampled block's part of the network (the second step of a sparse
+/// job), mergeable with the others by [`finish_sparse`] in block order.
+/// It crosses machines as bytes: [`BlockResult::to_bytes`] and
+/// [`BlockResult::from_bytes`] (see `wire.rs`).
+#[derive(Debug)]
+pub struct BlockResult {
+    pub(crate) job: JobKey,
+    pub(crate) index: usize,
+    pub(crate) out: BlockOut,
+    /// Whether ray shooting's precondition holds on the block (module doc).
+    pub(crate) clean: bool,
+    pub(crate) sampled_vertices: usize,
+}
+
+impl BlockResult {
+    /// The block's index in `grid.blocks(block)`.
+    pub fn index(&self) -> usize {
+        self.index
+    }
+
+    /// The job it belongs to.
+    pub fn job(&self) -> JobKey {
+        self.job
+    }
+
+    /// Whether ray shooting applies on this block (IA: no value exactly 0;
+    /// MI: a unique maximum at every vertex); if any block is not clean the
+    /// job falls back to the dense path.
+    pub fn clean(&self) -> bool {
+        self.clean
+    }
+
+    /// Grid vertices sampled for the block.
+    pub fn sampled_vertices(&self) -> usize {
+        self.sampled_vertices
+    }
+
+    /// Tets of the block with a part of the network.
+    pub fn active_tets(&self) -> usize {
+        self.out.active_tets
+    }
+}
+
+/// Checks the function count, as the dense path does.
+pub(crate) fn check_functions(k: usize) -> Result<(), NetworkError> {
     if k == 0 {
         return Err(NetworkError::NoFunctions);
     }
     if k > u16::MAX as usize - 1 {
         return Err(NetworkError::TooManyFunctions(k));
     }
+    Ok(())
+}
+
+pub(crate) fn cubes(b: &Block) -> ([usize; 3], [usize; 3]) {
+    match b {
+        Block::Cubes { lo, hi } => (*lo, *hi),
+        Block::Tets(_) => unreachable!("a box grid has cube blocks"),
+    }
+}
+
+/// Block `index` of `grid.blocks(size)` without listing them all (same
+/// order: i outermost, k innermost).
+pub(crate) fn block_at(grid: &BoxGrid, size: usize, index: usize) -> Option<Block> {
+    let size = size.max(1);
+    let n = grid.res.map(|r| r.div_ceil(size));
+    if index >= n[0] * n[1] * n[2] {
+        return None;
+    }
+    let ijk = [index / (n[1] * n[2]), index / n[2] % n[1], index % n[2]];
+    let lo = [0, 1, 2].map(|a| ijk[a] * size);
+    let hi = [0, 1, 2].map(|a| (lo[a] + size).min(grid.res[a]));
+    Some(Block::Cubes { lo, hi })
+}
+
+/// Step 1 of a sparse job: classifies the blocks by the functions' bounds
+/// (in parallel) and lists those to sample.
+pub fn plan_sparse(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+) -> Result<SparsePlan, NetworkError> {
+    check_functions(functions.len())?;
     let blocks = grid.blocks(options.block);
-    let mut stats = SparseStats { blocks: blocks.len(), ..SparseStats::default() };
+    if options.volumes || !options.raytrace {
+        return Ok(SparsePlan { blocks: blocks.len(), kept: Vec::new(), dense: true });
+    }
+    let kept: Vec<usize> = (0..blocks.len())
+        .into_par_iter()
+        .filter(|&i| {
+            let (lo, hi) = cubes(&blocks[i]);
+            may_be_active(grid, functions, options.mode, lo, hi)
+        })
+        .collect();
+    Ok(SparsePlan { blocks: blocks.len(), kept, dense: false })
+}
+
+/// Samples block `index` and builds its part of the network with `w`.
+fn run_block_with(
+    w: &mut Worker,
+    g: &Grid,
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    index: usize,
+) -> Result<BlockResult, NetworkError> {
+    let k = functions.len();
+    let b = block_at(grid, options.block, index).ok_or_else(|| {
+        NetworkError::BlockResults(format!("block {index} does not exist (the grid has {} blocks)", {
+            let n = grid.res.map(|r| r.div_ceil(options.block.max(1)));
+            n[0] * n[1] * n[2]
+        }))
+    })?;
+    let (lo, hi) = cubes(&b);
+    let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
+    let sampled_vertices = bv.data.len() / k;
+    let c = ctx(g, k, options, &bv);
+    let out = w.run(&c, &b)?;
+    Ok(BlockResult { job: JobKey::of(grid, k, options), index, out, clean, sampled_vertices })
+}
+
+/// Step 2 of a sparse job: samples block `index` (of `grid.blocks(options.block)`)
+/// and builds its part of the network. Independent of every other block,
+/// so it may run anywhere (another thread, process or machine).
+pub fn run_block(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    index: usize,
+) -> Result<BlockResult, NetworkError> {
+    check_functions(functions.len())?;
+    let g = Grid::Box(grid.clone());
+    run_block_with(&mut Worker::default(), &g, grid, functions, options, index)
+}
+
+/// Step 3 of a sparse job: merges the block results in block order (so the
+/// numbering never depends on which block finished first), puts the
+/// network in the dense path's canonical order, identifies cells by ray
+/// shooting (values outside the sampled blocks computed on demand) and
+/// assembles the [`Network`]. Falls back to the dense path, here, when the
+/// plan says so, a block is not clean, or ray shooting does not apply.
+/// `results` must be exactly the plan's kept blocks of this job.
+pub fn finish_sparse(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    plan: &SparsePlan,
+    results: Vec<BlockResult>,
+) -> Result<(Network, SparseStats), NetworkError> {
+    check_functions(functions.len())?;
+    let pv = PointValues { grid, functions };
+    finish_with(grid, functions.len(), options, plan, results, &pv, || dense(grid, functions, options))
+}
+
+/// [`finish_sparse`] with values on demand from `pv` and the dense path
+/// given as `dense` (shared with continuation).
+pub(crate) fn finish_with(
+    grid: &BoxGrid,
+    k: usize,
+    options: &NetworkOptions,
+    plan: &SparsePlan,
+    mut results: Vec<BlockResult>,
+    pv: &dyn Values,
+    dense: impl FnOnce() -> Result<Network, NetworkError>,
+) -> Result<(Network, SparseStats), NetworkError> {
+    let t0 = Instant::now();
+    let mut stats = SparseStats { blocks: plan.blocks, ..SparseStats::default() };
     let fallback = |mut stats: SparseStats| {
         stats.dense_fallback = true;
         stats.skipped = 0;
         stats.sampled = stats.blocks;
         stats.sampled_vertices = grid.num_vertices();
-        Ok((dense(grid, functions, options)?, stats))
+        Ok((dense()?, stats))
     };
-    if options.volumes || !options.raytrace {
+    if plan.dense {
         return fallback(stats);
     }
-    let cubes = |b: &Block| match b {
-        Block::Cubes { lo, hi } => (*lo, *hi),
-        Block::Tets(_) => unreachable!("a box grid has cube blocks"),
-    };
-    // 1. Classify by bounds, before any sampling.
-    let keep: Vec<&Block> = blocks
-        .par_iter()
-        .filter(|b| {
-            let (lo, hi) = cubes(b);
-            may_be_active(grid, functions, options.mode, lo, hi)
-        })
-        .collect();
-    stats.sampled = keep.len();
-    stats.skipped = blocks.len() - keep.len();
-    // 2. Sample and process each kept block; its values die with it.
-    let g = Grid::Box(grid.clone());
-    let done = std::sync::atomic::AtomicUsize::new(0);
-    let outs: Vec<(BlockOut, bool, usize)> = keep
-        .par_iter()
-        .map_init(Worker::default, |w, b| {
-            if options.cancelled() {
-                return Err(NetworkError::Cancelled);
-            }
-            let (lo, hi) = cubes(b);
-            let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
-            let nv = bv.data.len() / k;
-            let c = ctx(&g, k, options, &bv);
-            let out = w.run(&c, b)?;
-            if let Some(p) = &options.progress {
-                p.tick(&done, keep.len());
-            }
-            Ok((out, clean, nv))
-        })
-        .collect::<Result<_, NetworkError>>()?;
-    stats.sampled_vertices = outs.iter().map(|o| o.2).sum();
-    stats.active = outs.iter().filter(|o| o.0.active_tets > 0).count();
-    if !outs.iter().all(|o| o.1) {
+    let job = JobKey::of(grid, k, options);
+    if let Some(r) = results.iter().find(|r| !r.job.same(&job)) {
+        return Err(NetworkError::BlockResults(format!(
+            "block {} belongs to another job ({:?}, expected {:?})",
+            r.index, r.job, job
+        )));
+    }
+    results.sort_by_key(|r| r.index);
+    if results.len() != plan.kept.len() || results.iter().zip(&plan.kept).any(|(r, &i)| r.index != i) {
+        let have: std::collections::BTreeSet<usize> = results.iter().map(|r| r.index).collect();
+        let missing: Vec<usize> = plan.kept.iter().copied().filter(|i| !have.contains(i)).take(5).collect();
+        return Err(NetworkError::BlockResults(format!(
+            "{} block results for the {} planned blocks (missing e.g. {missing:?}, or a block given twice or not planned)",
+            results.len(),
+            plan.kept.len()
+        )));
+    }
+    stats.sampled = plan.kept.len();
+    stats.skipped = plan.blocks - plan.kept.len();
+    stats.sampled_vertices = results.iter().map(|r| r.sampled_vertices).sum();
+    stats.active = results.iter().filter(|r| r.out.active_tets > 0).count();
+    if !results.iter().all(|r| r.clean) {
         return fallback(stats);
     }
-    let outs: Vec<BlockOut> = outs.into_iter().map(|o| o.0).collect();
+    let outs: Vec<BlockOut> = results.into_iter().map(|r| r.out).collect();
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
     // The same canonical order as the dense path (identical output).
     super::canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
-    let pv = PointValues { grid, functions };
-    let c = ctx(&g, k, options, &pv);
+    let g = Grid::Box(grid.clone());
+    let c = ctx(&g, k, options, pv);
     let mut topo = topology::topology(&mut m, Some(&c));
     if topo.cells_method != "raytrace" {
         return fallback(stats);
@@ -266,5 +457,44 @@ pub fn compute_sparse(
     super::label_free_cells(&mut topo, options.mode, &row);
     let t3 = Instant::now();
     let net = super::assemble(options.mode, k, m, topo, [t1 - t0, t2 - t1, t3 - t2]);
+    Ok((net, stats))
+}
+
+/// Computes the IA or MI network of analytic functions on a box grid by
+/// sparse evaluation (see the module doc); the result equals
+/// [`compute`](super::compute) on the functions sampled at every vertex.
+///
+/// It is [`plan_sparse`], [`run_block`] on every kept block (in parallel
+/// on the current rayon pool) and [`finish_sparse`]: a distributed run of
+/// the same three steps is identical by construction.
+pub fn compute_sparse(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+) -> Result<(Network, SparseStats), NetworkError> {
+    let t0 = Instant::now();
+    let plan = plan_sparse(grid, functions, options)?;
+    let g = Grid::Box(grid.clone());
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let results: Vec<BlockResult> = plan
+        .kept
+        .par_iter()
+        .map_init(Worker::default, |w, &i| {
+            if options.cancelled() {
+                return Err(NetworkError::Cancelled);
+            }
+            let r = run_block_with(w, &g, grid, functions, options, i)?;
+            if let Some(p) = &options.progress {
+                p.tick(&done, plan.kept.len());
+            }
+            Ok(r)
+        })
+        .collect::<Result<_, NetworkError>>()?;
+    let tets = t0.elapsed();
+    let (mut net, stats) = finish_sparse(grid, functions, options, &plan, results)?;
+    // The "tets" stage is the classification and the blocks, as before the split.
+    if let Some(s) = net.seconds.iter_mut().find(|s| s.0 == "tets") {
+        s.1 += tets.as_secs_f64();
+    }
     Ok((net, stats))
 }

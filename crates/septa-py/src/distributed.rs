@@ -1,0 +1,257 @@
+//! `septa.distributed`: the three steps of a sparse job (issue 6, "Beyond
+//! one machine") as separate calls, so that a Dask cluster can run the
+//! middle one anywhere: plan the blocks, run blocks into bytes, finish from
+//! the bytes. A job travels as JSON text (never Rust objects), so a worker
+//! only needs `pip install septa`.
+//!
+//! Job JSON: `{"mode": "ia"|"mi", "block": 16, "grid": {"resolution": n or
+//! [nx, ny, nz], "bounds": [[..], [..]], "split": 5|6}, "functions": [..]}`
+//! (a reference-format primitive list), or `{"scene": {..} or
+//! "builtin:NAME", "block": 16}` where mode and grid come from the scene
+//! unless given. `"base_dir"` resolves relative mesh paths.
+use crate::InputError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBytes, PyDict};
+use rayon::prelude::*;
+use septa::grid::{BoxGrid, Split};
+use septa::network::{
+    compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Mode, Network, NetworkOptions,
+    SparsePlan, SparseStats,
+};
+use septa::scene::{load_function_list, sample_grid, Primitive, Scene};
+use serde_json::Value;
+
+/// A parsed job.
+struct Job {
+    grid: BoxGrid,
+    functions: Vec<Primitive>,
+    options: NetworkOptions,
+    scene: Option<Scene>,
+}
+
+fn grid_of(v: &Value) -> Result<BoxGrid, String> {
+    let res = match v.get("resolution") {
+        Some(Value::Array(a)) if a.len() == 3 => {
+            let mut r = [0; 3];
+            for (i, x) in a.iter().enumerate() {
+                r[i] = x.as_u64().ok_or("grid.resolution: expected positive integers")? as usize;
+            }
+            r
+        }
+        Some(x) => [x.as_u64().ok_or("grid.resolution: expected n or [nx, ny, nz]")? as usize; 3],
+        None => return Err("grid.resolution: missing".into()),
+    };
+    let bounds = match v.get("bounds") {
+        None => [[-1.0; 3], [1.0; 3]],
+        Some(b) => {
+            let b: [[f64; 3]; 2] = serde_json::from_value(b.clone())
+                .map_err(|_| "grid.bounds: expected [[x0, y0, z0], [x1, y1, z1]]".to_string())?;
+            b
+        }
+    };
+    let split = match v.get("split").and_then(Value::as_u64).unwrap_or(5) {
+        5 => Split::Five,
+        6 => Split::Six,
+        s => return Err(format!("grid.split: must be 5 or 6, not {s}")),
+    };
+    BoxGrid::new(res, bounds, split).map_err(|e| format!("grid: {e}"))
+}
+
+fn parse_job(text: &str) -> Result<Job, String> {
+    let v: Value = serde_json::from_str(text).map_err(|e| format!("job: not JSON: {e}"))?;
+    let base = v.get("base_dir").and_then(Value::as_str).map(std::path::PathBuf::from);
+    let (functions, mut grid, mut mode, scene) = match (v.get("scene"), v.get("functions")) {
+        (Some(s), None) => {
+            let scene = match s {
+                Value::String(name) => Scene::load(name),
+                _ => Scene::from_json(&s.to_string(), "<scene>", base.as_deref()),
+            }
+            .map_err(|e| e.to_string())?;
+            let g = &scene.grid;
+            let split = if g.split == 6 { Split::Six } else { Split::Five };
+            let grid = BoxGrid::new(g.resolution, g.bounds, split).map_err(|e| format!("scene grid: {e}"))?;
+            let mode = match scene.mode {
+                septa::scene::Mode::Ia => Mode::Ia,
+                septa::scene::Mode::Mi => Mode::Mi,
+            };
+            (scene.functions.clone(), Some(grid), Some(mode), Some(scene))
+        }
+        (None, Some(f)) => {
+            let fs = load_function_list(&f.to_string(), "<functions>", base.as_deref()).map_err(|e| e.to_string())?;
+            (fs, None, None, None)
+        }
+        _ => return Err("job: give exactly one of \"scene\" and \"functions\"".into()),
+    };
+    if let Some(g) = v.get("grid") {
+        grid = Some(grid_of(g)?);
+    }
+    match v.get("mode").and_then(Value::as_str) {
+        Some("ia") => mode = Some(Mode::Ia),
+        Some("mi") => mode = Some(Mode::Mi),
+        Some(m) => return Err(format!("job.mode: must be \"ia\" or \"mi\", not {m:?}")),
+        None => {}
+    }
+    let grid = grid.ok_or("job: a list of functions needs \"grid\"")?;
+    let mut options = NetworkOptions::new(mode.unwrap_or(Mode::Ia));
+    if let Some(b) = v.get("block") {
+        options.block = b.as_u64().filter(|&b| b >= 1).ok_or("job.block: expected a positive integer")? as usize;
+    }
+    Ok(Job { grid, functions, options, scene })
+}
+
+fn plan_of(p: (usize, Vec<usize>, bool)) -> SparsePlan {
+    SparsePlan { blocks: p.0, kept: p.1, dense: p.2 }
+}
+
+fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("blocks", s.blocks)?;
+    d.set_item("skipped", s.skipped)?;
+    d.set_item("sampled", s.sampled)?;
+    d.set_item("active", s.active)?;
+    d.set_item("sampled_vertices", s.sampled_vertices)?;
+    d.set_item("dense_fallback", s.dense_fallback)?;
+    Ok(d)
+}
+
+fn network_dict<'py>(py: Python<'py>, net: &Network, stats: Option<&SparseStats>) -> PyResult<Bound<'py, PyDict>> {
+    let d = crate::network::to_dict(py, net)?;
+    if let (Some(s), Some(counts)) = (stats, d.get_item("counts")?) {
+        counts.set_item("blocks", stats_dict(py, s)?)?;
+    }
+    Ok(d)
+}
+
+/// sparse_plan(job)
+/// --
+///
+/// Step 1: `(blocks, kept, dense)`: the number of blocks, the indices of
+/// those that may hold a part of the network (by the functions' bounds,
+/// nothing sampled), and whether the job runs on the dense path instead.
+#[pyfunction]
+pub fn sparse_plan(py: Python<'_>, job: &str) -> PyResult<(usize, Vec<usize>, bool)> {
+    let r: Result<_, String> = py.detach(|| {
+        let j = parse_job(job)?;
+        let p = plan_sparse(&j.grid, &j.functions, &j.options).map_err(|e| e.to_string())?;
+        Ok((p.blocks, p.kept, p.dense))
+    });
+    r.map_err(InputError::new_err)
+}
+
+/// sparse_blocks(job, indices)
+/// --
+///
+/// Step 2: samples and processes the given blocks one after the other on
+/// this thread (the GIL released) and returns one `bytes` per block: the
+/// block's part of the network in Septa's versioned binary layout.
+#[pyfunction]
+pub fn sparse_blocks<'py>(py: Python<'py>, job: &str, indices: Vec<usize>) -> PyResult<Vec<Bound<'py, PyBytes>>> {
+    let r: Result<Vec<Vec<u8>>, String> = py.detach(|| {
+        let j = parse_job(job)?;
+        indices
+            .iter()
+            .map(|&i| {
+                run_block(&j.grid, &j.functions, &j.options, i)
+                    .map(|b| b.to_bytes())
+                    .map_err(|e| format!("block {i}: {e}"))
+            })
+            .collect()
+    });
+    Ok(r.map_err(InputError::new_err)?.iter().map(|b| PyBytes::new(py, b)).collect())
+}
+
+fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, SparseStats), String> {
+    // Decoded in parallel: the client's share of the work besides the merge.
+    let blocks = results
+        .par_iter()
+        .enumerate()
+        .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
+        .collect::<Result<Vec<_>, _>>()?;
+    finish_sparse(&job.grid, &job.functions, &job.options, &plan, blocks).map_err(|e| e.to_string())
+}
+
+/// sparse_finish(job, plan, results)
+/// --
+///
+/// Step 3: merges the block results (in block order, whatever order they
+/// come in), finds the topology and returns the network dict (as
+/// `network`), with the sparse statistics in `counts["blocks"]`.
+#[pyfunction]
+pub fn sparse_finish<'py>(
+    py: Python<'py>,
+    job: &str,
+    plan: (usize, Vec<usize>, bool),
+    results: Vec<Bound<'py, PyBytes>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
+    let r = py.detach(|| {
+        let j = parse_job(job)?;
+        finish(&j, plan_of(plan), &slices)
+    });
+    let (net, stats) = r.map_err(InputError::new_err)?;
+    network_dict(py, &net, Some(&stats))
+}
+
+/// sparse_finish_regions(job, plan, results)
+/// --
+///
+/// Step 3 for a scene's region surfaces: as `sparse_finish`, then the
+/// surfaces and curves of interest of the scene's region rule; returns the
+/// `network.json` document as JSON text (as `regions`).
+#[pyfunction]
+pub fn sparse_finish_regions<'py>(
+    py: Python<'py>,
+    job: &str,
+    plan: (usize, Vec<usize>, bool),
+    results: Vec<Bound<'py, PyBytes>>,
+) -> PyResult<String> {
+    let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
+    let r: Result<String, String> = py.detach(|| {
+        let j = parse_job(job)?;
+        let scene = j.scene.as_ref().ok_or("region surfaces need a scene (with its region rule)")?;
+        let (net, stats) = finish(&j, plan_of(plan), &slices)?;
+        let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
+        out.sparse = Some(stats);
+        Ok(septa::io::regions_out::document(&out).to_string())
+    });
+    r.map_err(InputError::new_err)
+}
+
+/// sparse_network(job, dense=False, threads=None)
+/// --
+///
+/// The same job in this process: `compute_sparse` (the three steps with
+/// blocks on the rayon pool), or with `dense=True` every vertex sampled
+/// and the dense path. Returns the network dict (as `sparse_finish`).
+#[pyfunction]
+#[pyo3(signature = (job, dense = false, threads = None))]
+pub fn sparse_network<'py>(
+    py: Python<'py>,
+    job: &str,
+    dense: bool,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let r: Result<(Network, Option<SparseStats>), String> = crate::interrupt::run_interruptible(py, &cancel, || {
+        let mut j = parse_job(job)?;
+        j.options.cancel = Some(cancel.clone());
+        let run = || -> Result<(Network, Option<SparseStats>), String> {
+            if dense {
+                let g = septa::grid::Grid::Box(j.grid.clone());
+                let values = sample_grid(&j.functions, &g.vertices());
+                let net = compute(&g, &values, j.functions.len(), &j.options).map_err(|e| e.to_string())?;
+                Ok((net, None))
+            } else {
+                compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(|e| e.to_string())
+            }
+        };
+        match threads {
+            Some(t) => {
+                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
+            }
+            None => run(),
+        }
+    })?;
+    let (net, stats) = r.map_err(InputError::new_err)?;
+    network_dict(py, &net, stats.as_ref())
+}
