@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 mod common;
 
 use septa::complex::NONE;
-use septa::grid::{BoxGrid, Grid, Split};
+use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, Network, NetworkOptions};
 
@@ -161,5 +161,26 @@ fn permuted_functions_give_the_same_json() {
                 }
             }
         }
+    }
+}
+
+/// The same on a general tet mesh (the npz tets, not a box grid): cells by
+/// grouping across tet faces, blocks as ranges of tets.
+#[test]
+fn permuted_functions_give_the_same_json_on_a_tet_mesh() {
+    let dir = data_dir().unwrap();
+    for name in ["ia4_R20", "mi4_R20"] {
+        let mode = if name.contains("mi") { Mode::Mi } else { Mode::Ia };
+        let input = read_grid_input(&dir.join(format!("{name}.npz"))).unwrap();
+        let grid = Grid::Mesh(TetMesh::new(input.vertices.clone(), &input.tets).unwrap());
+        let (values, k) = (&input.values, input.k);
+        let base = run(&grid, values, k, mode, true, 4096);
+        assert_eq!(base.cells_method, "grouping", "{name}: a tet mesh groups cells");
+        let want = json(&base, "m");
+        let p = permutation(k, 7);
+        let permuted: Vec<f64> = values.chunks(k).flat_map(|r| p.iter().map(|&o| r[o])).collect();
+        let mut net = run(&grid, &permuted, k, mode, true, 1000);
+        map_back(&mut net, &p);
+        assert!(json(&net, "n") == want, "{name}: a permutation changed the tet-mesh network");
     }
 }
