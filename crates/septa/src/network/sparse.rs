@@ -168,7 +168,11 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
         values: &[],
         k,
         mode: options.mode,
-        options: Options::with_float(options.float),
+        options: {
+            let mut o = Options::with_float(options.float);
+            o.lookup = options.lookup;
+            o
+        },
         volumes: false,
         grouping: false,
         sparse: Some(values),
@@ -443,6 +447,7 @@ pub(crate) fn finish_with(
     let outs: Vec<BlockOut> = results.into_iter().map(|r| r.out).collect();
     let t1 = Instant::now();
     let mut m = merge::merge(options.mode, outs);
+    let t_merged = Instant::now();
     // The same canonical order as the dense path (identical output).
     super::canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
@@ -456,7 +461,8 @@ pub(crate) fn finish_with(
     let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
     super::label_free_cells(&mut topo, options.mode, &row);
     let t3 = Instant::now();
-    let net = super::assemble(options.mode, k, m, topo, [t1 - t0, t2 - t1, t3 - t2]);
+    let mut net = super::assemble(options.mode, k, m, topo, [t1 - t0, t_merged - t1, t3 - t2]);
+    net.seconds.insert(2, ("canon", (t2 - t_merged).as_secs_f64()));
     Ok((net, stats))
 }
 
