@@ -121,13 +121,7 @@ fn check_invariants(net: &Network, grid: &Grid, name: &str) {
 }
 
 fn json_without_seconds(net: &Network, tag: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("septa-net-test-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("network.json");
-    septa::io::network_out::write_json(net, &path, &[]).unwrap();
-    let text = std::fs::read_to_string(&path).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    text.split("\"seconds\"").next().unwrap().to_string()
+    common::network_json(net, tag)
 }
 
 #[test]

@@ -10,13 +10,7 @@ use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, Network, NetworkOptions};
 
 fn json(net: &Network, tag: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("septa-lookup-test-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("network.json");
-    septa::io::network_out::write_json(net, &path, &[]).unwrap();
-    let text = std::fs::read_to_string(&path).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    text.split("\"seconds\"").next().unwrap().to_string()
+    common::network_json(net, tag)
 }
 
 #[test]

@@ -22,13 +22,7 @@ fn load(dir: &Path, name: &str) -> (Grid, Vec<f64>, usize) {
 }
 
 fn json(net: &Network, tag: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("septa-perm-test-{}-{tag}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("network.json");
-    septa::io::network_out::write_json(net, &path, &[]).unwrap();
-    let text = std::fs::read_to_string(&path).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    text.split("\"seconds\"").next().unwrap().to_string()
+    common::network_json(net, tag)
 }
 
 /// A deterministic pseudo-random permutation of `0..k` (xorshift, Fisher-Yates).

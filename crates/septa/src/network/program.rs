@@ -129,6 +129,30 @@ pub(crate) fn record(c: &Complex, active: &[u16], vid: &[u32], st: &State, mark:
     Some(p)
 }
 
+/// Adds a region node for a cell of a tet: IA, `cell` is the mask of the
+/// tet's (local) functions positive in it, the other functions keep their
+/// signs of `base_label`; MI, `cell` is the local material.
+pub(crate) fn push_cell(mode: Mode, st: &mut State, base_label: &Label, active: &[u16], cell: u64) {
+    let label: Label = match mode {
+        Mode::Ia => {
+            let mut l = base_label.clone();
+            for (li, &g) in active.iter().enumerate() {
+                let (w, b) = (g as usize / 64, g % 64);
+                if cell >> li & 1 == 1 {
+                    l[w] |= 1 << b;
+                } else {
+                    l[w] &= !(1 << b);
+                }
+            }
+            l
+        }
+        Mode::Mi => SmallVec::from_elem(active[cell as usize] as u64, 1),
+    };
+    st.uf.push();
+    st.node_label.push(label);
+    st.node_volume.push(0.0);
+}
+
 /// Emits tet `tet` by `program`: `active` are its functions, `vals` their
 /// corner values, `base_label` (IA) the sign bits of every function at corner 0.
 pub(crate) fn run(
@@ -142,24 +166,7 @@ pub(crate) fn run(
 ) {
     let base = st.uf.len() as u32;
     for &cell in &program.cells {
-        let label: Label = match ctx.mode {
-            Mode::Ia => {
-                let mut l = base_label.clone();
-                for (li, &g) in active.iter().enumerate() {
-                    let (w, b) = (g as usize / 64, g % 64);
-                    if cell >> li & 1 == 1 {
-                        l[w] |= 1 << b;
-                    } else {
-                        l[w] &= !(1 << b);
-                    }
-                }
-                l
-            }
-            Mode::Mi => SmallVec::from_elem(active[cell as usize] as u64, 1),
-        };
-        st.uf.push();
-        st.node_label.push(label);
-        st.node_volume.push(0.0);
+        push_cell(ctx.mode, st, base_label, active, cell);
     }
     let mut ids: SmallVec<[u32; 32]> = SmallVec::new();
     for v in &program.verts {

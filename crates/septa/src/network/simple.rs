@@ -130,23 +130,7 @@ pub(crate) fn simple_tet(
     // The two cells, in the complex's order.
     let base = st.uf.len() as u32;
     for &cell in &t.cells {
-        let label: Label = match ctx.mode {
-            Mode::Ia => {
-                let mut l = base_label.clone();
-                let g = active[0] as usize;
-                let (w, b) = (g / 64, g % 64);
-                if cell == 1 {
-                    l[w] |= 1 << b;
-                } else {
-                    l[w] &= !(1 << b);
-                }
-                l
-            }
-            Mode::Mi => SmallVec::from_elem(active[cell as usize] as u64, 1),
-        };
-        st.uf.push();
-        st.node_label.push(label);
-        st.node_volume.push(0.0);
+        super::program::push_cell(ctx.mode, st, base_label, active, cell as u64);
     }
     // The polygon.
     if st.out.poly_start.is_empty() {

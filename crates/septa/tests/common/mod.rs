@@ -18,3 +18,15 @@ pub fn shared_data() -> PathBuf {
         .find(|d| d.join("isn/expected.json").exists())
         .expect("reference data shared/data not found: set SEPTA_SHARED to the shared/ folder")
 }
+
+/// A network's `network.json` text up to its timings (everything else must
+/// be byte-identical between runs that should agree).
+pub fn network_json(net: &septa::network::Network, tag: &str) -> String {
+    let dir = std::env::temp_dir().join(format!("septa-test-{}-{tag}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("network.json");
+    septa::io::network_out::write_json(net, &path, &[]).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let _ = std::fs::remove_dir_all(&dir);
+    text.split("\"seconds\"").next().unwrap().to_string()
+}
