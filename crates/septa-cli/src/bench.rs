@@ -37,13 +37,17 @@ pub struct Args {
     /// Always run the incremental construction (the paper's Table 3 setting).
     #[arg(long)]
     no_lookup: bool,
+    /// Grid: runs of each contender, interleaved; the medians are reported
+    /// (a shared machine's load then touches all contenders alike).
+    #[arg(long, default_value_t = 3)]
+    repeat: usize,
 }
 
 /// Runs `septa bench`.
 pub fn run(a: Args) -> CliResult {
     match a.what.as_str() {
         "tet" => bench_tet(&a),
-        "grid" => crate::bench_grid::bench_grid(&a.mode, a.functions, a.resolution, a.threads, a.json),
+        "grid" => crate::bench_grid::bench_grid(&a.mode, a.functions, a.resolution, a.threads, a.repeat, a.json),
         w => Err(format!("unknown benchmark {w:?}; expected `tet` or `grid`").into()),
     }
 }

@@ -3,7 +3,8 @@
 //!
 //! Functions are the reference cases' spheres (`data/specs/`, first `K` of
 //! 18: the paper's regular pattern for IA, an Apollonius diagram for MI),
-//! sampled on a `R^3` box grid split into 5 tets per cube.
+//! sampled on a `R^3` box grid split into 5 tets per cube. Each contender
+//! runs `--repeat` times, interleaved, and the medians are compared.
 use crate::CliResult;
 use septa::baseline::{label_separating, marching_tets};
 use septa::complex::Mode;
@@ -22,7 +23,7 @@ fn secs<T>(f: impl FnOnce() -> T) -> (T, f64) {
 }
 
 /// Runs the grid benchmark and prints times and ratios.
-pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, json: bool) -> CliResult {
+pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, repeat: usize, json: bool) -> CliResult {
     let (mode, spec, mi) = match mode {
         "ia" => (Mode::Ia, IA_SPHERES, false),
         "mi" => (Mode::Mi, MI_SPHERES, true),
@@ -42,13 +43,32 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, json: bool) 
         o.float = float;
         pool.install(|| compute(&grid, &values, k, &o))
     };
-    let (net, t_exact) = secs(|| run(false));
-    let net = net?;
-    let extract: f64 = net.seconds.iter().filter(|(s, _)| *s == "tets" || *s == "merge").map(|(_, t)| t).sum();
-    let (float_net, t_float) = secs(|| run(true));
+    // Interleaved runs; medians. Only the last run's outputs are kept.
     let tets: Vec<[u32; 4]> = (0..grid.num_tets()).map(|t| grid.tet(t)).collect();
-    let (mt, t_mt) = secs(|| marching_tets(&points, &tets, &values, k));
-    let (ls, t_ls) = secs(|| label_separating(&points, &tets, &values, k, mi));
+    let (mut te, mut tx, mut tf, mut tm, mut tl) = (vec![], vec![], vec![], vec![], vec![]);
+    let (mut last_net, mut last_float, mut last_mt, mut last_ls) = (None, None, None, None);
+    for _ in 0..repeat.max(1) {
+        let (net, t) = secs(|| run(false));
+        let net = net?;
+        te.push(t);
+        tx.push(net.seconds.iter().filter(|(s, _)| *s == "tets" || *s == "merge").map(|(_, t)| t).sum());
+        last_net = Some(net);
+        let (float_net, t) = secs(|| run(true));
+        tf.push(t);
+        last_float = Some(float_net);
+        let (mt, t) = secs(|| marching_tets(&points, &tets, &values, k));
+        tm.push(t);
+        last_mt = Some(mt);
+        let (ls, t) = secs(|| label_separating(&points, &tets, &values, k, mi));
+        tl.push(t);
+        last_ls = Some(ls);
+    }
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let (t_exact, extract, t_float, t_mt, t_ls) = (median(te), median(tx), median(tf), median(tm), median(tl));
+    let (net, float_net, mt, ls) = (last_net.unwrap(), last_float.unwrap(), last_mt.unwrap(), last_ls.unwrap());
     let float_note = match &float_net {
         Ok(n) if n.counts() == net.counts() => "same counts".to_string(),
         Ok(_) => "different counts".to_string(),
@@ -59,7 +79,7 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, json: bool) 
             "{}",
             serde_json::json!({
                 "mode": if mi { "mi" } else { "ia" }, "functions": k, "resolution": res, "threads": threads,
-                "tets": grid.num_tets(), "active_tets": net.active_tets,
+                "tets": grid.num_tets(), "active_tets": net.active_tets, "repeat": repeat.max(1),
                 "seconds": {"sample": t_sample, "network": t_exact, "extract": extract, "float_network": t_float,
                     "marching_tets": t_mt, "label_separating": t_ls},
                 "ratios": {"extract_over_label_separating": extract / t_ls, "network_over_label_separating": t_exact / t_ls,
@@ -72,9 +92,10 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, json: bool) 
     } else {
         let m = if mi { "MI" } else { "IA" };
         println!(
-            "{m} {k} functions, {res}^3 cubes ({} tets, {} active), Septa on {threads} thread(s)",
+            "{m} {k} functions, {res}^3 cubes ({} tets, {} active), Septa on {threads} thread(s), median of {} interleaved runs",
             grid.num_tets(),
-            net.active_tets
+            net.active_tets,
+            repeat.max(1)
         );
         println!("  sampling            {t_sample:8.3} s");
         println!("  Septa network       {t_exact:8.3} s   (stages: {:?})", net.seconds);
