@@ -31,40 +31,79 @@ pub(crate) struct Merged {
     pub active_tets: usize,
 }
 
+/// Merges blocks one at a time, in block order, so a caller can drop each
+/// block's output as soon as it is merged (peak memory: the merged network
+/// plus the blocks in flight, not every block at once).
+pub(crate) struct Merger {
+    mode: Mode,
+    m: Merged,
+    vmap: FxHashMap<VKey, u32>,
+    contacts: FxHashMap<(FaceKey, Label), u32>,
+    open_t: FxHashMap<OpenT, u32>,
+    /// (face key, global verts, region, zero) of half-polygons.
+    halves: Vec<(FaceKey, SmallVec<[u32; 8]>, u32, u16)>,
+    /// Raw shell unions, in "pre" ids: Side -> 2*face+side, Half -> halves,
+    /// T -> t-nodes; resolved after the halves are paired.
+    pre_unions: Vec<(Pre, Pre)>,
+    t_total: u32,
+    t_pairs: Vec<(u32, u32)>,
+}
+
+/// Merges `blocks` in their order.
 pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
-    let mut m = Merged { face_start: vec![0], ..Default::default() };
-    let mut vmap: FxHashMap<VKey, u32> = FxHashMap::default();
-    let mut contacts: FxHashMap<(FaceKey, Label), u32> = FxHashMap::default();
-    let mut open_t: FxHashMap<OpenT, u32> = FxHashMap::default();
-    // Raw shell unions, in "pre" ids: Side -> 2*face+side, Half -> halves,
-    // T -> t-nodes; resolved after the halves are paired.
-    let mut halves = Vec::new(); // (face key, global verts, region, zero)
-    let mut pre_unions: Vec<(Pre, Pre)> = Vec::new();
-    let mut t_total = 0u32;
-    let mut t_pairs = Vec::new();
-    // Reserve once: growing these by doubling copies every element and
-    // touches fresh pages again (a measurable share of the run).
-    let sum = |f: &dyn Fn(&BlockOut) -> usize| blocks.iter().map(f).sum::<usize>();
-    let polys = sum(&|b| b.poly_label.len());
-    m.face_start.reserve(polys);
-    m.face_label.reserve(polys);
-    m.face_nodes.reserve(polys);
-    m.face_verts.reserve(sum(&|b| b.poly_verts.len()));
-    let verts = sum(&|b| b.keys.len());
-    m.keys.reserve(verts);
-    m.points.reserve(verts);
-    let regions = sum(&|b| b.comp_label.len());
-    m.region_label.reserve(regions);
-    m.region_volume.reserve(regions);
-    m.region_uf.reserve(regions);
-    pre_unions.reserve(sum(&|b| b.unions.len()));
-    m.wedges.reserve(sum(&|b| b.wedges.len()));
+    let mut g = Merger::new(mode);
+    g.reserve(&blocks);
     for b in blocks {
+        g.add(b);
+    }
+    g.finish()
+}
+
+impl Merger {
+    pub(crate) fn new(mode: Mode) -> Merger {
+        Merger {
+            mode,
+            m: Merged { face_start: vec![0], ..Default::default() },
+            vmap: FxHashMap::default(),
+            contacts: FxHashMap::default(),
+            open_t: FxHashMap::default(),
+            halves: Vec::new(),
+            pre_unions: Vec::new(),
+            t_total: 0,
+            t_pairs: Vec::new(),
+        }
+    }
+
+    /// Reserves room for `blocks`: growing by doubling copies every element
+    /// and touches fresh pages again (a measurable share of the run).
+    pub(crate) fn reserve(&mut self, blocks: &[BlockOut]) {
+        let m = &mut self.m;
+        let sum = |f: &dyn Fn(&BlockOut) -> usize| blocks.iter().map(f).sum::<usize>();
+        let polys = sum(&|b| b.poly_label.len());
+        m.face_start.reserve(polys);
+        m.face_label.reserve(polys);
+        m.face_nodes.reserve(polys);
+        m.face_verts.reserve(sum(&|b| b.poly_verts.len()));
+        let verts = sum(&|b| b.keys.len());
+        m.keys.reserve(verts);
+        m.points.reserve(verts);
+        let regions = sum(&|b| b.comp_label.len());
+        m.region_label.reserve(regions);
+        m.region_volume.reserve(regions);
+        m.region_uf.reserve(regions);
+        self.pre_unions.reserve(sum(&|b| b.unions.len()));
+        m.wedges.reserve(sum(&|b| b.wedges.len()));
+    }
+
+    /// Merges the next block (blocks must come in block order for a
+    /// deterministic numbering).
+    pub(crate) fn add(&mut self, b: BlockOut) {
+        let Merger { m, vmap, contacts, open_t, halves, pre_unions, t_total, t_pairs, .. } = self;
         let region_base = m.region_label.len() as u32;
         let face_base = m.face_label.len() as u32;
         let half_base = halves.len() as u32;
-        let t_base = t_total;
-        t_total += b.tnodes;
+        let t_base = *t_total;
+        *t_total += b.tnodes;
         m.active_tets += b.active_tets;
         // Vertices: global ids only for polygon vertices (lazily).
         let mut remap = vec![NONE; b.keys.len()];
@@ -84,7 +123,7 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
         };
         for p in 0..b.poly_label.len() {
             for j in b.poly_start[p]..b.poly_start[p + 1] {
-                let id = gid(b.poly_verts[j as usize], &mut m);
+                let id = gid(b.poly_verts[j as usize], &mut *m);
                 m.face_verts.push(id);
             }
             m.face_start.push(m.face_verts.len() as u32);
@@ -92,7 +131,7 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
             m.face_nodes.push(b.poly_cells[p].map(|c| c + region_base));
         }
         for h in &b.halves {
-            let verts: SmallVec<[u32; 8]> = h.verts.iter().map(|&v| gid(v, &mut m)).collect();
+            let verts: SmallVec<[u32; 8]> = h.verts.iter().map(|&v| gid(v, &mut *m)).collect();
             halves.push((h.face, verts, h.cell + region_base, h.zero));
         }
         for _ in 0..b.comp_label.len() {
@@ -126,96 +165,101 @@ pub(crate) fn merge(mode: Mode, blocks: Vec<BlockOut>) -> Merged {
         pre_unions.extend(b.unions.into_iter().map(|(a, c)| (conv(a), conv(c))));
         for (e, r1, r2) in b.wedges {
             if let (Pre::Side(x), Pre::Side(y)) = (conv(r1), conv(r2)) {
-                let (a, c) = (gid(e[0], &mut m), gid(e[1], &mut m));
+                let (a, c) = (gid(e[0], &mut *m), gid(e[1], &mut *m));
                 m.wedges.push(([a.min(c), a.max(c)], x, y));
             }
         }
     }
-    // Pair the halves of network faces lying on tet faces.
-    let mut half_side: Vec<Option<u32>> = vec![None; halves.len()];
-    let mut extra_pairs = Vec::new(); // half-half unions (MI: same material both sides)
-    let mut by_key: FxHashMap<(FaceKey, SmallVec<[u32; 8]>), u32> = FxHashMap::default();
-    let mut pairs = Vec::new();
-    for (h, (face, verts, _, _)) in halves.iter().enumerate() {
-        let mut sorted = verts.clone();
-        sorted.sort_unstable();
-        match by_key.remove(&(*face, sorted.clone())) {
-            Some(o) => pairs.push((o, h as u32)),
-            None => {
-                by_key.insert((*face, sorted), h as u32);
-            }
-        }
-    }
-    let mut singles: Vec<u32> = by_key.into_values().collect();
-    singles.sort_unstable();
-    let new_face = |m: &mut Merged, verts: &[u32], label: [u16; 2], nodes: [u32; 2]| -> u32 {
-        m.face_verts.extend_from_slice(verts);
-        m.face_start.push(m.face_verts.len() as u32);
-        m.face_label.push(label);
-        m.face_nodes.push(nodes);
-        m.face_label.len() as u32 - 1
-    };
-    for (a, b) in pairs {
-        let (ha, hb) = (&halves[a as usize], &halves[b as usize]);
-        match mode {
-            Mode::Ia => {
-                let f = ha.3;
-                let pos_a = m.region_label[ha.2 as usize][f as usize / 64] >> (f % 64) & 1 == 1;
-                let (first, second) = if pos_a { (a, b) } else { (b, a) };
-                let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
-                let id = new_face(&mut m, &h1.1, [f, f], [h1.2, h2.2]);
-                half_side[first as usize] = Some(2 * id);
-                half_side[second as usize] = Some(2 * id + 1);
-            }
-            Mode::Mi => {
-                let ma = m.region_label[ha.2 as usize][0] as u16;
-                let mb = m.region_label[hb.2 as usize][0] as u16;
-                if ma == mb {
-                    extra_pairs.push((a, b));
-                    continue;
+
+    /// Pairs half-polygons, resolves shell nodes and returns the merged network.
+    pub(crate) fn finish(self) -> Merged {
+        let Merger { mode, mut m, halves, pre_unions, t_total, t_pairs, .. } = self;
+        // Pair the halves of network faces lying on tet faces.
+        let mut half_side: Vec<Option<u32>> = vec![None; halves.len()];
+        let mut extra_pairs = Vec::new(); // half-half unions (MI: same material both sides)
+        let mut by_key: FxHashMap<(FaceKey, SmallVec<[u32; 8]>), u32> = FxHashMap::default();
+        let mut pairs = Vec::new();
+        for (h, (face, verts, _, _)) in halves.iter().enumerate() {
+            let mut sorted = verts.clone();
+            sorted.sort_unstable();
+            match by_key.remove(&(*face, sorted.clone())) {
+                Some(o) => pairs.push((o, h as u32)),
+                None => {
+                    by_key.insert((*face, sorted), h as u32);
                 }
-                let (first, second) = if ma < mb { (a, b) } else { (b, a) };
-                let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
-                let id = new_face(&mut m, &h1.1, [ma.min(mb), ma.max(mb)], [h1.2, h2.2]);
-                half_side[first as usize] = Some(2 * id);
-                half_side[second as usize] = Some(2 * id + 1);
             }
         }
-    }
-    if mode == Mode::Ia {
-        // A function vanishing on a grid boundary face: one side only.
-        for h in singles {
-            let (_, verts, node, f) = &halves[h as usize];
-            let pos = m.region_label[*node as usize][*f as usize / 64] >> (f % 64) & 1 == 1;
-            if pos {
-                let id = new_face(&mut m, verts, [*f, *f], [*node, NONE]);
-                half_side[h as usize] = Some(2 * id);
-            } else {
-                let rev: Vec<u32> = verts.iter().rev().copied().collect();
-                let id = new_face(&mut m, &rev, [*f, *f], [NONE, *node]);
-                half_side[h as usize] = Some(2 * id + 1);
+        let mut singles: Vec<u32> = by_key.into_values().collect();
+        singles.sort_unstable();
+        let new_face = |m: &mut Merged, verts: &[u32], label: [u16; 2], nodes: [u32; 2]| -> u32 {
+            m.face_verts.extend_from_slice(verts);
+            m.face_start.push(m.face_verts.len() as u32);
+            m.face_label.push(label);
+            m.face_nodes.push(nodes);
+            m.face_label.len() as u32 - 1
+        };
+        for (a, b) in pairs {
+            let (ha, hb) = (&halves[a as usize], &halves[b as usize]);
+            match mode {
+                Mode::Ia => {
+                    let f = ha.3;
+                    let pos_a = m.region_label[ha.2 as usize][f as usize / 64] >> (f % 64) & 1 == 1;
+                    let (first, second) = if pos_a { (a, b) } else { (b, a) };
+                    let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
+                    let id = new_face(&mut m, &h1.1, [f, f], [h1.2, h2.2]);
+                    half_side[first as usize] = Some(2 * id);
+                    half_side[second as usize] = Some(2 * id + 1);
+                }
+                Mode::Mi => {
+                    let ma = m.region_label[ha.2 as usize][0] as u16;
+                    let mb = m.region_label[hb.2 as usize][0] as u16;
+                    if ma == mb {
+                        extra_pairs.push((a, b));
+                        continue;
+                    }
+                    let (first, second) = if ma < mb { (a, b) } else { (b, a) };
+                    let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
+                    let id = new_face(&mut m, &h1.1, [ma.min(mb), ma.max(mb)], [h1.2, h2.2]);
+                    half_side[first as usize] = Some(2 * id);
+                    half_side[second as usize] = Some(2 * id + 1);
+                }
             }
         }
-    }
-    // Resolve shell nodes: sides first, then t-nodes, then unpaired halves.
-    let sides = 2 * m.face_label.len() as u32;
-    let half_extra_base = sides + t_total;
-    let resolve = |p: Pre| -> u32 {
-        match p {
-            Pre::Side(s) => s,
-            Pre::T(t) => sides + t,
-            Pre::Half(h) => half_side[h as usize].unwrap_or(half_extra_base + h),
+        if mode == Mode::Ia {
+            // A function vanishing on a grid boundary face: one side only.
+            for h in singles {
+                let (_, verts, node, f) = &halves[h as usize];
+                let pos = m.region_label[*node as usize][*f as usize / 64] >> (f % 64) & 1 == 1;
+                if pos {
+                    let id = new_face(&mut m, verts, [*f, *f], [*node, NONE]);
+                    half_side[h as usize] = Some(2 * id);
+                } else {
+                    let rev: Vec<u32> = verts.iter().rev().copied().collect();
+                    let id = new_face(&mut m, &rev, [*f, *f], [NONE, *node]);
+                    half_side[h as usize] = Some(2 * id + 1);
+                }
+            }
         }
-    };
-    m.shell_pairs = pre_unions.into_iter().map(|(a, b)| (resolve(a), resolve(b))).collect();
-    m.shell_pairs.extend(t_pairs.into_iter().map(|(a, b)| (sides + a, sides + b)));
-    for (a, b) in extra_pairs {
-        m.shell_pairs.push((resolve(Pre::Half(a)), resolve(Pre::Half(b))));
-        let (ra, rb) = (halves[a as usize].2, halves[b as usize].2);
-        m.region_uf.union(ra, rb);
+        // Resolve shell nodes: sides first, then t-nodes, then unpaired halves.
+        let sides = 2 * m.face_label.len() as u32;
+        let half_extra_base = sides + t_total;
+        let resolve = |p: Pre| -> u32 {
+            match p {
+                Pre::Side(s) => s,
+                Pre::T(t) => sides + t,
+                Pre::Half(h) => half_side[h as usize].unwrap_or(half_extra_base + h),
+            }
+        };
+        m.shell_pairs = pre_unions.into_iter().map(|(a, b)| (resolve(a), resolve(b))).collect();
+        m.shell_pairs.extend(t_pairs.into_iter().map(|(a, b)| (sides + a, sides + b)));
+        for (a, b) in extra_pairs {
+            m.shell_pairs.push((resolve(Pre::Half(a)), resolve(Pre::Half(b))));
+            let (ra, rb) = (halves[a as usize].2, halves[b as usize].2);
+            m.region_uf.union(ra, rb);
+        }
+        m.shell_nodes = (half_extra_base as usize) + halves.len();
+        m
     }
-    m.shell_nodes = (half_extra_base as usize) + halves.len();
-    m
 }
 
 #[derive(Clone, Copy)]
