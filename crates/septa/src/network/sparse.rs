@@ -410,15 +410,8 @@ pub(crate) fn finish_with(
 ) -> Result<(Network, SparseStats), NetworkError> {
     let t0 = Instant::now();
     let mut stats = SparseStats { blocks: plan.blocks, ..SparseStats::default() };
-    let fallback = |mut stats: SparseStats| {
-        stats.dense_fallback = true;
-        stats.skipped = 0;
-        stats.sampled = stats.blocks;
-        stats.sampled_vertices = grid.num_vertices();
-        Ok((dense()?, stats))
-    };
     if plan.dense {
-        return fallback(stats);
+        return dense_fallback(grid, stats, dense);
     }
     let job = JobKey::of(grid, k, options);
     if let Some(r) = results.iter().find(|r| !r.job.same(&job)) {
@@ -442,11 +435,40 @@ pub(crate) fn finish_with(
     stats.sampled_vertices = results.iter().map(|r| r.sampled_vertices).sum();
     stats.active = results.iter().filter(|r| r.out.active_tets > 0).count();
     if !results.iter().all(|r| r.clean) {
-        return fallback(stats);
+        return dense_fallback(grid, stats, dense);
     }
     let outs: Vec<BlockOut> = results.into_iter().map(|r| r.out).collect();
     let t1 = Instant::now();
-    let mut m = merge::merge(options.mode, outs);
+    let m = merge::merge(options.mode, outs);
+    finish_merged(grid, k, options, m, stats, pv, [t1 - t0, t1.elapsed()], dense)
+}
+
+/// The dense path's network, with the stats saying so.
+fn dense_fallback(
+    grid: &BoxGrid,
+    mut stats: SparseStats,
+    dense: impl FnOnce() -> Result<Network, NetworkError>,
+) -> Result<(Network, SparseStats), NetworkError> {
+    stats.dense_fallback = true;
+    stats.skipped = 0;
+    stats.sampled = stats.blocks;
+    stats.sampled_vertices = grid.num_vertices();
+    Ok((dense()?, stats))
+}
+
+/// The tail of a sparse job once its blocks are merged: canonical order,
+/// cells by ray shooting, labels, assembly (or the dense fallback).
+#[allow(clippy::too_many_arguments)]
+fn finish_merged(
+    grid: &BoxGrid,
+    k: usize,
+    options: &NetworkOptions,
+    mut m: merge::Merged,
+    stats: SparseStats,
+    pv: &dyn Values,
+    [tets, merged]: [std::time::Duration; 2],
+    dense: impl FnOnce() -> Result<Network, NetworkError>,
+) -> Result<(Network, SparseStats), NetworkError> {
     let t_merged = Instant::now();
     // The same canonical order as the dense path (identical output).
     super::canon::canonicalize_merged(&mut m);
@@ -455,13 +477,13 @@ pub(crate) fn finish_with(
     let c = ctx(&g, k, options, pv);
     let mut topo = topology::topology(&mut m, Some(&c));
     if topo.cells_method != "raytrace" {
-        return fallback(stats);
+        return dense_fallback(grid, stats, dense);
     }
     super::canon::canonicalize_topology(&mut topo);
     let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
     super::label_free_cells(&mut topo, options.mode, &row);
     let t3 = Instant::now();
-    let mut net = super::assemble(options.mode, k, m, topo, [t1 - t0, t_merged - t1, t3 - t2]);
+    let mut net = super::assemble(options.mode, k, m, topo, [tets, merged, t3 - t2]);
     net.seconds.insert(2, ("canon", (t2 - t_merged).as_secs_f64()));
     Ok((net, stats))
 }
@@ -480,27 +502,51 @@ pub fn compute_sparse(
 ) -> Result<(Network, SparseStats), NetworkError> {
     let t0 = Instant::now();
     let plan = plan_sparse(grid, functions, options)?;
+    if plan.dense {
+        return finish_sparse(grid, functions, options, &plan, Vec::new());
+    }
     let g = Grid::Box(grid.clone());
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let results: Vec<BlockResult> = plan
-        .kept
-        .par_iter()
-        .map_init(Worker::default, |w, &i| {
-            if options.cancelled() {
-                return Err(NetworkError::Cancelled);
+    let mut stats = SparseStats { blocks: plan.blocks, sampled: plan.kept.len(), ..SparseStats::default() };
+    stats.skipped = plan.blocks - plan.kept.len();
+    // Blocks run in windows, in parallel, and are merged in block order as
+    // each window completes, so only a window's block outputs are alive
+    // next to the merged network (the same result as merging all at once).
+    let window = 16 * rayon::current_num_threads().max(1);
+    let mut merger = merge::Merger::new(options.mode);
+    let mut merge_time = std::time::Duration::ZERO;
+    for chunk in plan.kept.chunks(window) {
+        let results: Vec<BlockResult> = chunk
+            .par_iter()
+            .map_init(Worker::default, |w, &i| {
+                if options.cancelled() {
+                    return Err(NetworkError::Cancelled);
+                }
+                let r = run_block_with(w, &g, grid, functions, options, i)?;
+                if let Some(p) = &options.progress {
+                    p.tick(&done, plan.kept.len());
+                }
+                Ok(r)
+            })
+            .collect::<Result<_, NetworkError>>()?;
+        let t = Instant::now();
+        for r in results {
+            if !r.clean {
+                // Ray shooting's precondition fails: the dense path decides.
+                let mut p = plan.clone();
+                p.dense = true;
+                return finish_sparse(grid, functions, options, &p, Vec::new());
             }
-            let r = run_block_with(w, &g, grid, functions, options, i)?;
-            if let Some(p) = &options.progress {
-                p.tick(&done, plan.kept.len());
-            }
-            Ok(r)
-        })
-        .collect::<Result<_, NetworkError>>()?;
-    let tets = t0.elapsed();
-    let (mut net, stats) = finish_sparse(grid, functions, options, &plan, results)?;
-    // The "tets" stage is the classification and the blocks, as before the split.
-    if let Some(s) = net.seconds.iter_mut().find(|s| s.0 == "tets") {
-        s.1 += tets.as_secs_f64();
+            stats.sampled_vertices += r.sampled_vertices;
+            stats.active += (r.out.active_tets > 0) as usize;
+            merger.add(r.out);
+        }
+        merge_time += t.elapsed();
     }
-    Ok((net, stats))
+    let t = Instant::now();
+    let m = merger.finish();
+    merge_time += t.elapsed();
+    let tets = t0.elapsed() - merge_time;
+    let pv = PointValues { grid, functions };
+    finish_merged(grid, functions.len(), options, m, stats, &pv, [tets, merge_time], || dense(grid, functions, options))
 }
