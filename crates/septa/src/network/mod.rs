@@ -338,21 +338,35 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     };
     let blocks = grid.blocks(options.block);
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let outs: Vec<block::BlockOut> = blocks
-        .par_iter()
-        .map_init(block::Worker::default, |w, b| {
-            if options.cancelled() {
-                return Err(NetworkError::Cancelled);
-            }
-            let out = w.run(&ctx, b);
-            if let Some(p) = &options.progress {
-                p.tick(&done, blocks.len());
-            }
-            out
-        })
-        .collect::<Result<_, _>>()?;
-    let t1 = Instant::now();
-    let mut m = merge::merge(options.mode, outs);
+    // Blocks run in windows and merge in block order as each window
+    // completes: only a window's block outputs live beside the merged network.
+    let window = 16 * rayon::current_num_threads().max(1);
+    let mut merger = merge::Merger::new(options.mode);
+    let mut merge_time = std::time::Duration::ZERO;
+    for chunk in blocks.chunks(window) {
+        let outs: Vec<block::BlockOut> = chunk
+            .par_iter()
+            .map_init(block::Worker::default, |w, b| {
+                if options.cancelled() {
+                    return Err(NetworkError::Cancelled);
+                }
+                let out = w.run(&ctx, b);
+                if let Some(p) = &options.progress {
+                    p.tick(&done, blocks.len());
+                }
+                out
+            })
+            .collect::<Result<_, _>>()?;
+        let t = Instant::now();
+        for out in outs {
+            merger.add(out);
+        }
+        merge_time += t.elapsed();
+    }
+    let t = Instant::now();
+    let mut m = merger.finish();
+    merge_time += t.elapsed();
+    let t1 = Instant::now() - merge_time;
     let t_merged = Instant::now();
     canon::canonicalize_merged(&mut m);
     let t2 = Instant::now();
