@@ -22,6 +22,7 @@ pub(crate) struct Merged {
     pub face_nodes: Vec<[u32; 2]>,
     pub region_uf: UnionFind,
     pub region_label: Vec<Label>,
+    /// Per region (shorter when the rest are 0: volumes not asked for).
     pub region_volume: Vec<f64>,
     /// Shell union-find over `2 * face + side` then extra nodes.
     pub shell_pairs: Vec<(u32, u32)>,
@@ -89,7 +90,6 @@ impl Merger {
         m.points.reserve(verts);
         let regions = sum(&|b| b.comp_label.len());
         m.region_label.reserve(regions);
-        m.region_volume.reserve(regions);
         m.region_uf.reserve(regions);
         self.pre_unions.reserve(sum(&|b| b.unions.len()));
         m.wedges.reserve(sum(&|b| b.wedges.len()));
@@ -138,7 +138,12 @@ impl Merger {
             m.region_uf.push();
         }
         m.region_label.extend(b.comp_label);
-        m.region_volume.extend(b.comp_volume);
+        // Volumes are all zero unless asked for: keep none then (the
+        // vector stays shorter than the regions and reads as 0 beyond).
+        if b.comp_volume.iter().any(|&v| v != 0.0) {
+            m.region_volume.resize(region_base as usize, 0.0);
+            m.region_volume.extend(b.comp_volume);
+        }
         for (f, l, c) in b.contacts {
             let node = c + region_base;
             match contacts.remove(&(f, l.clone())) {

@@ -177,7 +177,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
         if cell.label.is_empty() {
             cell.label = m.region_label[r].clone();
         }
-        cell.volume += m.region_volume[r];
+        cell.volume += m.region_volume.get(r).copied().unwrap_or(0.0);
     }
     let face_cells: Vec<[u32; 2]> =
         m.face_nodes.iter().map(|n| n.map(|x| if x == NONE { NONE } else { region_cell[x as usize] })).collect();
