@@ -10,6 +10,49 @@ use super::uf::UnionFind;
 use super::VKey;
 use crate::complex::{Mode, NONE};
 
+/// Region labels stored flat, a fixed number of words each (one for MI
+/// and for IA up to 64 functions): a `Vec<Label>` costs 24 bytes a region,
+/// and there are two or more regions per active tet.
+#[derive(Default)]
+pub(crate) struct Labels {
+    words: usize,
+    data: Vec<u64>,
+}
+
+impl Labels {
+    /// Number of labels.
+    pub(crate) fn len(&self) -> usize {
+        if self.words == 0 {
+            0
+        } else {
+            self.data.len() / self.words
+        }
+    }
+
+    /// Label `r`.
+    pub(crate) fn get(&self, r: u32) -> &[u64] {
+        &self.data[r as usize * self.words..(r as usize + 1) * self.words]
+    }
+
+    /// Appends a label (zero-padded to the common width, which grows if needed).
+    pub(crate) fn push(&mut self, l: &[u64]) {
+        let w = l.len().max(1);
+        if w > self.words {
+            let n = self.len();
+            let old = std::mem::take(&mut self.data);
+            self.data = Vec::with_capacity((n + 1) * w);
+            for r in 0..n {
+                self.data.extend_from_slice(&old[r * self.words..(r + 1) * self.words]);
+                self.data.resize((r + 1) * w, 0);
+            }
+            self.words = w;
+        }
+        let at = self.data.len();
+        self.data.extend_from_slice(l);
+        self.data.resize(at + self.words, 0);
+    }
+}
+
 /// Everything the topology stage needs.
 #[derive(Default)]
 pub(crate) struct Merged {
@@ -21,7 +64,7 @@ pub(crate) struct Merged {
     /// Region nodes (before grouping) on each side.
     pub face_nodes: Vec<[u32; 2]>,
     pub region_uf: UnionFind,
-    pub region_label: Vec<Label>,
+    pub region_label: Labels,
     /// Per region (shorter when the rest are 0: volumes not asked for).
     pub region_volume: Vec<f64>,
     /// Shell union-find over `2 * face + side` then extra nodes.
@@ -89,7 +132,6 @@ impl Merger {
         m.keys.reserve(verts);
         m.points.reserve(verts);
         let regions = sum(&|b| b.comp_label.len());
-        m.region_label.reserve(regions);
         m.region_uf.reserve(regions);
         self.pre_unions.reserve(sum(&|b| b.unions.len()));
         m.wedges.reserve(sum(&|b| b.wedges.len()));
@@ -137,7 +179,9 @@ impl Merger {
         for _ in 0..b.comp_label.len() {
             m.region_uf.push();
         }
-        m.region_label.extend(b.comp_label);
+        for l in &b.comp_label {
+            m.region_label.push(l);
+        }
         // Volumes are all zero unless asked for: keep none then (the
         // vector stays shorter than the regions and reads as 0 beyond).
         if b.comp_volume.iter().any(|&v| v != 0.0) {
@@ -208,7 +252,7 @@ impl Merger {
             match mode {
                 Mode::Ia => {
                     let f = ha.3;
-                    let pos_a = m.region_label[ha.2 as usize][f as usize / 64] >> (f % 64) & 1 == 1;
+                    let pos_a = m.region_label.get(ha.2)[f as usize / 64] >> (f % 64) & 1 == 1;
                     let (first, second) = if pos_a { (a, b) } else { (b, a) };
                     let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
                     let id = new_face(&mut m, &h1.1, [f, f], [h1.2, h2.2]);
@@ -216,8 +260,8 @@ impl Merger {
                     half_side[second as usize] = Some(2 * id + 1);
                 }
                 Mode::Mi => {
-                    let ma = m.region_label[ha.2 as usize][0] as u16;
-                    let mb = m.region_label[hb.2 as usize][0] as u16;
+                    let ma = m.region_label.get(ha.2)[0] as u16;
+                    let mb = m.region_label.get(hb.2)[0] as u16;
                     if ma == mb {
                         extra_pairs.push((a, b));
                         continue;
@@ -234,7 +278,7 @@ impl Merger {
             // A function vanishing on a grid boundary face: one side only.
             for h in singles {
                 let (_, verts, node, f) = &halves[h as usize];
-                let pos = m.region_label[*node as usize][*f as usize / 64] >> (f % 64) & 1 == 1;
+                let pos = m.region_label.get(*node)[*f as usize / 64] >> (f % 64) & 1 == 1;
                 if pos {
                     let id = new_face(&mut m, verts, [*f, *f], [*node, NONE]);
                     half_side[h as usize] = Some(2 * id);

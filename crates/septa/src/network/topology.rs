@@ -175,7 +175,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     for (r, &c) in region_cell.iter().enumerate() {
         let cell = &mut cells[c as usize];
         if cell.label.is_empty() {
-            cell.label = m.region_label[r].clone();
+            cell.label = m.region_label.get(r as u32).into();
         }
         cell.volume += m.region_volume.get(r).copied().unwrap_or(0.0);
     }
@@ -242,7 +242,7 @@ fn ray_topology(
             face_cells[f][s] = c;
             let node = m.face_nodes[f][s];
             if cells[c as usize].label.is_empty() && node != NONE {
-                cells[c as usize].label = m.region_label[node as usize].clone();
+                cells[c as usize].label = m.region_label.get(node).into();
             }
         }
     }
