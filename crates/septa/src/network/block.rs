@@ -9,6 +9,8 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
+pub(crate) use super::active::{active_functions, ia_base_label};
+pub(crate) use super::keys::{key_of, position_on, vertex_id_by_key, vertex_key};
 use super::uf::UnionFind;
 use super::{NetworkError, VKey};
 use crate::complex::{Complex, Mode, Options, Plane, NONE};
@@ -102,7 +104,7 @@ pub(crate) struct Worker {
 #[derive(Default)]
 pub(crate) struct State {
     pub out: BlockOut,
-    vmap: FxHashMap<VKey, u32>,
+    pub(crate) vmap: FxHashMap<VKey, u32>,
     contacts: FxHashMap<(FaceKey, Label), u32>,
     tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
     pub uf: UnionFind,
@@ -250,11 +252,8 @@ impl Worker {
             return Ok(());
         }
         // Table tets: replay the template's program, or record it.
-        let template = if st.grouping || ctx.volumes {
-            None
-        } else {
-            Complex::template_key(ctx.mode, &self.vals, &ctx.options)
-        };
+        let template =
+            if st.grouping || ctx.volumes { None } else { Complex::template_key(ctx.mode, &self.vals, &ctx.options) };
         if let Some(key) = template {
             if let Some(Some(p)) = self.programs.get(&key) {
                 super::program::run(p, ctx, st, &tet, &self.active, &self.vals, &self.base_label);
@@ -512,46 +511,6 @@ fn segment_on_network(mode: Mode, c: &Complex, vals: &[[f64; 4]], u: u32, w: u32
     }
 }
 
-/// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
-pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
-    let vert = c.vertices()[v as usize];
-    key_of(mode, vert.simplex(), vert.functions(), tet, active)
-}
-
-/// Global key of the vertex on tet element `simplex` defined by the local
-/// functions `funcs` (Sec. 5.1: sorted grid vertices of the element, sorted
-/// global function ids; an MI tet corner is keyed by its grid vertex alone).
-pub(crate) fn key_of(mode: Mode, simplex: u8, funcs: &[u16], tet: &[u32; 4], active: &[u16]) -> VKey {
-    let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
-    let mut n = 0;
-    for i in 0..4 {
-        if simplex >> i & 1 == 1 {
-            key.grid[n] = tet[i];
-            n += 1;
-        }
-    }
-    key.grid[..n].sort_unstable();
-    if !(mode == Mode::Mi && n == 1) {
-        for (j, &f) in funcs.iter().enumerate() {
-            key.funcs[j] = active[f as usize];
-        }
-        key.funcs.sort_unstable();
-    }
-    key
-}
-
-/// Whether the grid element of `key` lies on the boundary of the box block
-/// `lo..hi` (all its grid vertices on one side plane), so that another block
-/// may produce the same vertex. Mesh blocks: always (conservative).
-fn on_block_boundary(ctx: &Ctx, block: Option<([usize; 3], [usize; 3])>, key: &VKey) -> bool {
-    let (Grid::Box(g), Some((lo, hi))) = (ctx.grid, block) else {
-        return true;
-    };
-    let verts = key.grid.iter().take_while(|&&v| v != u32::MAX);
-    let ijk: SmallVec<[[usize; 3]; 4]> = verts.map(|&v| g.vertex_ijk(v)).collect();
-    (0..3).any(|a| ijk.iter().all(|p| p[a] == lo[a]) || ijk.iter().all(|p| p[a] == hi[a]))
-}
-
 /// Block id of complex vertex `v`, creating its key and position on first use.
 fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32; 4], v: u32) -> u32 {
     if w.vid[v as usize] != NONE {
@@ -563,38 +522,6 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
         c.vertex_position(v as usize, &corners, &w.vals)
     });
     w.vid[v as usize] = id;
-    id
-}
-
-/// Position of the vertex on tet element `simplex` defined by the local
-/// functions `funcs` (rows of `vals`). Only the element's corners are
-/// looked up: the other barycentric weights are exactly 0, and adding
-/// `0 * corner` never changes a sum that starts at `+0.0`, so this rounds
-/// exactly like `Complex::vertex_position` over all four corners.
-pub(crate) fn position_on(ctx: &Ctx, tet: &[u32; 4], simplex: u8, funcs: &[u16], vals: &[[f64; 4]]) -> [f64; 3] {
-    let b = crate::complex::barycentric(Some(ctx.mode), simplex, funcs, vals);
-    let mut p = [0.0; 3];
-    for i in 0..4 {
-        if simplex >> i & 1 == 1 {
-            let corner = ctx.grid.vertex(tet[i]);
-            for k in 0..3 {
-                p[k] += b[i] * corner[k];
-            }
-        }
-    }
-    p
-}
-
-/// Block id of the vertex with global key `key`; `position` is asked for
-/// only when the key is new to the block.
-pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
-    let next = st.out.keys.len() as u32;
-    let id = *st.vmap.entry(key).or_insert(next);
-    if id == next {
-        st.out.keys.push(key);
-        st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
-        st.out.points.push(position());
-    }
     id
 }
 
@@ -619,57 +546,6 @@ fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
         Entry::Vacant(v) => {
             v.insert(node);
         }
-    }
-}
-
-/// The active functions of tet `t` (ascending): IA, those with a sign change
-/// or a zero at its vertices; MI, those not strictly dominated at all 4.
-pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Vec<u16>) -> Result<(), NetworkError> {
-    out.clear();
-    let k = ctx.k;
-    match ctx.mode {
-        Mode::Ia => {
-            for f in 0..k {
-                let r = tet.map(|v| ctx.val(v, f));
-                if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
-                    if r.iter().all(|&x| x == 0.0) {
-                        return Err(NetworkError::VanishesOnTet { tet: t, function: f });
-                    }
-                    out.push(f as u16);
-                }
-            }
-        }
-        Mode::Mi => mi_active(tet, ctx, out),
-    }
-    Ok(())
-}
-
-/// IA sign bits at tet vertex 0 (every inactive function has one sign on the tet).
-fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
-    let k = ctx.k;
-    let mut l: Label = SmallVec::from_elem(0, k.div_ceil(64).max(1));
-    for f in 0..k {
-        if ctx.val(tet[0], f) > 0.0 {
-            l[f / 64] |= 1 << (f % 64);
-        }
-    }
-    l
-}
-
-/// MI active functions: those not strictly dominated at all 4 tet vertices.
-fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
-    let k = ctx.k;
-    let v = |f: usize, i: usize| ctx.val(tet[i], f);
-    // A likely dominator: the maximum at vertex 0.
-    let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
-    for f in 0..k {
-        if f != g0 && (0..4).all(|i| v(g0, i) > v(f, i)) {
-            continue;
-        }
-        if (0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > v(f, i))) {
-            continue;
-        }
-        out.push(f as u16);
     }
 }
 

@@ -8,14 +8,16 @@
 //! Regions are joined across tet faces by (face, region label) keys, and
 //! shells by wedges around edges, so block summaries merge in any order.
 
+mod active;
 pub mod bench;
 mod block;
 mod boxfast;
 mod canon;
 pub mod continuation;
+mod keys;
 mod merge;
-mod raytrace;
 mod program;
+mod raytrace;
 mod simple;
 pub mod sparse;
 pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};

@@ -1,0 +1,60 @@
+//! Active functions of a tet (Du et al. Sec. 3): the functions whose
+//! zero set (IA) or maximum boundary (MI) can meet the tet, decided exactly
+//! from the values at its four corners.
+
+use smallvec::SmallVec;
+
+use super::block::{Ctx, Label};
+use super::NetworkError;
+use crate::complex::Mode;
+
+/// The active functions of tet `t` (ascending): IA, those with a sign change
+/// or a zero at its vertices; MI, those not strictly dominated at all 4.
+pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Vec<u16>) -> Result<(), NetworkError> {
+    out.clear();
+    let k = ctx.k;
+    match ctx.mode {
+        Mode::Ia => {
+            for f in 0..k {
+                let r = tet.map(|v| ctx.val(v, f));
+                if !(r.iter().all(|&x| x > 0.0) || r.iter().all(|&x| x < 0.0)) {
+                    if r.iter().all(|&x| x == 0.0) {
+                        return Err(NetworkError::VanishesOnTet { tet: t, function: f });
+                    }
+                    out.push(f as u16);
+                }
+            }
+        }
+        Mode::Mi => mi_active(tet, ctx, out),
+    }
+    Ok(())
+}
+
+/// IA sign bits at tet vertex 0 (every inactive function has one sign on the tet).
+pub(crate) fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
+    let k = ctx.k;
+    let mut l: Label = SmallVec::from_elem(0, k.div_ceil(64).max(1));
+    for f in 0..k {
+        if ctx.val(tet[0], f) > 0.0 {
+            l[f / 64] |= 1 << (f % 64);
+        }
+    }
+    l
+}
+
+/// MI active functions: those not strictly dominated at all 4 tet vertices.
+fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
+    let k = ctx.k;
+    let v = |f: usize, i: usize| ctx.val(tet[i], f);
+    // A likely dominator: the maximum at vertex 0.
+    let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
+    for f in 0..k {
+        if f != g0 && (0..4).all(|i| v(g0, i) > v(f, i)) {
+            continue;
+        }
+        if (0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > v(f, i))) {
+            continue;
+        }
+        out.push(f as u16);
+    }
+}
