@@ -18,6 +18,7 @@ mod raytrace;
 mod program;
 mod simple;
 pub mod sparse;
+pub mod stream;
 pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
 pub mod uf;
