@@ -2,9 +2,9 @@
 plyfile (a general PLY reader) and holds exactly the faces and vertices of
 the in-memory run, with per-face labels and block indices.
 
-trimesh and meshio are not used here: trimesh's binary PLY reader needs
-every face list to have one length, and meshio's reads a face element
-with more than one property wrongly; both fail on septa's network.ply too.
+trimesh's binary PLY reader needs every face list to have one length: it
+reads the `--triangles` file. meshio reads a face element with more than one
+property wrongly (it fails on septa's network.ply too) and is not used.
 """
 
 import json
@@ -48,3 +48,21 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
     blocks = faces["block"]
     assert (np.diff(blocks) >= 0).all() and blocks.min() >= 0 and blocks.max() < streamed["blocks"]["total"]
     assert not list(tmp_path.glob(".s.ply*")), "no temporary file left"
+
+
+def test_triangulated_stream_loads_with_trimesh(tmp_path):
+    from conftest import ROOT
+
+    trimesh = pytest.importorskip("trimesh")
+    exe = ROOT / "target" / "release" / "septa"
+    if not exe.exists():
+        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    out = tmp_path / "t.ply"
+    s = json.loads(subprocess.run([str(exe), "ia", str(ROOT / "data" / "specs" / "ia18.json"), "--grid", "20", "--json",
+                                   "--stream", str(out), "--triangles"], capture_output=True, text=True, check=True).stdout)
+    assert s["ply_faces"] > s["faces"] > 0
+    m = trimesh.load(str(out), process=False)
+    assert len(m.faces) == s["ply_faces"] and len(m.vertices) == s["vertices"]
+    # Every polygon becomes a fan: the triangles cover the vertices, none degenerate by index.
+    assert len(np.unique(m.faces)) == s["vertices"]
+    assert (m.faces[:, 0] != m.faces[:, 1]).all() and (m.faces[:, 1] != m.faces[:, 2]).all()

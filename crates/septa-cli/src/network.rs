@@ -87,6 +87,10 @@ pub struct Args {
     /// With `--stream`: blocks computed at a time (0: four per thread).
     #[arg(long, default_value_t = 0, requires = "stream")]
     window: usize,
+    /// With `--stream`: write each polygon as a fan of triangles (for
+    /// readers that need one polygon size, such as trimesh).
+    #[arg(long, requires = "stream")]
+    triangles: bool,
 }
 
 /// Whether the input is analytic functions on a box grid (sparse
@@ -206,7 +210,7 @@ fn run_stream(
 ) -> CliResult {
     let (g, funcs) = load_sparse(args).map_err(|e| format!("--stream: {e}"))?;
     let t_read = t0.elapsed().as_secs_f64();
-    let mut sink = septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?;
+    let mut sink = septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
     let stats = pool.install(|| network::stream::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?;
     let t_blocks = t0.elapsed().as_secs_f64() - t_read;
     let ply = sink.finish()?;
@@ -224,7 +228,8 @@ fn run_stream(
     let total = t0.elapsed().as_secs_f64();
     let summary = serde_json::json!({
         "stream": out.display().to_string(),
-        "faces": ply.faces,
+        "faces": ply.polygons,
+        "ply_faces": ply.faces,
         "vertices": ply.vertices,
         "active_tets": stats.active_tets,
         "tets": g.num_tets(),
@@ -236,7 +241,7 @@ fn run_stream(
     if args.json {
         println!("{summary}");
     } else {
-        println!("{}: {} faces, {} vertices (streamed)", out.display(), ply.faces, ply.vertices);
+        println!("{}: {} faces ({} written), {} vertices (streamed)", out.display(), ply.polygons, ply.faces, ply.vertices);
         println!("blocks: {}", sparse_json(&sparse));
         println!("{total:.3} s");
     }

@@ -191,7 +191,25 @@ fn streamed_ply_holds_the_network_with_each_vertex_once() {
         let mut used = vec![false; ply.points.len()];
         ply.faces.iter().flat_map(|x| &x.0).for_each(|&v| used[v as usize] = true);
         assert!(used.iter().all(|&u| u));
+        // Triangulated: the same vertices, each polygon as a fan, in order.
+        let tri_path = tmp(&format!("{name}-tri.ply"));
+        let mut sink = PlyStreamSink::create(&tri_path, &grid, mode, f.len()).unwrap().triangulated(true);
+        stream_sparse(&grid, &f, &o, 2, &mut sink).unwrap();
+        let ts = sink.finish().unwrap();
+        let tri = read_ply(&tri_path);
+        assert_eq!(ts.polygons as usize, net.num_faces());
+        assert!(
+            tri.points.iter().zip(&ply.points).all(|(p, q)| bits(p) == bits(q)) && tri.points.len() == ply.points.len()
+        );
+        let fans: Vec<(Vec<u32>, [u16; 2], u32)> = ply
+            .faces
+            .iter()
+            .flat_map(|(vs, l, b)| (1..vs.len() - 1).map(move |i| (vec![vs[0], vs[i], vs[i + 1]], *l, *b)))
+            .collect();
+        assert_eq!(tri.faces, fans, "{name}: fans");
+        assert_eq!(ts.faces as usize, fans.len());
         std::fs::remove_file(&path).unwrap();
+        std::fs::remove_file(&tri_path).unwrap();
     }
 }
 

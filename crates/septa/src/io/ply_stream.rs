@@ -21,7 +21,12 @@
 //!
 //! Per face: `vertex_indices` (list uchar int), `label0`, `label1` (int:
 //! IA the function, twice; MI the two materials) and `block` (int, the
-//! block index), in the layout of `network.ply` (`network_out.rs`).
+//! block index), in the layout of `network.ply` (`network_out.rs`). Readers
+//! that handle this: plyfile (tested), and any row-by-row PLY reader.
+//! trimesh's binary reader needs one list length for all faces: with
+//! [`PlyStreamSink::triangulated`] every polygon is written as a fan of
+//! triangles (tested with trimesh). meshio misreads a face element with
+//! more than one property either way.
 
 use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
@@ -43,6 +48,10 @@ pub struct PlyStreamSink {
     comment: String,
     vertices: u64,
     faces_written: u64,
+    polygons: u64,
+    /// Write each polygon as a fan of triangles (for readers that need one
+    /// polygon size, such as trimesh).
+    triangles: bool,
     /// Boundary vertex key -> vertex id, for keys that may still come.
     shared: FxHashMap<VKey, u32>,
     /// Cube x of the current slab; keys left of it are evicted.
@@ -59,8 +68,10 @@ pub struct PlyStreamSink {
 pub struct PlyStreamStats {
     /// Vertices written (each once).
     pub vertices: u64,
-    /// Faces written.
+    /// Faces written (triangles with [`PlyStreamSink::triangulated`]).
     pub faces: u64,
+    /// Network polygons written (as themselves or as triangle fans).
+    pub polygons: u64,
     /// Most boundary keys held at once by the vertex map.
     pub peak_shared_keys: usize,
 }
@@ -112,6 +123,8 @@ impl PlyStreamSink {
             comment,
             vertices: 0,
             faces_written: 0,
+            polygons: 0,
+            triangles: false,
             shared: FxHashMap::default(),
             slab: 0,
             plane: (grid.res[1] as u64 + 1) * (grid.res[2] as u64 + 1),
@@ -139,6 +152,7 @@ impl PlyStreamSink {
         };
         self.remap.clear();
         self.remap.resize(b.keys.len(), NONE);
+        let mut ids: Vec<i32> = Vec::with_capacity(16);
         for p in 0..b.num_polygons() {
             let vs = b.polygon(p);
             if vs.len() > 255 {
@@ -148,7 +162,7 @@ impl PlyStreamSink {
                     vs.len()
                 )));
             }
-            faces.write_all(&[vs.len() as u8])?;
+            ids.clear();
             for &v in vs {
                 let v = v as usize;
                 if self.remap[v] == NONE {
@@ -166,16 +180,40 @@ impl PlyStreamSink {
                     }
                     self.remap[v] = id;
                 }
-                faces.write_all(&(self.remap[v] as i32).to_le_bytes())?;
+                ids.push(self.remap[v] as i32);
             }
             let [l0, l1] = b.poly_label[p];
-            faces.write_all(&(l0 as i32).to_le_bytes())?;
-            faces.write_all(&(l1 as i32).to_le_bytes())?;
-            faces.write_all(&(b.index as i32).to_le_bytes())?;
-            self.faces_written += 1;
+            let mut face = |vs: &[i32]| -> std::io::Result<()> {
+                faces.write_all(&[vs.len() as u8])?;
+                for v in vs {
+                    faces.write_all(&v.to_le_bytes())?;
+                }
+                faces.write_all(&(l0 as i32).to_le_bytes())?;
+                faces.write_all(&(l1 as i32).to_le_bytes())?;
+                faces.write_all(&(b.index as i32).to_le_bytes())
+            };
+            if self.triangles {
+                // A network polygon is convex (a plane section of a convex
+                // cell of the tet): a fan from its first vertex triangulates it.
+                for i in 1..ids.len() - 1 {
+                    face(&[ids[0], ids[i], ids[i + 1]])?;
+                    self.faces_written += 1;
+                }
+            } else {
+                face(&ids)?;
+                self.faces_written += 1;
+            }
+            self.polygons += 1;
         }
         self.peak_shared = self.peak_shared.max(self.shared.len());
         Ok(())
+    }
+
+    /// Writes every polygon as a fan of triangles (each keeps the polygon's
+    /// labels and block): trimesh's binary PLY reader needs one list length.
+    pub fn triangulated(mut self, yes: bool) -> PlyStreamSink {
+        self.triangles = yes;
+        self
     }
 
     /// Appends the faces, writes the real counts into the header and
@@ -204,7 +242,12 @@ impl PlyStreamSink {
         drop(main);
         std::fs::rename(&self.tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         let _ = std::fs::remove_file(&self.tmp_faces);
-        Ok(PlyStreamStats { vertices: self.vertices, faces: self.faces_written, peak_shared_keys: self.peak_shared })
+        Ok(PlyStreamStats {
+            vertices: self.vertices,
+            faces: self.faces_written,
+            polygons: self.polygons,
+            peak_shared_keys: self.peak_shared,
+        })
     }
 
     fn cleanup(&mut self) {
