@@ -11,6 +11,7 @@ pub mod mesh_stl;
 pub mod msh;
 pub mod network_out;
 pub mod npz;
+pub mod ply_stream;
 pub mod planes;
 pub mod regions_out;
 

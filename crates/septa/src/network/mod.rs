@@ -20,6 +20,7 @@ mod program;
 mod raytrace;
 mod simple;
 pub mod sparse;
+pub mod stream;
 pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
 pub mod uf;

@@ -341,7 +341,7 @@ pub fn plan_sparse(
 }
 
 /// Samples block `index` and builds its part of the network with `w`.
-fn run_block_with(
+pub(crate) fn run_block_with(
     w: &mut Worker,
     g: &Grid,
     grid: &BoxGrid,

@@ -1,0 +1,243 @@
+//! Streaming (issue 6): "outputs can be streamed to disk block by block for
+//! networks larger than memory".
+//!
+//! [`stream_sparse`] classifies the blocks as sparse evaluation does
+//! ([`plan_sparse`]), runs the kept blocks a window at a time (in parallel
+//! on the current rayon pool) and hands every finished block, in block
+//! index order, to a [`StreamSink`], then drops it. While one window is
+//! handed to the sink the next one is computed, so at most two windows of
+//! block results are alive: memory is bounded by the window, not by the grid.
+//!
+//! What this mode gives and what it does not: the polygons of the network
+//! (Du et al. Sec. 6), each with its label (IA `[f, f]`, MI `[a, b]`) and
+//! its vertices' global plane-based keys ([`VKey`], Sec. 5.1). There is no
+//! merge and no topology: patches, chains, corners, shells and cells need
+//! the global merge (Sec. 7) and are only in the in-memory [`Network`](super::Network).
+//!
+//! Vertices: a block numbers its own vertices. A vertex on a block's
+//! boundary (flagged `shared`) repeats in every block that touches it
+//! (up to 8); its key is the same in each, so a consumer unifies them
+//! exactly by key (its position, computed in floating point per tet, may
+//! differ in the last bits between blocks; the in-memory merge keeps the
+//! first block's, and so does the PLY sink). A vertex inside a block is in
+//! that block only. Polygons
+//! never repeat: each lies in one tet of one block. Orientation: as in the
+//! block (counter-clockwise seen from the positive side), before the
+//! in-memory path's canonical renumbering.
+//!
+//! Streaming needs ray shooting's precondition (IA: no value exactly 0;
+//! MI: a unique maximum at every vertex) on every sampled block: otherwise
+//! network faces may lie on tet faces and are paired only by the merge. A
+//! block without it stops the run with [`NetworkError::BlockResults`].
+
+use std::sync::atomic::AtomicUsize;
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+
+use super::block::Worker;
+use super::sparse::{check_functions, plan_sparse, run_block_with, BlockResult};
+use super::{NetworkError, NetworkOptions, VKey};
+use crate::grid::{BoxGrid, Grid};
+use crate::scene::Primitive;
+
+/// One finished block, as handed to a [`StreamSink`] (borrowed: it is
+/// dropped once the sink returns).
+#[derive(Clone, Copy, Debug)]
+pub struct StreamBlock<'a> {
+    /// Index of the block in `grid.blocks(options.block)`.
+    pub index: usize,
+    /// First cube of the block (grid coordinates).
+    pub lo: [usize; 3],
+    /// One past the last cube of the block.
+    pub hi: [usize; 3],
+    /// Global key of each block vertex.
+    pub keys: &'a [VKey],
+    /// Per vertex: whether it lies on the block's boundary and may repeat
+    /// in other blocks (with the same key).
+    pub shared: &'a [bool],
+    /// Vertex positions (floating point, output only).
+    pub points: &'a [[f64; 3]],
+    /// Polygon `p` is `poly_verts[poly_start[p]..poly_start[p + 1]]` (block vertex ids).
+    pub poly_start: &'a [u32],
+    /// See `poly_start`.
+    pub poly_verts: &'a [u32],
+    /// Per polygon: IA `[f, f]`; MI `[a, b]`, `a < b`.
+    pub poly_label: &'a [[u16; 2]],
+    /// Tets of the block with a part of the network.
+    pub active_tets: usize,
+}
+
+impl StreamBlock<'_> {
+    /// Number of polygons.
+    pub fn num_polygons(&self) -> usize {
+        self.poly_label.len()
+    }
+
+    /// Block vertex ids of polygon `p`.
+    pub fn polygon(&self, p: usize) -> &[u32] {
+        &self.poly_verts[self.poly_start[p] as usize..self.poly_start[p + 1] as usize]
+    }
+}
+
+/// Where streamed blocks go (a file writer, a counter, a test's collector).
+pub trait StreamSink {
+    /// Takes one block; blocks arrive in ascending index order, each once,
+    /// sampled blocks only (a block with no polygon included).
+    fn block(&mut self, block: &StreamBlock) -> std::io::Result<()>;
+}
+
+/// Why a streamed run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum StreamError {
+    /// Computing a block failed (or the run was cancelled).
+    #[error(transparent)]
+    Network(#[from] NetworkError),
+    /// The sink failed (its message names the file).
+    #[error("stream output: {0}")]
+    Sink(#[from] std::io::Error),
+}
+
+/// What a streamed run did, for the JSON summary.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StreamStats {
+    /// Blocks of the grid.
+    pub blocks: usize,
+    /// Blocks proven empty by bounds and never sampled.
+    pub skipped: usize,
+    /// Blocks sampled (handed to the sink).
+    pub sampled: usize,
+    /// Sampled blocks with at least one active tet.
+    pub active: usize,
+    /// Grid vertices sampled (vertices on block boundaries count once per block).
+    pub sampled_vertices: usize,
+    /// Polygons handed to the sink.
+    pub faces: usize,
+    /// Block vertices handed to the sink (boundary vertices once per block).
+    pub block_vertices: usize,
+    /// Tets with a part of the network.
+    pub active_tets: usize,
+    /// Blocks computed at a time.
+    pub window: usize,
+}
+
+/// A worker borrowed from a pool for one rayon job and given back on drop,
+/// so look-up programs and maps are built once per thread, not per window.
+struct Lease<'a> {
+    worker: Option<Worker>,
+    pool: &'a Mutex<Vec<Worker>>,
+}
+
+impl Drop for Lease<'_> {
+    fn drop(&mut self) {
+        if let (Some(w), Ok(mut pool)) = (self.worker.take(), self.pool.lock()) {
+            pool.push(w);
+        }
+    }
+}
+
+/// Streams the IA or MI polygons of analytic functions on a box grid to
+/// `sink`, block by block (module doc). `window` is the number of blocks
+/// computed at a time (`0`: four per thread of the current rayon pool).
+/// `options.volumes` and `options.raytrace` do not apply (no cells).
+///
+/// The polygons, labels and keys are those of
+/// [`compute_sparse`](super::compute_sparse) on the same input (its
+/// network's polygons are these, merged by key and renumbered).
+pub fn stream_sparse<S: StreamSink + Send>(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    window: usize,
+    sink: &mut S,
+) -> Result<StreamStats, StreamError> {
+    check_functions(functions.len())?;
+    let mut o = options.clone();
+    o.volumes = false;
+    o.raytrace = true;
+    let plan = plan_sparse(grid, functions, &o)?;
+    let window = if window == 0 { 4 * rayon::current_num_threads() } else { window };
+    let mut stats = StreamStats { blocks: plan.blocks, window, ..StreamStats::default() };
+    stats.sampled = plan.kept.len();
+    stats.skipped = plan.blocks - plan.kept.len();
+    let g = Grid::Box(grid.clone());
+    let pool: Mutex<Vec<Worker>> = Mutex::new(Vec::new());
+    let done = AtomicUsize::new(0);
+    let run_window = |ids: &[usize]| -> Result<Vec<BlockResult>, NetworkError> {
+        ids.par_iter()
+            .map_init(
+                || Lease { worker: Some(pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default()), pool: &pool },
+                |lease, &i| {
+                    if o.cancelled() {
+                        return Err(NetworkError::Cancelled);
+                    }
+                    let w = lease.worker.as_mut().expect("a leased worker");
+                    let r = run_block_with(w, &g, grid, functions, &o, i)?;
+                    if let Some(p) = &o.progress {
+                        p.tick(&done, plan.kept.len());
+                    }
+                    Ok(r)
+                },
+            )
+            .collect()
+    };
+    // Window w + 1 is computed while window w goes to the sink.
+    let mut pending: Option<Vec<BlockResult>> = None;
+    for ids in plan.kept.chunks(window) {
+        let (next, fed) = rayon::join(
+            || run_window(ids),
+            || match pending.take() {
+                Some(rs) => feed(grid, options.block, rs, sink, &mut stats),
+                None => Ok(()),
+            },
+        );
+        fed?;
+        pending = Some(next?);
+    }
+    if let Some(rs) = pending {
+        feed(grid, options.block, rs, sink, &mut stats)?;
+    }
+    Ok(stats)
+}
+
+/// Hands a window's results to the sink in order, dropping each after.
+fn feed<S: StreamSink>(
+    grid: &BoxGrid,
+    block: usize,
+    results: Vec<BlockResult>,
+    sink: &mut S,
+    stats: &mut StreamStats,
+) -> Result<(), StreamError> {
+    for r in results {
+        if !r.clean {
+            return Err(NetworkError::BlockResults(format!(
+                "block {}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
+                 network faces may lie on tet faces, which only the in-memory merge pairs: \
+                 run without streaming",
+                r.index
+            ))
+            .into());
+        }
+        let b = super::sparse::block_at(grid, block, r.index).expect("a planned block exists");
+        let (lo, hi) = super::sparse::cubes(&b);
+        let out = &r.out;
+        stats.sampled_vertices += r.sampled_vertices;
+        stats.active += (out.active_tets > 0) as usize;
+        stats.active_tets += out.active_tets;
+        stats.faces += out.poly_label.len();
+        stats.block_vertices += out.keys.len();
+        sink.block(&StreamBlock {
+            index: r.index,
+            lo,
+            hi,
+            keys: &out.keys,
+            shared: &out.shared,
+            points: &out.points,
+            poly_start: &out.poly_start,
+            poly_verts: &out.poly_verts,
+            poly_label: &out.poly_label,
+            active_tets: out.active_tets,
+        })?;
+    }
+    Ok(())
+}

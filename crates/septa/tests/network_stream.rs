@@ -1,0 +1,232 @@
+//! Streaming (issue 6): the polygons streamed block by block are exactly
+//! the in-memory network's (same multiset of faces as sorted global-key
+//! lists, same labels), for several block and window sizes, and the
+//! streamed PLY holds them with every vertex once.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use septa::grid::{BoxGrid, Split};
+use septa::io::ply_stream::PlyStreamSink;
+use septa::network::sparse::compute_sparse;
+use septa::network::stream::{stream_sparse, StreamBlock, StreamError, StreamSink};
+use septa::network::{Mode, Network, NetworkError, NetworkOptions, VKey};
+use septa::scene::{load_function_list, Primitive};
+
+fn spec(name: &str) -> Vec<Primitive> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/specs").join(format!("{name}.json"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    load_function_list(&text, &path.display().to_string(), None).unwrap()
+}
+
+fn cube_grid(n: usize) -> BoxGrid {
+    BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap()
+}
+
+type Face = (Vec<VKey>, [u16; 2]);
+
+/// Collects every streamed polygon (sorted keys, label) and the first
+/// point of each key, and checks the block order.
+#[derive(Default)]
+struct Collect {
+    faces: Vec<Face>,
+    last: Option<usize>,
+    points: BTreeMap<VKey, [u64; 3]>,
+    blocks: usize,
+}
+
+impl StreamSink for Collect {
+    fn block(&mut self, b: &StreamBlock) -> std::io::Result<()> {
+        assert!(self.last.is_none_or(|l| l < b.index), "blocks in ascending order");
+        self.last = Some(b.index);
+        self.blocks += 1;
+        for p in 0..b.num_polygons() {
+            for &v in b.polygon(p) {
+                // The first block (in order) to use a vertex gives its point,
+                // as in the merge (a repeat may differ in the last bits).
+                self.points.entry(b.keys[v as usize]).or_insert(b.points[v as usize].map(f64::to_bits));
+            }
+            let mut keys: Vec<VKey> = b.polygon(p).iter().map(|&v| b.keys[v as usize]).collect();
+            keys.sort_unstable();
+            self.faces.push((keys, b.poly_label[p]));
+        }
+        Ok(())
+    }
+}
+
+fn net_faces(net: &Network) -> Vec<Face> {
+    let mut faces: Vec<Face> = (0..net.num_faces())
+        .map(|f| {
+            let mut keys: Vec<VKey> = net.face(f).iter().map(|&v| net.keys[v as usize]).collect();
+            keys.sort_unstable();
+            (keys, net.face_label[f])
+        })
+        .collect();
+    faces.sort_unstable();
+    faces
+}
+
+#[test]
+fn streamed_polygons_equal_the_in_memory_network() {
+    for (name, mode) in [("ia18", Mode::Ia), ("mi18", Mode::Mi)] {
+        let f = spec(name);
+        for (n, block, window) in [(20, 4, 1), (20, 8, 3), (32, 8, 0), (40, 16, 2), (40, 8, 5)] {
+            let grid = cube_grid(n);
+            let mut o = NetworkOptions::new(mode);
+            o.block = block;
+            let (net, sparse) = compute_sparse(&grid, &f, &o).unwrap();
+            let mut c = Collect::default();
+            let s = stream_sparse(&grid, &f, &o, window, &mut c).unwrap();
+            let what = format!("{name} {n}^3 block {block} window {window}");
+            assert!(net.num_faces() > 0, "{what}");
+            assert_eq!(s.faces, net.num_faces(), "{what}");
+            assert_eq!(s.active_tets, net.active_tets, "{what}");
+            assert_eq!(
+                (s.blocks, s.skipped, s.sampled, s.active, s.sampled_vertices),
+                (sparse.blocks, sparse.skipped, sparse.sampled, sparse.active, sparse.sampled_vertices),
+                "{what}"
+            );
+            assert_eq!(c.blocks, s.sampled, "{what}");
+            let mut faces = c.faces;
+            faces.sort_unstable();
+            assert_eq!(faces, net_faces(&net), "{what}: faces");
+            // The network's vertices are the polygons' keys, each with its first point.
+            assert_eq!(c.points.len(), net.keys.len(), "{what}");
+            for (k, p) in net.keys.iter().zip(&net.points) {
+                assert_eq!(c.points.get(k), Some(&p.map(f64::to_bits)), "{what}: {k:?}");
+            }
+        }
+    }
+}
+
+/// A parsed streamed PLY: points, faces (vertex ids, label, block).
+struct Ply {
+    points: Vec<[f64; 3]>,
+    faces: Vec<(Vec<u32>, [u16; 2], u32)>,
+}
+
+fn read_ply(path: &Path) -> Ply {
+    let bytes = std::fs::read(path).unwrap();
+    let end = bytes.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let head = std::str::from_utf8(&bytes[..end]).unwrap();
+    let count = |el: &str| -> usize {
+        let line = head.lines().find(|l| l.starts_with(&format!("element {el} "))).unwrap();
+        line.rsplit(' ').next().unwrap().parse().unwrap()
+    };
+    let (nv, nf) = (count("vertex"), count("face"));
+    assert!(head.starts_with("ply\nformat binary_little_endian 1.0\n"), "{head}");
+    assert!(head.contains(
+        "property list uchar int vertex_indices\nproperty int label0\nproperty int label1\nproperty int block\n"
+    ));
+    let mut at = end;
+    let mut take = |n: usize| {
+        let s = &bytes[at..at + n];
+        at += n;
+        s
+    };
+    let f64_ = |s: &[u8]| f64::from_le_bytes(s.try_into().unwrap());
+    let i32_ = |s: &[u8]| i32::from_le_bytes(s.try_into().unwrap());
+    let points = (0..nv).map(|_| [0; 3].map(|_| f64_(take(8)))).collect();
+    let faces = (0..nf)
+        .map(|_| {
+            let len = take(1)[0] as usize;
+            let vs: Vec<u32> = (0..len).map(|_| i32_(take(4)) as u32).collect();
+            let l = [i32_(take(4)) as u16, i32_(take(4)) as u16];
+            (vs, l, i32_(take(4)) as u32)
+        })
+        .collect();
+    assert_eq!(at, bytes.len(), "no bytes after the faces");
+    Ply { points, faces }
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("septa-stream-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn streamed_ply_holds_the_network_with_each_vertex_once() {
+    for (name, mode, n, block) in [("ia18", Mode::Ia, 24, 4), ("mi18", Mode::Mi, 32, 8)] {
+        let f = spec(name);
+        let grid = cube_grid(n);
+        let mut o = NetworkOptions::new(mode);
+        o.block = block;
+        let (net, _) = compute_sparse(&grid, &f, &o).unwrap();
+        let path = tmp(&format!("{name}.ply"));
+        let mut sink = PlyStreamSink::create(&path, &grid, mode, f.len()).unwrap();
+        assert!(!path.exists(), "nothing at the destination before finish");
+        let s = stream_sparse(&grid, &f, &o, 3, &mut sink).unwrap();
+        let ps = sink.finish().unwrap();
+        assert_eq!(ps.faces as usize, net.num_faces());
+        // Boundary vertices deduplicated: exactly the merged network's vertices.
+        assert_eq!(ps.vertices as usize, net.points.len(), "{name}");
+        assert!(ps.peak_shared_keys > 0 && ps.peak_shared_keys < net.points.len(), "{ps:?}");
+        let ply = read_ply(&path);
+        assert_eq!((ply.points.len(), ply.faces.len()), (net.points.len(), net.num_faces()));
+        // Same faces as point lists (a key's point is unique), labels, blocks in order.
+        let bits = |p: &[f64; 3]| p.map(f64::to_bits);
+        let mut a: Vec<(Vec<[u64; 3]>, [u16; 2])> = ply
+            .faces
+            .iter()
+            .map(|(vs, l, _)| {
+                let mut q: Vec<[u64; 3]> = vs.iter().map(|&v| bits(&ply.points[v as usize])).collect();
+                q.sort_unstable();
+                (q, *l)
+            })
+            .collect();
+        let mut b: Vec<(Vec<[u64; 3]>, [u16; 2])> = (0..net.num_faces())
+            .map(|f| {
+                let mut q: Vec<[u64; 3]> = net.face(f).iter().map(|&v| bits(&net.points[v as usize])).collect();
+                q.sort_unstable();
+                (q, net.face_label[f])
+            })
+            .collect();
+        a.sort_unstable();
+        b.sort_unstable();
+        assert_eq!(a, b, "{name}");
+        assert!(ply.faces.windows(2).all(|w| w[0].2 <= w[1].2), "faces in block order");
+        assert!(ply.faces.iter().all(|x| (x.2 as usize) < s.blocks));
+        // Every written vertex is used (only polygon vertices are written).
+        let mut used = vec![false; ply.points.len()];
+        ply.faces.iter().flat_map(|x| &x.0).for_each(|&v| used[v as usize] = true);
+        assert!(used.iter().all(|&u| u));
+        // Triangulated: the same vertices, each polygon as a fan, in order.
+        let tri_path = tmp(&format!("{name}-tri.ply"));
+        let mut sink = PlyStreamSink::create(&tri_path, &grid, mode, f.len()).unwrap().triangulated(true);
+        stream_sparse(&grid, &f, &o, 2, &mut sink).unwrap();
+        let ts = sink.finish().unwrap();
+        let tri = read_ply(&tri_path);
+        assert_eq!(ts.polygons as usize, net.num_faces());
+        assert!(
+            tri.points.iter().zip(&ply.points).all(|(p, q)| bits(p) == bits(q)) && tri.points.len() == ply.points.len()
+        );
+        let fans: Vec<(Vec<u32>, [u16; 2], u32)> = ply
+            .faces
+            .iter()
+            .flat_map(|(vs, l, b)| (1..vs.len() - 1).map(move |i| (vec![vs[0], vs[i], vs[i + 1]], *l, *b)))
+            .collect();
+        assert_eq!(tri.faces, fans, "{name}: fans");
+        assert_eq!(ts.faces as usize, fans.len());
+        std::fs::remove_file(&path).unwrap();
+        std::fs::remove_file(&tri_path).unwrap();
+    }
+}
+
+#[test]
+fn a_failed_stream_leaves_no_file() {
+    // IA: a plane through grid vertices (value exactly 0): faces on tet
+    // faces need the merge, so streaming stops with a clear error.
+    let f =
+        load_function_list(r#"[{"type": "plane", "point": [0, 0, 0], "normal": [1, 0, 0]}]"#, "plane", None).unwrap();
+    let grid = cube_grid(8);
+    let path = tmp("plane.ply");
+    let mut sink = PlyStreamSink::create(&path, &grid, Mode::Ia, 1).unwrap();
+    let e = stream_sparse(&grid, &f, &NetworkOptions::new(Mode::Ia), 0, &mut sink).unwrap_err();
+    assert!(matches!(e, StreamError::Network(NetworkError::BlockResults(ref m)) if m.contains("exactly 0")), "{e}");
+    drop(sink);
+    assert!(!path.exists());
+    let dir = path.parent().unwrap();
+    let left: Vec<_> = std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
+    assert!(left.iter().all(|n| !n.to_string_lossy().contains("plane.ply")), "{left:?}");
+}
