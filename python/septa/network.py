@@ -174,20 +174,25 @@ class Network:
         return path
 
     def _ply_bytes(self) -> bytes:
-        n = len(self)
+        # The CLI's network.ply layout: polygons as triangle fans, each with
+        # its polygon id, patch and label pair (mesh tools read only face
+        # lists of one length with extra properties).
+        t = self.triangle_face
         header = (
-            "ply\nformat binary_little_endian 1.0\n"
+            "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n"
             f"element vertex {len(self.points)}\nproperty double x\nproperty double y\nproperty double z\n"
-            f"element face {n}\nproperty list uchar int vertex_indices\nproperty int patch\n"
-            "end_header\n"
+            f"element face {len(t)}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n"
+            "property int label0\nproperty int label1\nend_header\n"
         ).encode()
-        parts = [header, self.points.astype("<f8").tobytes()]
-        sizes = np.diff(self.offsets)
-        for f in range(n):
-            parts.append(np.uint8(sizes[f]).tobytes())
-            parts.append(self.indices[self.offsets[f]:self.offsets[f + 1]].astype("<i4").tobytes())
-            parts.append(np.int32(self.face_patch[f]).astype("<i4").tobytes())
-        return b"".join(parts)
+        rec = np.dtype([("n", "u1"), ("v", "<i4", (3,)), ("face", "<i4"), ("patch", "<i4"), ("l0", "<i4"), ("l1", "<i4")])
+        rows = np.empty(len(t), dtype=rec)
+        rows["n"] = 3
+        rows["v"] = self.triangles
+        rows["face"] = t
+        rows["patch"] = self.face_patch[t]
+        rows["l0"] = self.face_label[t, 0]
+        rows["l1"] = self.face_label[t, 1]
+        return header + self.points.astype("<f8").tobytes() + rows.tobytes()
 
     def _obj_text(self) -> str:
         lines = [f"# septa network: {json.dumps({k: v for k, v in self.summary().items() if k != 'seconds'})}"]

@@ -31,16 +31,20 @@ def test_save_roundtrip(tmp_path, fixture_net):
     trimesh = pytest.importorskip("trimesh")
     net = fixture_net
     ntri = len(net.triangles)
-    # PLY: polygons with a patch property.
+    # PLY: the polygons as triangle fans, each naming its polygon and patch.
     # (meshio's PLY reader cannot read per-face properties, so trimesh reads it.)
     net.save(tmp_path / "n.ply")
     t = trimesh.load(tmp_path / "n.ply", process=False)
     assert len(t.faces) == ntri and np.allclose(t.vertices, net.points)
+    assert np.array_equal(t.faces, net.triangles)
     raw = t.metadata["_ply_raw"]["face"]["data"]
-    assert np.array_equal(raw["patch"].ravel(), net.face_patch)
-    # The fixture's PLY (as the jobs write it) reads the same way.
+    assert np.array_equal(raw["face"].ravel(), net.triangle_face)
+    assert np.array_equal(raw["patch"].ravel(), net.face_patch[net.triangle_face])
+    assert np.array_equal(raw["label0"].ravel(), net.face_label[net.triangle_face, 0])
+    # The fixture's PLY (as the CLI writes it) reads the same way.
     ref = trimesh.load(FIXTURE / "network.ply", process=False)
     assert np.array_equal(ref.faces, t.faces)
+    assert np.array_equal(ref.metadata["_ply_raw"]["face"]["data"]["face"].ravel(), net.triangle_face)
     # OBJ: a group per patch.
     net.save(tmp_path / "n.obj")
     t = trimesh.load(tmp_path / "n.obj", process=False, force="mesh")

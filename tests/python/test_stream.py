@@ -4,7 +4,7 @@ the in-memory run, with per-face labels and block indices.
 
 trimesh's binary PLY reader needs every face list to have one length: it
 reads the `--triangles` file. meshio reads a face element with more than one
-property wrongly (it fails on septa's network.ply too) and is not used.
+property wrongly and is not used here.
 """
 
 import json
@@ -35,16 +35,21 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
     ply = plyfile.PlyData.read(str(out))
     faces, verts = ply["face"].data, ply["vertex"].data
     assert len(faces) == full["faces"] and len(verts) == full["vertices"]
-    # Same polygons as point sets, with the same labels, as the in-memory network.ply.
-    ref = plyfile.PlyData.read(str(tmp_path / "full" / "network.ply"))
-
-    def polys(p):
-        pts = np.stack([p["vertex"].data[c] for c in ("x", "y", "z")], axis=1)
-        f = p["face"].data
-        return sorted((tuple(sorted(map(tuple, pts[vs].tolist()))), int(a), int(b))
-                      for vs, a, b in zip(f["vertex_indices"], f["label0"], f["label1"]))
-
-    assert polys(ply) == polys(ref)
+    # Same polygons as point sets, with the same labels, as the in-memory network.json.
+    ref = json.loads((tmp_path / "full" / "network.json").read_text())
+    ref_pts = np.asarray(ref["points"], dtype=np.float64)
+    pts = np.stack([verts[c] for c in ("x", "y", "z")], axis=1)
+    mine = sorted((tuple(sorted(map(tuple, pts[vs].tolist()))), int(a), int(b))
+                  for vs, a, b in zip(faces["vertex_indices"], faces["label0"], faces["label1"]))
+    theirs = sorted((tuple(sorted(map(tuple, ref_pts[vs].tolist()))), int(a), int(b))
+                    for vs, (a, b) in zip(ref["faces"], ref["face_label"]))
+    assert mine == theirs
+    # The in-memory run's network.ply (polygons as triangle fans) loads in trimesh.
+    trimesh = pytest.importorskip("trimesh")
+    t = trimesh.load(str(tmp_path / "full" / "network.ply"), process=False)
+    assert len(t.faces) == sum(len(f) - 2 for f in ref["faces"]) and len(t.vertices) == len(ref_pts)
+    face_of = t.metadata["_ply_raw"]["face"]["data"]["face"].ravel()
+    assert (np.diff(face_of) >= 0).all() and face_of.max() == len(ref["faces"]) - 1
     blocks = faces["block"]
     assert (np.diff(blocks) >= 0).all() and blocks.min() >= 0 and blocks.max() < streamed["blocks"]["total"]
     assert not list(tmp_path.glob(".s.ply*")), "no temporary file left"

@@ -44,13 +44,18 @@ fn outputs_round_trip() {
         let mut pos = end + net.points.len() * 24;
         let int = |b: &[u8], p: usize| i32::from_le_bytes(b[p..p + 4].try_into().unwrap());
         for f in 0..net.num_faces() {
-            let n = ply[pos] as usize;
-            pos += 1;
-            let vs: Vec<u32> = (0..n).map(|i| int(&ply, pos + 4 * i) as u32).collect();
-            assert_eq!(vs, net.face(f));
-            pos += 4 * n;
-            assert_eq!(int(&ply, pos) as u32, net.face_patch[f]);
-            pos += 12 + 3;
+            // Polygon f as a fan of triangles, each naming f and its patch.
+            let vs = net.face(f);
+            for j in 1..vs.len() - 1 {
+                assert_eq!(ply[pos], 3);
+                pos += 1;
+                let tri: Vec<u32> = (0..3).map(|i| int(&ply, pos + 4 * i) as u32).collect();
+                assert_eq!(tri, [vs[0], vs[j], vs[j + 1]]);
+                pos += 12;
+                assert_eq!(int(&ply, pos) as usize, f);
+                assert_eq!(int(&ply, pos + 4) as u32, net.face_patch[f]);
+                pos += 16 + 3;
+            }
         }
         assert_eq!(pos, ply.len());
         // OBJ

@@ -155,18 +155,24 @@ pub fn patch_colour(p: u32) -> [u8; 3] {
     [s(r), s(g), s(b)]
 }
 
-/// Writes a binary little-endian PLY: vertices (double x, y, z) and
-/// polygons with `patch`, `label0`, `label1` and face colour.
+/// Writes a binary little-endian PLY: vertices (double x, y, z) and the
+/// network's polygons as fans of triangles, each with `face` (its polygon
+/// in network.json), `patch`, `label0`, `label1` and the patch colour.
+/// Triangles because mesh tools (trimesh, meshio) read only face lists of
+/// one length with extra properties; the polygons are exact in
+/// network.json, network.obj and network.vtu. The polygons are convex, so a
+/// fan from their first vertex covers each one.
 pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
+    let triangles: usize = (0..net.num_faces()).map(|f| net.face(f).len() - 2).sum();
     write_atomic_with(path, |w| {
         write!(
             w,
-            "ply\nformat binary_little_endian 1.0\ncomment septa surface network\n\
+            "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n\
              element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
-             element face {}\nproperty list uchar int vertex_indices\nproperty int patch\n\
+             element face {}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n\
              property int label0\nproperty int label1\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
             net.points.len(),
-            net.num_faces()
+            triangles
         )?;
         for p in &net.points {
             for x in p {
@@ -175,18 +181,18 @@ pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
         }
         for f in 0..net.num_faces() {
             let vs = net.face(f);
-            if vs.len() > 255 {
-                return Err(std::io::Error::other(format!("face {f} has {} vertices; PLY lists hold 255", vs.len())));
-            }
-            w.write_all(&[vs.len() as u8])?;
-            for &v in vs {
-                w.write_all(&(v as i32).to_le_bytes())?;
-            }
             let p = net.face_patch[f];
-            w.write_all(&(p as i32).to_le_bytes())?;
-            w.write_all(&(net.face_label[f][0] as i32).to_le_bytes())?;
-            w.write_all(&(net.face_label[f][1] as i32).to_le_bytes())?;
-            w.write_all(&patch_colour(p))?;
+            for j in 1..vs.len() - 1 {
+                w.write_all(&[3u8])?;
+                for v in [vs[0], vs[j], vs[j + 1]] {
+                    w.write_all(&(v as i32).to_le_bytes())?;
+                }
+                w.write_all(&(f as i32).to_le_bytes())?;
+                w.write_all(&(p as i32).to_le_bytes())?;
+                w.write_all(&(net.face_label[f][0] as i32).to_le_bytes())?;
+                w.write_all(&(net.face_label[f][1] as i32).to_le_bytes())?;
+                w.write_all(&patch_colour(p))?;
+            }
         }
         Ok(())
     })
