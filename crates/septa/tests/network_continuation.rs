@@ -2,22 +2,15 @@
 //! network when the seeds reach every component, and (by design) misses a
 //! separate component that no seed reaches.
 
-use std::path::Path;
+mod common;
 
-use septa::grid::{BoxGrid, Grid, Split};
+
+use septa::grid::{BoxGrid, Grid};
 use septa::network::continuation::{compute_continuation, Field, Primitives, Seeds};
 use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};
-use septa::scene::{load_function_list, sample_grid, Primitive};
+use septa::scene::{sample_grid, Primitive};
 
-fn spec(name: &str) -> Vec<Primitive> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/specs").join(format!("{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    load_function_list(&text, &path.display().to_string(), None).unwrap()
-}
-
-fn cube_grid(n: usize) -> BoxGrid {
-    BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap()
-}
+use common::{cube_grid, spec};
 
 fn assert_same(a: &Network, b: &Network, what: &str) {
     assert_eq!(a.counts(), b.counts(), "{what}: counts");

@@ -1,6 +1,8 @@
 //! Sparse evaluation (issue 6) gives exactly the dense network: every
 //! count, every array, and the same network.json bytes apart from timings.
 
+mod common;
+
 use std::path::Path;
 
 use septa::grid::{BoxGrid, Grid, Split};
@@ -8,17 +10,9 @@ use septa::io::network_out;
 use septa::network::sparse::{compute_sparse, SparseStats};
 use septa::network::{compute, Mode, Network, NetworkOptions};
 use septa::regions::{region_surfaces, RegionOptions};
-use septa::scene::{load_function_list, sample_grid, Primitive, Scene};
+use septa::scene::{sample_grid, Primitive, Scene};
 
-fn spec(name: &str) -> Vec<Primitive> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/specs").join(format!("{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    load_function_list(&text, &path.display().to_string(), None).unwrap()
-}
-
-fn cube_grid(n: usize) -> BoxGrid {
-    BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap()
-}
+use common::{cube_grid, spec};
 
 /// network.json without its trailing "seconds" object.
 fn json_bytes(net: &Network, name: &str) -> Vec<u8> {

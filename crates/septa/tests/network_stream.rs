@@ -3,25 +3,18 @@
 //! lists, same labels), for several block and window sizes, and the
 //! streamed PLY holds them with every vertex once.
 
+mod common;
+
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use septa::grid::{BoxGrid, Split};
 use septa::io::ply_stream::PlyStreamSink;
 use septa::network::sparse::compute_sparse;
 use septa::network::stream::{stream_sparse, StreamBlock, StreamError, StreamSink};
 use septa::network::{Mode, Network, NetworkError, NetworkOptions, VKey};
-use septa::scene::{load_function_list, Primitive};
+use septa::scene::load_function_list;
 
-fn spec(name: &str) -> Vec<Primitive> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/specs").join(format!("{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    load_function_list(&text, &path.display().to_string(), None).unwrap()
-}
-
-fn cube_grid(n: usize) -> BoxGrid {
-    BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap()
-}
+use common::{cube_grid, spec};
 
 type Face = (Vec<VKey>, [u16; 2]);
 

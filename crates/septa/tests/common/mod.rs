@@ -30,3 +30,15 @@ pub fn network_json(net: &septa::network::Network, tag: &str) -> String {
     let _ = std::fs::remove_dir_all(&dir);
     text.split("\"seconds\"").next().unwrap().to_string()
 }
+
+/// The functions of `data/specs/<name>.json` (the reference cases' spheres).
+pub fn spec(name: &str) -> Vec<septa::scene::Primitive> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/specs").join(format!("{name}.json"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    septa::scene::load_function_list(&text, &path.display().to_string(), None).unwrap()
+}
+
+/// An `n^3` box grid over `[-1, 1]^3`, 5 tets per cube.
+pub fn cube_grid(n: usize) -> septa::grid::BoxGrid {
+    septa::grid::BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], septa::grid::Split::Five).unwrap()
+}
