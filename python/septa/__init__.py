@@ -18,7 +18,7 @@ from . import grid, shapes
 from .network import Network, load
 from .jobs import arrangement, material_interface, region_surfaces, cut_mesh
 from .viewer import view
-from . import continuation, distributed
+from . import continuation, distributed, stream
 
 __all__ = [
     "__version__",
@@ -34,4 +34,5 @@ __all__ = [
     "view",
     "distributed",
     "continuation",
+    "stream",
 ]

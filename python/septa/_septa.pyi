@@ -47,6 +47,9 @@ def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: 
 def sparse_network(job: str, dense: bool = False, threads: int | None = None) -> dict:
     """The whole job in this process (``compute_sparse``, or the dense path)."""
 
+def stream_ply(job: str, path: str, window: int = 0, triangles: bool = False, threads: int | None = None) -> dict:
+    """A sparse job's polygons streamed block by block to one PLY (bounded memory)."""
+
 def continuation(
     f: object,
     k: int,

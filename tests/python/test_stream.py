@@ -71,3 +71,24 @@ def test_triangulated_stream_loads_with_trimesh(tmp_path):
     # Every polygon becomes a fan: the triangles cover the vertices, none degenerate by index.
     assert len(np.unique(m.faces)) == s["vertices"]
     assert (m.faces[:, 0] != m.faces[:, 1]).all() and (m.faces[:, 1] != m.faces[:, 2]).all()
+
+
+def test_python_stream_matches_the_in_memory_network(tmp_path):
+    import septa
+
+    spec = json.loads((__import__("conftest").ROOT / "data" / "specs" / "mi18.json").read_text())
+    out = tmp_path / "p.ply"
+    s = septa.stream.stream_ply(spec, out, grid=20, mode="mi", block=8, window=2)
+    net = septa.distributed.material_interface(spec, client=None, grid=20, block=8)
+    assert s["faces"] == len(net) > 0 and s["vertices"] == len(net.points)
+    assert s["blocks"]["total"] == 27 and s["blocks"]["sampled"] + s["blocks"]["skipped"] == 27
+    ply = plyfile.PlyData.read(str(out))
+    assert len(ply["face"].data) == len(net) and len(ply["vertex"].data) == len(net.points)
+    # Same label pairs, polygon for polygon up to order.
+    got = sorted(zip(ply["face"].data["label0"].tolist(), ply["face"].data["label1"].tolist()))
+    want = sorted(map(tuple, net.face_label.tolist()))
+    assert got == want
+    # Bad input: a clear error and no file.
+    with pytest.raises(septa.InputError, match="grid"):
+        septa.stream.stream_ply(spec, tmp_path / "bad.ply", mode="mi")
+    assert not (tmp_path / "bad.ply").exists()

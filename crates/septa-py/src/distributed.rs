@@ -22,10 +22,10 @@ use septa::scene::{load_function_list, sample_grid, Primitive, Scene};
 use serde_json::Value;
 
 /// A parsed job.
-struct Job {
-    grid: BoxGrid,
-    functions: Vec<Primitive>,
-    options: NetworkOptions,
+pub(crate) struct Job {
+    pub(crate) grid: BoxGrid,
+    pub(crate) functions: Vec<Primitive>,
+    pub(crate) options: NetworkOptions,
     scene: Option<Scene>,
 }
 
@@ -57,7 +57,7 @@ fn grid_of(v: &Value) -> Result<BoxGrid, String> {
     BoxGrid::new(res, bounds, split).map_err(|e| format!("grid: {e}"))
 }
 
-fn parse_job(text: &str) -> Result<Job, String> {
+pub(crate) fn parse_job(text: &str) -> Result<Job, String> {
     let v: Value = serde_json::from_str(text).map_err(|e| format!("job: not JSON: {e}"))?;
     let base = v.get("base_dir").and_then(Value::as_str).map(std::path::PathBuf::from);
     let (functions, mut grid, mut mode, scene) = match (v.get("scene"), v.get("functions")) {

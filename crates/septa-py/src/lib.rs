@@ -15,6 +15,7 @@ mod distributed;
 mod interrupt;
 mod network;
 mod regions;
+mod stream;
 mod viewer;
 
 pyo3::create_exception!(
@@ -44,5 +45,6 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(distributed::sparse_finish, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_finish_regions, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_network, m)?)?;
+    m.add_function(wrap_pyfunction!(stream::stream_ply, m)?)?;
     Ok(())
 }

@@ -1,0 +1,60 @@
+//! `septa.stream_ply`: the polygons of a sparse job streamed block by block
+//! into one PLY in bounded memory (issue 6: networks larger than memory).
+//! No topology (patches, chains, shells, cells need the global merge).
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
+
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use septa::io::ply_stream::{PlyStreamSink, PlyStreamStats};
+use septa::network::stream::{stream_sparse, StreamStats};
+
+use crate::InputError;
+
+/// Streams job `job` (the JSON of `septa.distributed.job_spec`) to the PLY
+/// `path`; returns a summary dict.
+#[pyfunction]
+#[pyo3(signature = (job, path, window = 0, triangles = false, threads = None))]
+pub fn stream_ply<'py>(
+    py: Python<'py>,
+    job: &str,
+    path: &str,
+    window: usize,
+    triangles: bool,
+    threads: Option<usize>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let cancel = Arc::new(AtomicBool::new(false));
+    let r: Result<(StreamStats, PlyStreamStats), String> = crate::interrupt::run_interruptible(py, &cancel, || {
+        let mut j = crate::distributed::parse_job(job)?;
+        j.options.cancel = Some(cancel.clone());
+        let run = || -> Result<(StreamStats, PlyStreamStats), String> {
+            let mut sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
+                .map_err(|e| format!("{path}: {e}"))?
+                .triangulated(triangles);
+            let stats = stream_sparse(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(|e| e.to_string())?;
+            let ply = sink.finish().map_err(|e| format!("{path}: {e}"))?;
+            Ok((stats, ply))
+        };
+        match threads {
+            Some(t) => {
+                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
+            }
+            None => run(),
+        }
+    })?;
+    let (stats, ply) = r.map_err(InputError::new_err)?;
+    let d = PyDict::new(py);
+    d.set_item("path", path)?;
+    d.set_item("faces", ply.polygons)?;
+    d.set_item("ply_faces", ply.faces)?;
+    d.set_item("vertices", ply.vertices)?;
+    d.set_item("active_tets", stats.active_tets)?;
+    let b = PyDict::new(py);
+    b.set_item("total", stats.blocks)?;
+    b.set_item("skipped", stats.skipped)?;
+    b.set_item("sampled", stats.sampled)?;
+    b.set_item("active", stats.active)?;
+    d.set_item("blocks", b)?;
+    Ok(d)
+}
