@@ -9,11 +9,12 @@ between blocks written once), not the topology: patches, chains, shells
 and cells need the whole network in memory (:func:`septa.region_surfaces`,
 :func:`septa.distributed.arrangement`).
 
->>> import septa, tempfile, pathlib  # doctest: +SKIP
->>> out = pathlib.Path(tempfile.mkdtemp()) / "spheres.ply"  # doctest: +SKIP
->>> spheres = [septa.shapes.sphere([0, 0, 0], 0.5), septa.shapes.sphere([0.3, 0, 0], 0.5)]  # doctest: +SKIP
->>> septa.stream.stream_ply(spheres, out, grid=200)["faces"] > 0  # doctest: +SKIP
-True
+>>> import septa, tempfile, pathlib
+>>> out = pathlib.Path(tempfile.mkdtemp()) / "spheres.ply"
+>>> spheres = [septa.shapes.sphere([0, 0, 0], 0.45), septa.shapes.sphere([0.31, 0, 0], 0.45)]
+>>> s = septa.stream.stream_ply(spheres, out, grid=16, block=4)
+>>> s["faces"] > 0 and out.exists(), s["blocks"]["total"]
+(True, 64)
 """
 import json
 import os
