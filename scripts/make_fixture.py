@@ -114,20 +114,24 @@ def two_planes(n=4):
 
 
 def write_ply(path, net):
-    """Binary little-endian PLY, one polygon per face with its patch id."""
+    """Binary little-endian PLY in Septa's layout: each polygon as a fan of
+    triangles with its polygon id, patch and label pair."""
     pts, faces = net["points"], net["faces"]
+    ntri = sum(len(f) - 2 for f in faces)
     header = (
-        "ply\nformat binary_little_endian 1.0\n"
+        "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n"
         f"element vertex {len(pts)}\nproperty double x\nproperty double y\nproperty double z\n"
-        f"element face {len(faces)}\nproperty list uchar int vertex_indices\nproperty int patch\n"
-        "end_header\n"
+        f"element face {ntri}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n"
+        "property int label0\nproperty int label1\nend_header\n"
     )
     out = bytearray(header.encode("ascii"))
     for p in pts:
         out += struct.pack("<3d", *p)
-    for f, patch in zip(faces, net["face_patch"]):
-        out += struct.pack(f"<B{len(f)}i", len(f), *f)
-        out += struct.pack("<i", patch)
+    labels = net.get("face_label", [[-1, -1]] * len(faces))
+    for i, (f, patch, label) in enumerate(zip(faces, net["face_patch"], labels)):
+        for j in range(1, len(f) - 1):
+            out += struct.pack("<B3i", 3, f[0], f[j], f[j + 1])
+            out += struct.pack("<4i", i, patch, label[0], label[1])
     atomic_write(path, bytes(out))
 
 
