@@ -210,7 +210,8 @@ fn run_stream(
 ) -> CliResult {
     let (g, funcs) = load_sparse(args).map_err(|e| format!("--stream: {e}"))?;
     let t_read = t0.elapsed().as_secs_f64();
-    let mut sink = septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
+    let mut sink =
+        septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
     let stats = pool.install(|| network::stream::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?;
     let t_blocks = t0.elapsed().as_secs_f64() - t_read;
     let ply = sink.finish()?;
@@ -241,7 +242,13 @@ fn run_stream(
     if args.json {
         println!("{summary}");
     } else {
-        println!("{}: {} faces ({} written), {} vertices (streamed)", out.display(), ply.polygons, ply.faces, ply.vertices);
+        println!(
+            "{}: {} faces ({} written), {} vertices (streamed)",
+            out.display(),
+            ply.polygons,
+            ply.faces,
+            ply.vertices
+        );
         println!("blocks: {}", sparse_json(&sparse));
         println!("{total:.3} s");
     }

@@ -32,7 +32,8 @@ pub fn stream_ply<'py>(
             let mut sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
                 .map_err(|e| format!("{path}: {e}"))?
                 .triangulated(triangles);
-            let stats = stream_sparse(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(|e| e.to_string())?;
+            let stats =
+                stream_sparse(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(|e| e.to_string())?;
             let ply = sink.finish().map_err(|e| format!("{path}: {e}"))?;
             Ok((stats, ply))
         };

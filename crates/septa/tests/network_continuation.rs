@@ -4,7 +4,6 @@
 
 mod common;
 
-
 use septa::grid::{BoxGrid, Grid};
 use septa::network::continuation::{compute_continuation, Field, Primitives, Seeds};
 use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};

@@ -11,8 +11,8 @@ pub mod mesh_stl;
 pub mod msh;
 pub mod network_out;
 pub mod npz;
-pub mod ply_stream;
 pub mod planes;
+pub mod ply_stream;
 pub mod regions_out;
 
 pub use atomic::{write_atomic, write_atomic_with};
