@@ -14,41 +14,13 @@ use septa::scene::{load_function_list, Primitive, TriMesh};
 use serde_json::{json, Value};
 
 /// One of every primitive type (and combinator), through the JSON reader.
-const ALL: &str = r#"[
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5},
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5, "squared": true},
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5, "unsigned": true},
- {"type": "plane", "point": [0.1, 0, 0], "normal": [1, 2, -0.5]},
- {"type": "half_space", "point": [0.1, 0, 0], "normal": [1, 2, -0.5]},
- {"type": "ellipsoid", "center": [0, 0.1, 0], "radii": [0.6, 0.3, 0.4]},
- {"type": "box", "center": [0.05, 0, -0.1], "half_size": [0.4, 0.3, 0.2]},
- {"type": "cylinder", "axis_point": [0, 0.1, 0], "axis_vector": [0.2, 0.3, 1], "radius": 0.3},
- {"type": "cylinder", "axis_point": [0, 0.1, 0], "axis_vector": [0.2, 0.3, 1], "radius": 0.3, "squared": true},
- {"type": "capped_cylinder", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1], "radius": 0.25},
- {"type": "cone", "apex": [0, 0, -0.5], "axis_vector": [0, 0.3, 1], "apex_angle": 0.4},
- {"type": "torus", "center": [0, 0, 0.1], "axis_vector": [0.1, 0, 1], "major_radius": 0.5, "minor_radius": 0.15},
+const ALL: &str = include_str!("common/all_primitives.json");
+
+/// Extremes beyond the shared list: a torus whose tube is thinner than its
+/// formula's rounding near the centre circle, and a nearly singular transform.
+const EXTREME: &str = r#"[
  {"type": "torus", "center": [0, 0, 0.1], "axis_vector": [0.1, 0, 1], "major_radius": 0.5, "minor_radius": 0.0005},
- {"type": "capsule", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1], "radius": 0.2},
- {"type": "line", "point": [0, 0.2, 0], "unit_vector": [1, 1, 0]},
- {"type": "segment", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1]},
- {"type": "circle", "center": [0, 0, 0.1], "axis_vector": [0, 1, 1], "radius": 0.4},
- {"type": "points", "points": [[0, 0, 0], [0.5, 0.1, -0.2], [-0.4, 0.3, 0.3]], "weights": [0.1, 0, 0.2]},
- {"type": "constant", "value": 0.25},
- {"type": "wyvill", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": 0.7, "height": 0.35},
- {"type": "wyvill", "center": [0.1, 0, 0], "radius": 0.6, "height": -0.5},
- {"type": "patch", "origin": [-0.8, -0.8], "size": [1.6, 1.6],
-  "heights": [[0.1, -0.05, 0.2, 0.05], [-0.15, 0.05, -0.1, 0.15], [0.2, -0.1, 0.05, -0.2], [0, 0.15, -0.15, 0.1]]},
- {"type": "transform", "translate": [0.1, 0.2, -0.1], "rotate": {"axis": [1, 1, 0], "degrees": 30}, "scale": [1, 0.5, 2],
-  "of": {"type": "box", "center": [0, 0, 0], "half_size": [0.3, 0.3, 0.2]}},
- {"type": "transform", "matrix": [[1, 0.2, 0], [0, 1, 0], [0.1, 0, 0.8]], "of": {"type": "torus", "center": [0, 0, 0], "axis_vector": [0, 0, 1], "major_radius": 0.4, "minor_radius": 0.1}},
- {"type": "transform", "matrix": [[1000, 999, 0], [0, 0.001, 0], [0, 0, 1]], "of": {"type": "sphere", "center": [0, 0, 0], "radius": 0.3}},
- {"type": "sum", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}]},
- {"type": "scale", "factor": -2.5, "of": {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}},
- {"type": "neg", "of": {"type": "abs", "of": {"type": "plane", "point": [0, 0, 0.05], "normal": [0, 0, 1]}}},
- {"type": "min", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "sphere", "center": [0.4, 0, 0], "radius": 0.3}]},
- {"type": "max", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "sphere", "center": [0.4, 0, 0], "radius": 0.3}]},
- {"type": "mesh", "vertices": [[-0.4, -0.4, -0.4], [0.4, -0.4, -0.4], [0, 0.4, -0.4], [0, 0, 0.4]],
-  "triangles": [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]}
+ {"type": "transform", "matrix": [[1000, 999, 0], [0, 0.001, 0], [0, 0, 1]], "of": {"type": "sphere", "center": [0, 0, 0], "radius": 0.3}}
 ]"#;
 
 /// The same primitive moved by `d` (its own points, not through a
@@ -91,7 +63,7 @@ fn shifted(p: &Value, d: [f64; 3]) -> Value {
             o.insert(key.into(), Value::Array(pts));
         }
         _ => {
-            for key in ["center", "point", "axis_point", "a", "b", "apex"] {
+            for key in ["center", "point", "axis_point", "a", "b", "apex", "min", "max"] {
                 if let Some(v) = o.get(key).cloned() {
                     o.insert(key.into(), add(&v));
                 }
@@ -103,7 +75,9 @@ fn shifted(p: &Value, d: [f64; 3]) -> Value {
 
 /// Every primitive of [`ALL`], near the origin and moved far away.
 fn primitives() -> Vec<(String, Primitive)> {
-    let all: Value = serde_json::from_str(ALL).unwrap();
+    let mut all: Value = serde_json::from_str(ALL).unwrap();
+    let extreme: Value = serde_json::from_str(EXTREME).unwrap();
+    all.as_array_mut().unwrap().extend(extreme.as_array().unwrap().iter().cloned());
     let mut out = vec![];
     for d in [[0.0; 3], [37.25, -11.5, 3.125], [1000.1, 999.7, -1000.3]] {
         let list: Vec<Value> = all.as_array().unwrap().iter().map(|p| shifted(p, d)).collect();

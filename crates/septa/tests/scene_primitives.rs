@@ -7,41 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use septa::scene::{load_function_list, Primitive, Scene, TriMesh};
 
 /// One of every primitive type, through the JSON reader.
-const ALL: &str = r#"[
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5},
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5, "squared": true},
- {"type": "sphere", "center": [0.1, -0.2, 0.05], "radius": 0.5, "unsigned": true},
- {"type": "plane", "point": [0.1, 0, 0], "normal": [1, 2, -0.5]},
- {"type": "half_space", "point": [0.1, 0, 0], "normal": [1, 2, -0.5]},
- {"type": "ellipsoid", "center": [0, 0.1, 0], "radii": [0.6, 0.3, 0.4]},
- {"type": "box", "center": [0.05, 0, -0.1], "half_size": [0.4, 0.3, 0.2]},
- {"type": "box", "min": [-0.4, -0.3, -0.2], "max": [0.4, 0.3, 0.2]},
- {"type": "cylinder", "axis_point": [0, 0.1, 0], "axis_vector": [0.2, 0.3, 1], "radius": 0.3},
- {"type": "cylinder", "axis_point": [0, 0.1, 0], "axis_vector": [0.2, 0.3, 1], "radius": 0.3, "squared": true},
- {"type": "capped_cylinder", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1], "radius": 0.25},
- {"type": "cone", "apex": [0, 0, -0.5], "axis_vector": [0, 0.3, 1], "apex_angle": 0.4},
- {"type": "torus", "center": [0, 0, 0.1], "axis_vector": [0.1, 0, 1], "major_radius": 0.5, "minor_radius": 0.15},
- {"type": "capsule", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1], "radius": 0.2},
- {"type": "line", "point": [0, 0.2, 0], "unit_vector": [1, 1, 0]},
- {"type": "segment", "a": [-0.3, 0, 0.1], "b": [0.4, 0.2, -0.1]},
- {"type": "circle", "center": [0, 0, 0.1], "axis_vector": [0, 1, 1], "radius": 0.4},
- {"type": "points", "points": [[0, 0, 0], [0.5, 0.1, -0.2], [-0.4, 0.3, 0.3]], "weights": [0.1, 0, 0.2]},
- {"type": "constant", "value": 0.25},
- {"type": "wyvill", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": 0.7, "height": 0.35},
- {"type": "wyvill", "center": [0.1, 0, 0], "radius": 0.6, "height": -0.5},
- {"type": "patch", "origin": [-0.8, -0.8], "size": [1.6, 1.6],
-  "heights": [[0.1, -0.05, 0.2, 0.05], [-0.15, 0.05, -0.1, 0.15], [0.2, -0.1, 0.05, -0.2], [0, 0.15, -0.15, 0.1]]},
- {"type": "transform", "translate": [0.1, 0.2, -0.1], "rotate": {"axis": [1, 1, 0], "degrees": 30}, "scale": [1, 0.5, 2],
-  "of": {"type": "box", "center": [0, 0, 0], "half_size": [0.3, 0.3, 0.2]}},
- {"type": "transform", "matrix": [[1, 0.2, 0], [0, 1, 0], [0.1, 0, 0.8]], "of": {"type": "torus", "center": [0, 0, 0], "axis_vector": [0, 0, 1], "major_radius": 0.4, "minor_radius": 0.1}},
- {"type": "sum", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}]},
- {"type": "scale", "factor": -2.5, "of": {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}},
- {"type": "neg", "of": {"type": "abs", "of": {"type": "plane", "point": [0, 0, 0.05], "normal": [0, 0, 1]}}},
- {"type": "min", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "sphere", "center": [0.4, 0, 0], "radius": 0.3}]},
- {"type": "max", "of": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "sphere", "center": [0.4, 0, 0], "radius": 0.3}]},
- {"type": "mesh", "vertices": [[-0.4, -0.4, -0.4], [0.4, -0.4, -0.4], [0, 0.4, -0.4], [0, 0, 0.4]],
-  "triangles": [[0, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]}
-]"#;
+const ALL: &str = include_str!("common/all_primitives.json");
 
 fn all() -> Vec<Primitive> {
     load_function_list(ALL, "all.json", None).unwrap()
