@@ -12,19 +12,7 @@ use septa::scene::{sample_grid, Primitive};
 use common::{cube_grid, spec};
 
 fn assert_same(a: &Network, b: &Network, what: &str) {
-    assert_eq!(a.counts(), b.counts(), "{what}: counts");
-    assert_eq!(a.keys, b.keys, "{what}: keys");
-    assert!(a.points.iter().zip(&b.points).all(|(p, q)| p.map(f64::to_bits) == q.map(f64::to_bits)), "{what}: points");
-    assert_eq!(a.face_start, b.face_start, "{what}: face_start");
-    assert_eq!(a.face_verts, b.face_verts, "{what}: face_verts");
-    assert_eq!(a.face_label, b.face_label, "{what}: face_label");
-    assert_eq!(a.face_cells, b.face_cells, "{what}: face_cells");
-    assert_eq!(a.face_patch, b.face_patch, "{what}: face_patch");
-    assert_eq!(a.patches, b.patches, "{what}: patches");
-    assert_eq!(a.chains, b.chains, "{what}: chains");
-    assert_eq!(a.corners, b.corners, "{what}: corners");
-    assert_eq!(a.shells, b.shells, "{what}: shells");
-    assert_eq!(a.cells, b.cells, "{what}: cells");
+    common::assert_same_network(a, b, what);
 }
 
 fn dense(f: &[Primitive], grid: &BoxGrid, o: &NetworkOptions) -> Network {

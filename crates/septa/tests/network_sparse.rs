@@ -6,7 +6,6 @@ mod common;
 use std::path::Path;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::io::network_out;
 use septa::network::sparse::{compute_sparse, SparseStats};
 use septa::network::{compute, Mode, Network, NetworkOptions};
 use septa::regions::{region_surfaces, RegionOptions};
@@ -14,35 +13,8 @@ use septa::scene::{sample_grid, Primitive, Scene};
 
 use common::{cube_grid, spec};
 
-/// network.json without its trailing "seconds" object.
-fn json_bytes(net: &Network, name: &str) -> Vec<u8> {
-    let dir = std::env::temp_dir().join(format!("septa-sparse-test-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("network.json");
-    network_out::write_json(net, &path, &[]).unwrap();
-    let bytes = std::fs::read(&path).unwrap();
-    std::fs::remove_dir_all(&dir).unwrap();
-    let cut = bytes.windows(11).rposition(|w| w == b"\"seconds\":{").expect("seconds written last");
-    bytes[..cut].to_vec()
-}
-
 fn assert_same(a: &Network, b: &Network, what: &str) {
-    assert_eq!(a.counts(), b.counts(), "{what}: counts");
-    assert_eq!(a.keys, b.keys, "{what}: keys");
-    assert!(a.points.iter().zip(&b.points).all(|(p, q)| p.map(f64::to_bits) == q.map(f64::to_bits)), "{what}: points");
-    assert_eq!(a.face_start, b.face_start, "{what}: face_start");
-    assert_eq!(a.face_verts, b.face_verts, "{what}: face_verts");
-    assert_eq!(a.face_label, b.face_label, "{what}: face_label");
-    assert_eq!(a.face_cells, b.face_cells, "{what}: face_cells");
-    assert_eq!(a.face_patch, b.face_patch, "{what}: face_patch");
-    assert_eq!(a.edges, b.edges, "{what}: edges");
-    assert_eq!(a.patches, b.patches, "{what}: patches");
-    assert_eq!(a.chains, b.chains, "{what}: chains");
-    assert_eq!(a.corners, b.corners, "{what}: corners");
-    assert_eq!(a.shells, b.shells, "{what}: shells");
-    assert_eq!(a.cells, b.cells, "{what}: cells");
-    assert_eq!(a.cells_method, b.cells_method, "{what}: cells method");
-    assert_eq!(json_bytes(a, &format!("{what}-a")), json_bytes(b, &format!("{what}-b")), "{what}: network.json");
+    common::assert_same_network(a, b, what);
 }
 
 /// Dense and sparse on the same functions and grid; returns the sparse stats.

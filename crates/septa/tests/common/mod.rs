@@ -42,3 +42,25 @@ pub fn spec(name: &str) -> Vec<septa::scene::Primitive> {
 pub fn cube_grid(n: usize) -> septa::grid::BoxGrid {
     septa::grid::BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], septa::grid::Split::Five).unwrap()
 }
+
+/// Asserts two networks are the same, array by array and as network.json
+/// bytes (apart from timings); `what` names the case in failures.
+pub fn assert_same_network(a: &septa::network::Network, b: &septa::network::Network, what: &str) {
+    assert_eq!(a.counts(), b.counts(), "{what}: counts");
+    assert_eq!(a.keys, b.keys, "{what}: keys");
+    assert!(a.points.iter().zip(&b.points).all(|(p, q)| p.map(f64::to_bits) == q.map(f64::to_bits)), "{what}: points");
+    assert_eq!(a.face_start, b.face_start, "{what}: face_start");
+    assert_eq!(a.face_verts, b.face_verts, "{what}: face_verts");
+    assert_eq!(a.face_label, b.face_label, "{what}: face_label");
+    assert_eq!(a.face_cells, b.face_cells, "{what}: face_cells");
+    assert_eq!(a.face_patch, b.face_patch, "{what}: face_patch");
+    assert_eq!(a.edges, b.edges, "{what}: edges");
+    assert_eq!(a.patches, b.patches, "{what}: patches");
+    assert_eq!(a.chains, b.chains, "{what}: chains");
+    assert_eq!(a.chain_patches, b.chain_patches, "{what}: chain_patches");
+    assert_eq!(a.corners, b.corners, "{what}: corners");
+    assert_eq!(a.shells, b.shells, "{what}: shells");
+    assert_eq!(a.cells, b.cells, "{what}: cells");
+    assert_eq!(a.cells_method, b.cells_method, "{what}: cells method");
+    assert!(network_json(a, &format!("{what}-a")) == network_json(b, &format!("{what}-b")), "{what}: network.json");
+}
