@@ -14,7 +14,7 @@ use septa::network::continuation::{
     compute_continuation, continuation_block, continuation_seeds, finish_continuation, ContinuationStats, Field, Seeds,
 };
 use septa::network::BlockResult;
-use septa::network::{Mode, Network, NetworkOptions};
+use septa::network::{Network, NetworkOptions};
 
 /// A Python callable as a [`Field`].
 struct PyField {
@@ -82,11 +82,7 @@ pub fn continuation<'py>(
     dense: bool,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mode = match mode {
-        "ia" => Mode::Ia,
-        "mi" => Mode::Mi,
-        m => return Err(InputError::new_err(format!("mode must be \"ia\" or \"mi\", not {m:?}"))),
-    };
+    let mode = crate::parse_mode(mode).map_err(InputError::new_err)?;
     let split = match split {
         5 => Split::Five,
         6 => Split::Six,
@@ -127,14 +123,7 @@ pub fn continuation<'py>(
                     .map(|(n, s)| (n, Some(s)))
                     .map_err(|e| e.to_string())
             };
-            match threads {
-                Some(t) => rayon::ThreadPoolBuilder::new()
-                    .num_threads(t.max(1))
-                    .build()
-                    .map_err(|e| e.to_string())?
-                    .install(run),
-                None => run(),
-            }
+            crate::on_threads(threads, run)
         })?;
     let (net, stats) = r.map_err(InputError::new_err)?;
     let d = crate::network::to_dict(py, &net)?;
@@ -157,11 +146,7 @@ pub fn continuation<'py>(
 type JobTuple = (String, [usize; 3], [[f64; 3]; 2], u8, usize);
 
 fn job_of(job: &JobTuple) -> Result<(BoxGrid, NetworkOptions), String> {
-    let mode = match job.0.as_str() {
-        "ia" => Mode::Ia,
-        "mi" => Mode::Mi,
-        m => return Err(format!("mode must be \"ia\" or \"mi\", not {m:?}")),
-    };
+    let mode = crate::parse_mode(&job.0)?;
     let split = match job.3 {
         5 => Split::Five,
         6 => Split::Six,

@@ -245,12 +245,7 @@ pub fn sparse_network<'py>(
                 compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(|e| e.to_string())
             }
         };
-        match threads {
-            Some(t) => {
-                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
-            }
-            None => run(),
-        }
+        crate::on_threads(threads, run)
     })?;
     let (net, stats) = r.map_err(InputError::new_err)?;
     network_dict(py, &net, stats.as_ref())

@@ -25,6 +25,28 @@ pyo3::create_exception!(
     "Bad input: the message names what is wrong and where (array, vertex, function, file, line)."
 );
 
+/// `"ia"` or `"mi"` as a [`septa::network::Mode`].
+pub(crate) fn parse_mode(m: &str) -> Result<septa::network::Mode, String> {
+    match m {
+        "ia" => Ok(septa::network::Mode::Ia),
+        "mi" => Ok(septa::network::Mode::Mi),
+        m => Err(format!("mode must be \"ia\" or \"mi\", not {m:?}")),
+    }
+}
+
+/// Runs `work` on a pool of `threads` threads, or on rayon's global pool.
+pub(crate) fn on_threads<T: Send>(
+    threads: Option<usize>,
+    work: impl FnOnce() -> Result<T, String> + Send,
+) -> Result<T, String> {
+    match threads {
+        Some(t) => {
+            rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(work)
+        }
+        None => work(),
+    }
+}
+
 /// The compiled core of the `septa` package.
 #[pymodule]
 fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {

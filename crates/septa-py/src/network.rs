@@ -39,11 +39,7 @@ pub fn network<'py>(
     raytrace: bool,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mode = match mode {
-        "ia" => Mode::Ia,
-        "mi" => Mode::Mi,
-        m => return Err(InputError::new_err(format!("mode must be \"ia\" or \"mi\", not {m:?}"))),
-    };
+    let mode = crate::parse_mode(mode).map_err(InputError::new_err)?;
     let k = values.shape()[1];
     let vs = vertices.as_slice().map_err(|_| InputError::new_err("vertices: array must be C-contiguous"))?;
     let ts = tets.as_slice().map_err(|_| InputError::new_err("tets: array must be C-contiguous"))?;
@@ -70,12 +66,7 @@ pub fn network<'py>(
             }
         };
         let run = || compute(&grid, fs, k, &options).map_err(|e| e.to_string());
-        match threads {
-            Some(t) => {
-                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
-            }
-            None => run(),
-        }
+        crate::on_threads(threads, run)
     })?;
     let net = result.map_err(InputError::new_err)?;
     to_dict(py, &net)

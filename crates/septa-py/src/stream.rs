@@ -37,12 +37,7 @@ pub fn stream_ply<'py>(
             let ply = sink.finish().map_err(|e| format!("{path}: {e}"))?;
             Ok((stats, ply))
         };
-        match threads {
-            Some(t) => {
-                rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(run)
-            }
-            None => run(),
-        }
+        crate::on_threads(threads, run)
     })?;
     let (stats, ply) = r.map_err(InputError::new_err)?;
     let d = PyDict::new(py);
