@@ -44,6 +44,20 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
     theirs = sorted((tuple(sorted(map(tuple, ref_pts[vs].tolist()))), int(a), int(b))
                     for vs, (a, b) in zip(ref["faces"], ref["face_label"]))
     assert mine == theirs
+    # The topology assembled while streaming: the in-memory counts, and per
+    # face the same patch and cells up to numbering (one-to-one maps).
+    assert streamed["counts"] == {k: full[k] for k in streamed["counts"]}
+    topo = json.loads((tmp_path / "s.topology.json").read_text())
+    assert topo["counts"] == streamed["counts"] and len(topo["cells"]) == full["cells"]
+    ref_of = {tuple(sorted(map(tuple, ref_pts[vs].tolist()))): f for f, vs in enumerate(ref["faces"])}
+    pairs = {"patch": set(), "cell": set()}
+    for vs, p, c0, c1 in zip(faces["vertex_indices"], faces["patch"], faces["cell0"], faces["cell1"]):
+        f = ref_of[tuple(sorted(map(tuple, pts[vs].tolist())))]
+        pairs["patch"].add((int(p), ref["face_patch"][f]))
+        pairs["cell"].update({(int(c0), ref["face_cells"][f][0]), (int(c1), ref["face_cells"][f][1])})
+    for name, ps in pairs.items():
+        assert len({a for a, _ in ps}) == len({b for _, b in ps}) == len(ps), name
+    assert len(pairs["patch"]) == full["patches"] and min(a for a, _ in pairs["patch"]) == 0
     # The in-memory run's network.ply (polygons as triangle fans) loads in trimesh.
     trimesh = pytest.importorskip("trimesh")
     t = trimesh.load(str(tmp_path / "full" / "network.ply"), process=False)

@@ -79,9 +79,11 @@ pub struct Args {
     #[arg(long)]
     sparse: bool,
     /// Stream the polygons to this binary PLY block by block, with memory
-    /// bounded by a window of blocks (analytic functions on a box grid; no
-    /// patches, chains, shells or cells: those need the in-memory merge).
-    /// Faces carry `label0`, `label1` and `block`; vertices are written once.
+    /// bounded by a window of blocks (analytic functions on a box grid), and
+    /// assemble the topology (patches, chains, corners, shells, cells) from
+    /// block summaries on the way: faces carry `label0`, `label1`, `block`,
+    /// `patch`, `cell0`, `cell1`; the topology goes to `OUT.topology.json`
+    /// beside the PLY. Vertices are written once.
     #[arg(long, conflicts_with_all = ["dense", "no_output"])]
     stream: Option<PathBuf>,
     /// With `--stream`: blocks computed at a time (0: four per thread).
@@ -91,6 +93,10 @@ pub struct Args {
     /// readers that need one polygon size, such as trimesh).
     #[arg(long, requires = "stream")]
     triangles: bool,
+    /// With `--stream`: polygons only, no topology (faces get patch and
+    /// cells -1; no `.topology.json`).
+    #[arg(long, requires = "stream")]
+    polygons_only: bool,
 }
 
 /// Whether the input is analytic functions on a box grid (sparse
@@ -198,7 +204,8 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     Ok(())
 }
 
-/// `septa ia|mi --stream OUT.ply`: polygons streamed to one PLY (bounded memory).
+/// `septa ia|mi --stream OUT.ply`: polygons streamed to one PLY and the
+/// topology assembled from block summaries (bounded memory).
 fn run_stream(
     args: &Args,
     out: &std::path::Path,
@@ -212,11 +219,22 @@ fn run_stream(
     let t_read = t0.elapsed().as_secs_f64();
     let mut sink =
         septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
-    let stats = pool.install(|| network::stream::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?;
+    let (stats, topology) = if args.polygons_only {
+        (pool.install(|| network::stream::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?, None)
+    } else {
+        let (s, t) = pool.install(|| network::stream::stream_topology(&g, &funcs, opts, args.window, &mut sink))?;
+        (s, Some(t))
+    };
     let t_blocks = t0.elapsed().as_secs_f64() - t_read;
-    let ply = sink.finish()?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
+    }
+    let ply = sink.finish_with(topology.as_ref())?;
+    let t_ply = t0.elapsed().as_secs_f64() - t_read - t_blocks;
+    let topo_path = topology_path(out);
+    if let Some(t) = &topology {
+        let secs = [("read", t_read), ("blocks", t_blocks), ("ply", t_ply)];
+        septa::io::summary_out::write_summary_json(t, &topo_path, &secs)?;
     }
     let sparse = network::sparse::SparseStats {
         blocks: stats.blocks,
@@ -227,7 +245,7 @@ fn run_stream(
         dense_fallback: false,
     };
     let total = t0.elapsed().as_secs_f64();
-    let summary = serde_json::json!({
+    let mut summary = serde_json::json!({
         "stream": out.display().to_string(),
         "faces": ply.polygons,
         "ply_faces": ply.faces,
@@ -235,10 +253,18 @@ fn run_stream(
         "active_tets": stats.active_tets,
         "tets": g.num_tets(),
         "window": stats.window,
-        "peak_shared_keys": ply.peak_shared_keys,
+        "peak_shared_keys": stats.peak_shared_keys,
         "blocks": sparse_json(&sparse),
-        "seconds": {"read": t_read, "blocks": t_blocks, "finish": total - t_read - t_blocks, "total": total},
+        "seconds": {"read": t_read, "blocks": t_blocks, "ply": t_ply, "total": total},
     });
+    if let Some(t) = &topology {
+        let counts: serde_json::Map<String, serde_json::Value> =
+            t.counts().into_iter().map(|(k, v)| (k.to_string(), v.into())).collect();
+        summary["counts"] = counts.into();
+        summary["topology"] = topo_path.display().to_string().into();
+        summary["peak_open"] = stats.peak_open.into();
+        summary["reruns"] = stats.reruns.into();
+    }
     if args.json {
         println!("{summary}");
     } else {
@@ -249,10 +275,19 @@ fn run_stream(
             ply.faces,
             ply.vertices
         );
+        if let Some(t) = &topology {
+            let counts: Vec<String> = t.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
+            println!("{}: {}", topo_path.display(), counts.join(", "));
+        }
         println!("blocks: {}", sparse_json(&sparse));
         println!("{total:.3} s");
     }
     Ok(())
+}
+
+/// `OUT.topology.json` beside the streamed `OUT.ply`.
+fn topology_path(out: &std::path::Path) -> std::path::PathBuf {
+    out.with_extension("topology.json")
 }
 
 fn split(args: &Args) -> Result<Split, String> {

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 
 use septa::io::ply_stream::PlyStreamSink;
 use septa::network::sparse::compute_sparse;
-use septa::network::stream::{stream_sparse, StreamBlock, StreamError, StreamSink};
+use septa::network::stream::{stream_sparse, stream_topology, StreamBlock, StreamError, StreamSink};
 use septa::network::{Mode, Network, NetworkError, NetworkOptions, VKey};
 use septa::scene::load_function_list;
 
@@ -92,10 +92,12 @@ fn streamed_polygons_equal_the_in_memory_network() {
     }
 }
 
-/// A parsed streamed PLY: points, faces (vertex ids, label, block).
+/// A parsed streamed PLY: points, faces (vertex ids, label, block) and
+/// per face its patch and cells.
 struct Ply {
     points: Vec<[f64; 3]>,
     faces: Vec<(Vec<u32>, [u16; 2], u32)>,
+    topo: Vec<[i32; 3]>,
 }
 
 fn read_ply(path: &Path) -> Ply {
@@ -109,7 +111,8 @@ fn read_ply(path: &Path) -> Ply {
     let (nv, nf) = (count("vertex"), count("face"));
     assert!(head.starts_with("ply\nformat binary_little_endian 1.0\n"), "{head}");
     assert!(head.contains(
-        "property list uchar int vertex_indices\nproperty int label0\nproperty int label1\nproperty int block\n"
+        "property list uchar int vertex_indices\nproperty int label0\nproperty int label1\nproperty int block\n\
+         property int patch\nproperty int cell0\nproperty int cell1\nend_header"
     ));
     let mut at = end;
     let mut take = |n: usize| {
@@ -120,16 +123,19 @@ fn read_ply(path: &Path) -> Ply {
     let f64_ = |s: &[u8]| f64::from_le_bytes(s.try_into().unwrap());
     let i32_ = |s: &[u8]| i32::from_le_bytes(s.try_into().unwrap());
     let points = (0..nv).map(|_| [0; 3].map(|_| f64_(take(8)))).collect();
+    let mut topo = Vec::new();
     let faces = (0..nf)
         .map(|_| {
             let len = take(1)[0] as usize;
             let vs: Vec<u32> = (0..len).map(|_| i32_(take(4)) as u32).collect();
             let l = [i32_(take(4)) as u16, i32_(take(4)) as u16];
-            (vs, l, i32_(take(4)) as u32)
+            let block = i32_(take(4)) as u32;
+            topo.push([0; 3].map(|_| i32_(take(4))));
+            (vs, l, block)
         })
         .collect();
     assert_eq!(at, bytes.len(), "no bytes after the faces");
-    Ply { points, faces }
+    Ply { points, faces, topo }
 }
 
 fn tmp(name: &str) -> PathBuf {
@@ -154,8 +160,9 @@ fn streamed_ply_holds_the_network_with_each_vertex_once() {
         assert_eq!(ps.faces as usize, net.num_faces());
         // Boundary vertices deduplicated: exactly the merged network's vertices.
         assert_eq!(ps.vertices as usize, net.points.len(), "{name}");
-        assert!(ps.peak_shared_keys > 0 && ps.peak_shared_keys < net.points.len(), "{ps:?}");
+        assert!(s.peak_shared_keys > 0 && s.peak_shared_keys < net.points.len(), "{s:?}");
         let ply = read_ply(&path);
+        assert!(ply.topo.iter().all(|t| *t == [-1; 3]), "no topology: patch and cells -1");
         assert_eq!((ply.points.len(), ply.faces.len()), (net.points.len(), net.num_faces()));
         // Same faces as point lists (a key's point is unique), labels, blocks in order.
         let bits = |p: &[f64; 3]| p.map(f64::to_bits);
@@ -222,4 +229,44 @@ fn a_failed_stream_leaves_no_file() {
     let dir = path.parent().unwrap();
     let left: Vec<_> = std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
     assert!(left.iter().all(|n| !n.to_string_lossy().contains("plane.ply")), "{left:?}");
+}
+
+#[test]
+fn streamed_ply_carries_each_faces_patch_and_cells() {
+    for (name, mode) in [("ia18", Mode::Ia), ("mi18", Mode::Mi)] {
+        let f = spec(name);
+        let grid = cube_grid(24);
+        let mut o = NetworkOptions::new(mode);
+        o.block = 8;
+        let (net, _) = compute_sparse(&grid, &f, &o).unwrap();
+        let path = tmp(&format!("{name}-topo.ply"));
+        let mut sink = PlyStreamSink::create(&path, &grid, mode, f.len()).unwrap();
+        let (_, sum) = stream_topology(&grid, &f, &o, 2, &mut sink).unwrap();
+        sink.finish_with(Some(&sum)).unwrap();
+        let ply = read_ply(&path);
+        // Faces by their point sets (a key's point is unique) -> in-memory face.
+        let bits = |p: &[f64; 3]| p.map(f64::to_bits);
+        let set = |pts: Vec<[u64; 3]>| {
+            let mut q = pts;
+            q.sort_unstable();
+            q
+        };
+        let face_of: std::collections::HashMap<Vec<[u64; 3]>, usize> = (0..net.num_faces())
+            .map(|g| (set(net.face(g).iter().map(|&v| bits(&net.points[v as usize])).collect()), g))
+            .collect();
+        let (mut patch, mut cell) = (BTreeMap::new(), BTreeMap::new());
+        for ((vs, _, _), t) in ply.faces.iter().zip(&ply.topo) {
+            let g = face_of[&set(vs.iter().map(|&v| bits(&ply.points[v as usize])).collect())];
+            assert!(t.iter().all(|&x| x >= 0), "{name}: every face has a patch and cells");
+            assert_eq!(*patch.entry(t[0]).or_insert(net.face_patch[g]), net.face_patch[g], "{name}: patch");
+            for s in 0..2 {
+                assert_eq!(*cell.entry(t[1 + s]).or_insert(net.face_cells[g][s]), net.face_cells[g][s], "{name}: cell");
+            }
+        }
+        // One-to-one: as many patches and cells as the in-memory network has.
+        let distinct = |m: &BTreeMap<i32, u32>| m.values().collect::<std::collections::BTreeSet<_>>().len();
+        assert_eq!((patch.len(), distinct(&patch)), (net.patches.len(), net.patches.len()), "{name}");
+        assert_eq!((cell.len(), distinct(&cell)), (net.cells.len(), net.cells.len()), "{name}");
+        let _ = std::fs::remove_file(&path);
+    }
 }

@@ -14,5 +14,6 @@ pub mod npz;
 pub mod planes;
 pub mod ply_stream;
 pub mod regions_out;
+pub mod summary_out;
 
 pub use atomic::{write_atomic, write_atomic_with};

@@ -11,7 +11,10 @@ use super::atomic::write_atomic_with;
 use crate::complex::NONE;
 use crate::network::{Mode, Network};
 
-fn list<W: Write, T: std::fmt::Display>(w: &mut W, xs: impl IntoIterator<Item = T>) -> std::io::Result<()> {
+pub(crate) fn list<W: Write + ?Sized, T: std::fmt::Display>(
+    w: &mut W,
+    xs: impl IntoIterator<Item = T>,
+) -> std::io::Result<()> {
     w.write_all(b"[")?;
     for (i, x) in xs.into_iter().enumerate() {
         if i > 0 {
@@ -32,10 +35,14 @@ fn id(x: u32) -> i64 {
 
 /// The cell label as JSON: IA a list of booleans (function positive), MI `[material]`.
 fn cell_label(net: &Network, c: usize) -> String {
-    let l = &net.cells[c].label;
-    match net.mode {
+    label_json(net.mode, net.functions, &net.cells[c].label)
+}
+
+/// A cell label as JSON: IA one boolean per function (`f > 0`), MI `[material]`.
+pub(crate) fn label_json(mode: Mode, functions: usize, l: &[u64]) -> String {
+    match mode {
         Mode::Ia => {
-            let bits: Vec<&str> = (0..net.functions)
+            let bits: Vec<&str> = (0..functions)
                 .map(|f| if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) { "true" } else { "false" })
                 .collect();
             format!("[{}]", bits.join(","))

@@ -11,17 +11,17 @@
 //! and renames the file over its destination (a reader never sees half a
 //! file; on error or drop both temporary files are removed).
 //!
-//! Vertices are written once: a block's inner vertices are its own, and a
-//! vertex on a block boundary (shared by key, Du et al. Sec. 5.1) gets the
-//! id it got in the first block that wrote it, through a map holding only
-//! boundary keys. Blocks come in index order (x slabs outermost), so a key
-//! whose grid element lies left of the current slab can never come again
-//! and is dropped: the map holds about two slabs' boundary vertices, which
-//! grow like the surface's section, not like the grid.
+//! Vertices are written once, with the stream's ids
+//! ([`StreamBlock::vertex_ids`]: a vertex on a block boundary keeps the id
+//! of the first block that used it), so a vertex is written when its id is
+//! the next one.
 //!
 //! Per face: `vertex_indices` (list uchar int), `label0`, `label1` (int:
-//! IA the function, twice; MI the two materials) and `block` (int, the
-//! block index), in the layout of `network.ply` (`network_out.rs`). Readers
+//! IA the function, twice; MI the two materials), `block` (int, the block
+//! index), `patch`, `cell0`, `cell1` (int: the patch and the cells on the
+//! positive and negative side, from the topology given to
+//! [`PlyStreamSink::finish_with`]; -1 without one). The faces' temporary
+//! file holds each polygon's patch piece, mapped while it is appended. Readers
 //! that handle this: plyfile (tested), and any row-by-row PLY reader.
 //! trimesh's binary reader needs one list length for all faces: with
 //! [`PlyStreamSink::triangulated`] every polygon is written as a fan of
@@ -32,11 +32,11 @@ use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
-use rustc_hash::FxHashMap;
+use std::io::{BufReader, Read};
 
 use crate::grid::BoxGrid;
 use crate::network::stream::{StreamBlock, StreamSink};
-use crate::network::{Mode, VKey};
+use crate::network::{Mode, NetworkSummary};
 
 /// Writes streamed blocks to one PLY (module doc).
 pub struct PlyStreamSink {
@@ -52,15 +52,6 @@ pub struct PlyStreamSink {
     /// Write each polygon as a fan of triangles (for readers that need one
     /// polygon size, such as trimesh).
     triangles: bool,
-    /// Boundary vertex key -> vertex id, for keys that may still come.
-    shared: FxHashMap<VKey, u32>,
-    /// Cube x of the current slab; keys left of it are evicted.
-    slab: usize,
-    /// Grid vertices per x plane (to read x off a grid vertex id).
-    plane: u64,
-    remap: Vec<u32>,
-    /// Most boundary keys held at once (for the memory claim).
-    peak_shared: usize,
 }
 
 /// What a finished PLY holds.
@@ -72,27 +63,20 @@ pub struct PlyStreamStats {
     pub faces: u64,
     /// Network polygons written (as themselves or as triangle fans).
     pub polygons: u64,
-    /// Most boundary keys held at once by the vertex map.
-    pub peak_shared_keys: usize,
 }
-
-const NONE: u32 = u32::MAX;
 
 fn header(comment: &str, vertices: u64, faces: u64) -> String {
     format!(
         "ply\nformat binary_little_endian 1.0\ncomment {comment}\n\
          element vertex {vertices:020}\nproperty double x\nproperty double y\nproperty double z\n\
          element face {faces:020}\nproperty list uchar int vertex_indices\n\
-         property int label0\nproperty int label1\nproperty int block\nend_header\n"
+         property int label0\nproperty int label1\nproperty int block\n\
+         property int patch\nproperty int cell0\nproperty int cell1\nend_header\n"
     )
 }
 
 /// Largest grid x index among a key's grid vertices (`plane`: grid
 /// vertices per x plane).
-fn max_x(plane: u64, k: &VKey) -> usize {
-    k.grid.iter().filter(|&&v| v != u32::MAX).map(|&v| (v as u64 / plane) as usize).max().unwrap_or(0)
-}
-
 fn with_path(path: &Path, e: std::io::Error) -> std::io::Error {
     std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
 }
@@ -125,11 +109,6 @@ impl PlyStreamSink {
             faces_written: 0,
             polygons: 0,
             triangles: false,
-            shared: FxHashMap::default(),
-            slab: 0,
-            plane: (grid.res[1] as u64 + 1) * (grid.res[2] as u64 + 1),
-            remap: Vec::new(),
-            peak_shared: 0,
         };
         let mut main = BufWriter::with_capacity(1 << 20, File::create(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?);
         main.write_all(header(&sink.comment, 0, 0).as_bytes())?;
@@ -140,18 +119,9 @@ impl PlyStreamSink {
     }
 
     fn write_block(&mut self, b: &StreamBlock) -> std::io::Result<()> {
-        if b.lo[0] > self.slab {
-            // No later block reaches left of x = lo: those keys are done.
-            self.slab = b.lo[0];
-            let slab = self.slab;
-            let plane = self.plane;
-            self.shared.retain(|k, _| max_x(plane, k) >= slab);
-        }
         let (Some(main), Some(faces)) = (self.main.as_mut(), self.faces.as_mut()) else {
             return Err(std::io::Error::other("the PLY stream is already finished"));
         };
-        self.remap.clear();
-        self.remap.resize(b.keys.len(), NONE);
         let mut ids: Vec<i32> = Vec::with_capacity(16);
         for p in 0..b.num_polygons() {
             let vs = b.polygon(p);
@@ -164,25 +134,20 @@ impl PlyStreamSink {
             }
             ids.clear();
             for &v in vs {
-                let v = v as usize;
-                if self.remap[v] == NONE {
-                    let next = self.vertices;
-                    if next >= i32::MAX as u64 {
-                        return Err(std::io::Error::other("more than 2^31 - 1 vertices: PLY int indices overflow"));
-                    }
-                    let id =
-                        if b.shared[v] { *self.shared.entry(b.keys[v]).or_insert(next as u32) } else { next as u32 };
-                    if id as u64 == next {
-                        for x in b.points[v] {
-                            main.write_all(&x.to_le_bytes())?;
-                        }
-                        self.vertices += 1;
-                    }
-                    self.remap[v] = id;
+                let id = b.vertex_ids[v as usize] as u64;
+                if id >= i32::MAX as u64 {
+                    return Err(std::io::Error::other("more than 2^31 - 1 vertices: PLY int indices overflow"));
                 }
-                ids.push(self.remap[v] as i32);
+                if id == self.vertices {
+                    for x in b.points[v as usize] {
+                        main.write_all(&x.to_le_bytes())?;
+                    }
+                    self.vertices += 1;
+                }
+                ids.push(id as i32);
             }
             let [l0, l1] = b.poly_label[p];
+            let piece = b.poly_piece.get(p).copied().unwrap_or(u32::MAX);
             let mut face = |vs: &[i32]| -> std::io::Result<()> {
                 faces.write_all(&[vs.len() as u8])?;
                 for v in vs {
@@ -190,7 +155,8 @@ impl PlyStreamSink {
                 }
                 faces.write_all(&(l0 as i32).to_le_bytes())?;
                 faces.write_all(&(l1 as i32).to_le_bytes())?;
-                faces.write_all(&(b.index as i32).to_le_bytes())
+                faces.write_all(&(b.index as i32).to_le_bytes())?;
+                faces.write_all(&piece.to_le_bytes())
             };
             if self.triangles {
                 // A network polygon is convex (a plane section of a convex
@@ -205,7 +171,6 @@ impl PlyStreamSink {
             }
             self.polygons += 1;
         }
-        self.peak_shared = self.peak_shared.max(self.shared.len());
         Ok(())
     }
 
@@ -218,36 +183,36 @@ impl PlyStreamSink {
 
     /// Appends the faces, writes the real counts into the header and
     /// renames the file over its destination.
-    pub fn finish(mut self) -> std::io::Result<PlyStreamStats> {
-        let result = self.finish_inner();
+    pub fn finish(self) -> std::io::Result<PlyStreamStats> {
+        self.finish_with(None)
+    }
+
+    /// Finishes the file with each face's patch and cells from `topology`
+    /// (the summary of the same stream, [`stream_topology`](crate::network::stream::stream_topology)).
+    pub fn finish_with(mut self, topology: Option<&NetworkSummary>) -> std::io::Result<PlyStreamStats> {
+        let result = self.finish_inner(topology);
         if result.is_err() {
             self.cleanup();
         }
         result
     }
 
-    fn finish_inner(&mut self) -> std::io::Result<PlyStreamStats> {
+    fn finish_inner(&mut self, topology: Option<&NetworkSummary>) -> std::io::Result<PlyStreamStats> {
         let (Some(main), Some(faces)) = (self.main.take(), self.faces.take()) else {
             return Err(std::io::Error::other("the PLY stream is already finished"));
         };
         let mut main = main.into_inner().map_err(|e| e.into_error())?;
         let faces = faces.into_inner().map_err(|e| e.into_error())?;
         drop(faces);
-        let mut faces = File::open(&self.tmp_faces).map_err(|e| with_path(&self.tmp_faces, e))?;
-        std::io::copy(&mut faces, &mut main).map_err(|e| with_path(&self.tmp, e))?;
-        drop(faces);
+        let faces = File::open(&self.tmp_faces).map_err(|e| with_path(&self.tmp_faces, e))?;
+        append_faces(faces, &mut main, self.faces_written, topology).map_err(|e| with_path(&self.tmp, e))?;
         main.seek(SeekFrom::Start(0))?;
         main.write_all(header(&self.comment, self.vertices, self.faces_written).as_bytes())?;
         main.sync_all().map_err(|e| with_path(&self.tmp, e))?;
         drop(main);
         std::fs::rename(&self.tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         let _ = std::fs::remove_file(&self.tmp_faces);
-        Ok(PlyStreamStats {
-            vertices: self.vertices,
-            faces: self.faces_written,
-            polygons: self.polygons,
-            peak_shared_keys: self.peak_shared,
-        })
+        Ok(PlyStreamStats { vertices: self.vertices, faces: self.faces_written, polygons: self.polygons })
     }
 
     fn cleanup(&mut self) {
@@ -256,6 +221,38 @@ impl PlyStreamSink {
         let _ = std::fs::remove_file(&self.tmp);
         let _ = std::fs::remove_file(&self.tmp_faces);
     }
+}
+
+/// Copies `n` spooled faces into `out`, mapping each one's patch piece to
+/// its patch and cells (`-1` without a topology).
+fn append_faces(spool: File, out: &mut File, n: u64, topology: Option<&NetworkSummary>) -> std::io::Result<()> {
+    let mut r = BufReader::with_capacity(1 << 20, spool);
+    let mut w = BufWriter::with_capacity(1 << 20, out);
+    let mut buf = [0u8; 1 + 255 * 4 + 12];
+    for _ in 0..n {
+        r.read_exact(&mut buf[..1])?;
+        let len = 1 + 4 * buf[0] as usize + 12;
+        r.read_exact(&mut buf[1..len])?;
+        w.write_all(&buf[..len])?;
+        let mut piece = [0u8; 4];
+        r.read_exact(&mut piece)?;
+        let piece = u32::from_le_bytes(piece) as usize;
+        let cols = match topology {
+            Some(t) if piece < t.piece_patch.len() => {
+                let [c0, c1] = t.piece_cells[piece];
+                [t.piece_patch[piece] as i32, c0 as i32, c1 as i32]
+            }
+            _ => [-1; 3],
+        };
+        for c in cols {
+            w.write_all(&c.to_le_bytes())?;
+        }
+    }
+    let mut rest = [0u8; 1];
+    if r.read(&mut rest)? != 0 {
+        return Err(std::io::Error::other("the faces' temporary file is longer than its faces"));
+    }
+    w.flush()
 }
 
 impl StreamSink for PlyStreamSink {

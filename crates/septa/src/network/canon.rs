@@ -172,7 +172,7 @@ fn empty_cell() -> super::CellInfo {
 }
 
 /// The lexicographically smallest rotation of `c` or of its reverse.
-fn min_rotation(c: &[u32]) -> Vec<u32> {
+pub(crate) fn min_rotation(c: &[u32]) -> Vec<u32> {
     let n = c.len();
     let rev: Vec<u32> = c.iter().rev().copied().collect();
     let mut best = c.to_vec();

@@ -9,6 +9,7 @@
 //! shells by wedges around edges, so block summaries merge in any order.
 
 mod active;
+mod assembly;
 pub mod bench;
 mod block;
 mod boxfast;
@@ -16,11 +17,15 @@ mod canon;
 pub mod continuation;
 mod keys;
 mod merge;
+mod numbering;
 mod program;
 mod raytrace;
+mod rerun;
 mod simple;
 pub mod sparse;
 pub mod stream;
+mod summary;
+pub use assembly::NetworkSummary;
 pub use sparse::{compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, JobKey, SparsePlan, SparseStats};
 mod topology;
 pub mod uf;
@@ -375,7 +380,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     let t2 = Instant::now();
     let mut topo = topology::topology(&mut m, (options.raytrace && !options.volumes).then_some(&ctx));
     canon::canonicalize_topology(&mut topo);
-    label_free_cells(&mut topo, options.mode, &values[..k]);
+    label_free_cells(&mut topo.cells, options.mode, &values[..k]);
     let t3 = Instant::now();
     if !ctx.grouping && topo.cells_method != "raytrace" {
         // Cannot happen when the preconditions hold; never answer without cells.
@@ -393,9 +398,9 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
 
 /// A cell bounded by no face (no network at all) takes the label of the
 /// values `row` of one grid vertex (IA sign bits; MI argmax).
-pub(crate) fn label_free_cells(topo: &mut topology::Topology, mode: Mode, row: &[f64]) {
+pub(crate) fn label_free_cells(cells: &mut [CellInfo], mode: Mode, row: &[f64]) {
     let k = row.len();
-    for cell in topo.cells.iter_mut().filter(|c| c.label.is_empty()) {
+    for cell in cells.iter_mut().filter(|c| c.label.is_empty()) {
         cell.label = match mode {
             Mode::Ia => {
                 let mut l: SmallVec<[u64; 2]> = SmallVec::from_elem(0, k.div_ceil(64));

@@ -24,17 +24,104 @@ use super::VKey;
 use crate::complex::{Complex, Mode, NONE};
 use crate::grid::{BoxGrid, Grid};
 
-/// The network as topology sees it.
+/// What ray shooting asks of the network: which component a vertex is in,
+/// and which shell a face side belongs to. Both questions name the tet
+/// being looked at, so an index may answer from that tet's block alone
+/// (the in-memory network, or a block re-run on demand: `rerun.rs`).
+pub(crate) trait RayIndex {
+    /// The connected component of the network vertex with key `key` (a
+    /// vertex of the complex of `tet`), or `None` if it is no network vertex.
+    fn component(&mut self, tet: &[u32; 4], key: VKey) -> Option<u32>;
+
+    /// The shell of side `side` (0 positive, 1 negative) of the network
+    /// face of `tet` whose vertices have the keys `keys`.
+    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32>;
+}
+
+/// The in-memory network as ray shooting sees it.
 pub(crate) struct RayInput<'a> {
     pub keys: &'a [VKey],
     pub face_start: &'a [u32],
     pub face_verts: &'a [u32],
     pub face_patch: &'a [u32],
     pub shell_of_hp: &'a [u32],
-    pub num_shells: usize,
     /// Connected component of each vertex.
     pub vertex_comp: &'a [u32],
     pub num_comps: usize,
+}
+
+impl RayInput<'_> {
+    /// Per component, the smallest grid edge `(v, u)` carrying one of its
+    /// edge-points (where its ray starts), or `None` if a component touches
+    /// no grid edge (cannot happen on a proper network).
+    pub(crate) fn starts(&self) -> Option<Vec<(u32, u32)>> {
+        let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); self.num_comps];
+        for (v, k) in self.keys.iter().enumerate() {
+            if k.grid[2] == u32::MAX {
+                let c = self.vertex_comp[v] as usize;
+                best[c] = best[c].min((k.grid[0], k.grid[1]));
+            }
+        }
+        best.iter().all(|b| b.0 != u32::MAX).then_some(best)
+    }
+}
+
+/// [`RayIndex`] over the merged network: a vertex-to-face index built once.
+pub(crate) struct MergedIndex<'a> {
+    inp: &'a RayInput<'a>,
+    vmap: KeyIndex<'a>,
+    /// Faces at vertex `v`: `vf[start[v]..start[v + 1]]`.
+    start: Vec<u32>,
+    vf: Vec<u32>,
+}
+
+impl<'a> MergedIndex<'a> {
+    pub(crate) fn new(inp: &'a RayInput<'a>) -> MergedIndex<'a> {
+        let nv = inp.keys.len();
+        let mut start = vec![0u32; nv + 1];
+        for &v in inp.face_verts {
+            start[v as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut vf = vec![0u32; inp.face_verts.len()];
+        for f in 0..inp.face_patch.len() {
+            for j in inp.face_start[f]..inp.face_start[f + 1] {
+                let v = inp.face_verts[j as usize] as usize;
+                vf[fill[v] as usize] = f as u32;
+                fill[v] += 1;
+            }
+        }
+        MergedIndex { inp, vmap: KeyIndex::new(inp.keys), start, vf }
+    }
+}
+
+impl RayIndex for MergedIndex<'_> {
+    fn component(&mut self, _tet: &[u32; 4], key: VKey) -> Option<u32> {
+        self.vmap.get(key).map(|id| self.inp.vertex_comp[id as usize])
+    }
+
+    fn shell(&mut self, _tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32> {
+        let mut ids: SmallVec<[u32; 8]> = SmallVec::new();
+        for &k in keys {
+            ids.push(self.vmap.get(k)?);
+        }
+        ids.sort_unstable();
+        let inp = self.inp;
+        let at = ids[0] as usize;
+        for &gf in &self.vf[self.start[at] as usize..self.start[at + 1] as usize] {
+            let mut vs: SmallVec<[u32; 8]> =
+                inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
+            vs.sort_unstable();
+            if vs == ids {
+                let s = inp.shell_of_hp[2 * inp.face_patch[gf as usize] as usize + side];
+                return (s != NONE).then_some(s);
+            }
+        }
+        None
+    }
 }
 
 /// Global vertex id by key. Rays look up only a few keys, so when the keys
@@ -73,94 +160,60 @@ struct TetView {
     complex: Complex,
 }
 
-/// Cell of each shell and the number of cells, or `None` when the
-/// preconditions do not hold.
-pub(crate) fn ray_cells(ctx: &Ctx, inp: &RayInput) -> Option<(Vec<u32>, usize)> {
+/// Cell of each of the `num_shells` shells and the number of cells, or
+/// `None` when the preconditions do not hold. `starts` holds, per network
+/// component, the smallest grid edge `(v, u)` carrying one of its
+/// edge-points (components numbered as `index` numbers them).
+pub(crate) fn ray_cells(
+    ctx: &Ctx,
+    index: &mut dyn RayIndex,
+    starts: &[(u32, u32)],
+    num_shells: usize,
+) -> Option<(Vec<u32>, usize)> {
     let Grid::Box(g) = ctx.grid else { return None };
-    // Vertex -> faces.
-    let nv = inp.keys.len();
-    let mut start = vec![0u32; nv + 1];
-    for &v in inp.face_verts {
-        start[v as usize + 1] += 1;
-    }
-    for v in 0..nv {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut vf = vec![0u32; inp.face_verts.len()];
-    for f in 0..inp.face_patch.len() {
-        for j in inp.face_start[f]..inp.face_start[f + 1] {
-            let v = inp.face_verts[j as usize] as usize;
-            vf[fill[v] as usize] = f as u32;
-            fill[v] += 1;
-        }
-    }
-    let vmap = KeyIndex::new(inp.keys);
-    // Smallest grid edge (v, u) carrying an edge-point, per component.
-    let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); inp.num_comps];
-    for (v, k) in inp.keys.iter().enumerate() {
-        if k.grid[2] == u32::MAX {
-            let c = inp.vertex_comp[v] as usize;
-            best[c] = best[c].min((k.grid[0], k.grid[1]));
-        }
-    }
-    let outer = inp.num_shells as u32;
-    let mut uf = UnionFind::new(inp.num_shells + 1);
-    for (c, &(v, u)) in best.iter().enumerate() {
-        if v == u32::MAX {
-            return None; // a component touching no grid edge (cannot happen on a proper network)
-        }
+    let mut uf = UnionFind::new(num_shells + 1);
+    for (c, &(v, u)) in starts.iter().enumerate() {
+        let c = c as u32;
         let view = tet_view(ctx, g, v, u)?;
-        let pts = edge_points(ctx, &view, v, u, &vmap);
+        let pts = edge_points(ctx, &view, v, u, index);
         // The component's point closest to v on this edge (never a corner).
-        let j = (1..pts.len().saturating_sub(1))
-            .find(|&j| pts[j].is_some_and(|id| inp.vertex_comp[id as usize] == c as u32))?;
-        let start_shell = facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, j, true)?;
+        let j = (1..pts.len().saturating_sub(1)).find(|&j| pts[j] == Some(c))?;
+        let start_shell = facing_shell(ctx, index, &view, v, u, j, true)?;
         let end_shell = match (0..j).rev().find(|&k| pts[k].is_some()) {
             Some(k) => {
-                if inp.vertex_comp[pts[k]? as usize] == c as u32 {
+                if pts[k] == Some(c) {
                     return None;
                 }
-                facing_shell(ctx, inp, &view, &vmap, &start, &vf, v, u, k, false)?
+                facing_shell(ctx, index, &view, v, u, k, false)?
             }
-            None => walk(ctx, g, inp, &vmap, &start, &vf, v, c as u32)?,
+            None => walk(ctx, g, index, num_shells, v, c)?,
         };
         uf.union(start_shell, end_shell);
     }
-    let _ = outer;
     let (comp, n) = uf.components();
-    Some((comp[..inp.num_shells].to_vec(), n))
+    Some((comp[..num_shells].to_vec(), n))
 }
 
 /// Steepest descent from grid vertex `from` to the first edge-point (its
 /// shell facing the ray) or the sink (the outer node).
 #[allow(clippy::too_many_arguments)]
-fn walk(
-    ctx: &Ctx,
-    g: &BoxGrid,
-    inp: &RayInput,
-    vmap: &KeyIndex,
-    start: &[u32],
-    vf: &[u32],
-    from: u32,
-    comp: u32,
-) -> Option<u32> {
+fn walk(ctx: &Ctx, g: &BoxGrid, index: &mut dyn RayIndex, num_shells: usize, from: u32, comp: u32) -> Option<u32> {
     let mut cur = from;
     loop {
         if cur == 0 {
-            return Some(inp.num_shells as u32);
+            return Some(num_shells as u32);
         }
         let w = lowest_neighbour(g, cur);
         if edge_may_cross(ctx, w, cur) {
             let view = tet_view(ctx, g, w, cur)?;
-            let pts = edge_points(ctx, &view, w, cur, vmap);
+            let pts = edge_points(ctx, &view, w, cur, index);
             // The network point closest to `cur` (possibly `w` itself); the ray
             // arrives from `cur`'s side.
             if let Some(k) = (0..pts.len().saturating_sub(1)).rev().find(|&k| pts[k].is_some()) {
-                if inp.vertex_comp[pts[k]? as usize] == comp {
+                if pts[k] == Some(comp) {
                     return None;
                 }
-                return facing_shell(ctx, inp, &view, vmap, start, vf, w, cur, k, false);
+                return facing_shell(ctx, index, &view, w, cur, k, false);
             }
         }
         cur = w;
@@ -258,8 +311,8 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
 }
 
 /// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
-/// to `b` (corners included), each with its global id if it is a network vertex.
-fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &KeyIndex) -> SmallVec<[Option<u32>; 8]> {
+/// to `b` (corners included), each with its component if it is a network vertex.
+fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, index: &mut dyn RayIndex) -> SmallVec<[Option<u32>; 8]> {
     if view.complex.vertices().is_empty() {
         return SmallVec::from_elem(None, 2);
     }
@@ -268,21 +321,17 @@ fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, vmap: &KeyIndex) -> Sm
     view.complex
         .tet_edge_points(la, lb)
         .iter()
-        .map(|&cv| vmap.get(vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)))
+        .map(|&cv| index.component(&view.tet, vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)))
         .collect()
 }
 
 /// The shell on the side of the network, at the `j`-th point of the list
 /// `[a, points.., b]` along grid edge `a b`, that faces the segment towards
 /// `a` (`towards_a`) or towards `b`.
-#[allow(clippy::too_many_arguments)]
 fn facing_shell(
     ctx: &Ctx,
-    inp: &RayInput,
+    index: &mut dyn RayIndex,
     view: &TetView,
-    vmap: &KeyIndex,
-    start: &[u32],
-    vf: &[u32],
     a: u32,
     b: u32,
     j: usize,
@@ -304,27 +353,16 @@ fn facing_shell(
     }
     let cell =
         c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
-    let gp = vmap.get(vertex_key(ctx.mode, c, p, &view.tet, &view.active))?;
     for &fi in &c.cells()[cell as usize].faces {
         let face = &c.faces()[fi as usize];
         if !face.plane.is_network() || !face.vertices.contains(&p) {
             continue;
         }
-        let mut keys: SmallVec<[u32; 8]> = SmallVec::new();
-        for &v in &face.vertices {
-            keys.push(vmap.get(vertex_key(ctx.mode, c, v, &view.tet, &view.active))?);
-        }
-        keys.sort_unstable();
-        for &gf in &vf[start[gp as usize] as usize..start[gp as usize + 1] as usize] {
-            let mut vs: SmallVec<[u32; 8]> =
-                inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
-            vs.sort_unstable();
-            if vs == keys {
-                let side = if face.cells[0] == cell { 0 } else { 1 };
-                let hp = 2 * inp.face_patch[gf as usize] as usize + side;
-                let s = inp.shell_of_hp[hp];
-                return (s != NONE).then_some(s);
-            }
+        let keys: SmallVec<[VKey; 8]> =
+            face.vertices.iter().map(|&v| vertex_key(ctx.mode, c, v, &view.tet, &view.active)).collect();
+        let side = if face.cells[0] == cell { 0 } else { 1 };
+        if let Some(s) = index.shell(&view.tet, &keys, side) {
+            return Some(s);
         }
     }
     None

@@ -100,9 +100,9 @@ impl Values for BlockValues {
 
 /// Values computed on demand at any grid vertex (for the few vertices ray
 /// shooting looks at, possibly in skipped blocks).
-struct PointValues<'a> {
-    grid: &'a BoxGrid,
-    functions: &'a [Primitive],
+pub(crate) struct PointValues<'a> {
+    pub(crate) grid: &'a BoxGrid,
+    pub(crate) functions: &'a [Primitive],
 }
 
 impl Values for PointValues<'_> {
@@ -481,7 +481,7 @@ fn finish_merged(
     }
     super::canon::canonicalize_topology(&mut topo);
     let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
-    super::label_free_cells(&mut topo, options.mode, &row);
+    super::label_free_cells(&mut topo.cells, options.mode, &row);
     let t3 = Instant::now();
     let mut net = super::assemble(options.mode, k, m, topo, [tets, merged, t3 - t2]);
     net.seconds.insert(2, ("canon", (t2 - t_merged).as_secs_f64()));

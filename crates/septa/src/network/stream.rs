@@ -8,18 +8,21 @@
 //! handed to the sink the next one is computed, so at most two windows of
 //! block results are alive: memory is bounded by the window, not by the grid.
 //!
-//! What this mode gives and what it does not: the polygons of the network
-//! (Du et al. Sec. 6), each with its label (IA `[f, f]`, MI `[a, b]`) and
-//! its vertices' global plane-based keys ([`VKey`], Sec. 5.1). There is no
-//! merge and no topology: patches, chains, corners, shells and cells need
-//! the global merge (Sec. 7) and are only in the in-memory [`Network`](super::Network).
+//! What this mode gives: the polygons of the network (Du et al. Sec. 6),
+//! each with its label (IA `[f, f]`, MI `[a, b]`) and its vertices' global
+//! plane-based keys ([`VKey`], Sec. 5.1) and streamed ids; with
+//! [`stream_topology`] also the topology (Sec. 7: patches, chains, corners,
+//! shells, cells), assembled from per-block summaries while the polygons
+//! stream (`summary.rs`, `assembly.rs`): each polygon carries its patch
+//! piece, which the returned [`NetworkSummary`] maps to its patch and cells.
 //!
 //! Vertices: a block numbers its own vertices. A vertex on a block's
 //! boundary (flagged `shared`) repeats in every block that touches it
-//! (up to 8); its key is the same in each, so a consumer unifies them
-//! exactly by key (its position, computed in floating point per tet, may
+//! (up to 8); its key is the same in each, and so is its streamed id
+//! ([`StreamBlock::vertex_ids`], `numbering.rs`: given at its first coming,
+//! in polygon order). Its position, computed in floating point per tet, may
 //! differ in the last bits between blocks; the in-memory merge keeps the
-//! first block's, and so does the PLY sink). A vertex inside a block is in
+//! first block's, and so does the PLY sink. A vertex inside a block is in
 //! that block only. Polygons
 //! never repeat: each lies in one tet of one block. Orientation: as in the
 //! block (counter-clockwise seen from the positive side), before the
@@ -35,8 +38,11 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
+use super::assembly::{Assembler, NetworkSummary};
 use super::block::Worker;
+use super::numbering::VertexNumbering;
 use super::sparse::{check_functions, plan_sparse, run_block_with, BlockResult};
+use super::summary::BlockSummary;
 use super::{NetworkError, NetworkOptions, VKey};
 use crate::grid::{BoxGrid, Grid};
 use crate::scene::Primitive;
@@ -64,6 +70,12 @@ pub struct StreamBlock<'a> {
     pub poly_verts: &'a [u32],
     /// Per polygon: IA `[f, f]`; MI `[a, b]`, `a < b`.
     pub poly_label: &'a [[u16; 2]],
+    /// Streamed id of each block vertex (`u32::MAX`: on no polygon): a
+    /// vertex on block boundaries has the same id in every block.
+    pub vertex_ids: &'a [u32],
+    /// Per polygon: its patch piece ([`stream_topology`] only, else empty);
+    /// [`NetworkSummary::piece_patch`] and [`NetworkSummary::piece_cells`] map it.
+    pub poly_piece: &'a [u32],
     /// Tets of the block with a part of the network.
     pub active_tets: usize,
 }
@@ -115,6 +127,14 @@ pub struct StreamStats {
     pub faces: usize,
     /// Block vertices handed to the sink (boundary vertices once per block).
     pub block_vertices: usize,
+    /// Distinct network vertices (streamed ids `0..vertices`).
+    pub vertices: u64,
+    /// Most block-boundary vertex keys held at once (`numbering.rs`).
+    pub peak_shared_keys: usize,
+    /// With topology: most open edges and tet-face pieces held at once, and blocks run again for ray shooting.
+    pub peak_open: usize,
+    /// See `peak_open`.
+    pub reruns: usize,
     /// Tets with a part of the network.
     pub active_tets: usize,
     /// Blocks computed at a time.
@@ -151,6 +171,56 @@ pub fn stream_sparse<S: StreamSink + Send>(
     window: usize,
     sink: &mut S,
 ) -> Result<StreamStats, StreamError> {
+    Ok(drive(grid, functions, options, window, sink, false)?.0)
+}
+
+/// [`stream_sparse`] plus the topology, assembled from block summaries
+/// while the polygons stream (module doc): memory follows the blocks in
+/// flight, the blocks' boundaries and the number of patch pieces, never the
+/// polygons. Its counts, patches, shells and cells are those of
+/// [`compute_sparse`](super::compute_sparse) up to numbering (tested face by
+/// face); cells come from ray shooting, so a network whose pieces meet only
+/// at points is refused (the in-memory path groups cells there).
+pub fn stream_topology<S: StreamSink + Send>(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    window: usize,
+    sink: &mut S,
+) -> Result<(StreamStats, NetworkSummary), StreamError> {
+    let (mut stats, asm, vertices) = drive(grid, functions, options, window, sink, true)?;
+    let asm = asm.expect("topology was asked for");
+    let g = Grid::Box(grid.clone());
+    let pv = super::sparse::PointValues { grid, functions };
+    let ctx = super::sparse::ctx(&g, functions.len(), options, &pv);
+    let row0: Vec<f64> = (0..functions.len()).map(|f| functions[f].eval(grid.vertex(0))).collect();
+    let block_pieces = asm.block_pieces.clone();
+    stats.peak_open = asm.peak_open;
+    let mut reruns = 0;
+    let summary = asm.finish(
+        vertices as usize,
+        |a| {
+            let mut index = super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, a);
+            let r = super::raytrace::ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
+            reruns = index.reruns;
+            r
+        },
+        &row0,
+    )?;
+    stats.reruns = reruns;
+    Ok((stats, summary))
+}
+
+/// Runs the kept blocks a window at a time and feeds them in order to the
+/// sink (and, for topology, their summaries to an [`Assembler`]).
+fn drive<S: StreamSink + Send>(
+    grid: &BoxGrid,
+    functions: &[Primitive],
+    options: &NetworkOptions,
+    window: usize,
+    sink: &mut S,
+    topology: bool,
+) -> Result<(StreamStats, Option<Assembler>, u64), StreamError> {
     check_functions(functions.len())?;
     let mut o = options.clone();
     o.volumes = false;
@@ -163,7 +233,7 @@ pub fn stream_sparse<S: StreamSink + Send>(
     let g = Grid::Box(grid.clone());
     let pool: Mutex<Vec<Worker>> = Mutex::new(Vec::new());
     let done = AtomicUsize::new(0);
-    let run_window = |ids: &[usize]| -> Result<Vec<BlockResult>, NetworkError> {
+    let run_window = |ids: &[usize]| -> Result<Vec<Done>, NetworkError> {
         ids.par_iter()
             .map_init(
                 || Lease { worker: Some(pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default()), pool: &pool },
@@ -173,21 +243,36 @@ pub fn stream_sparse<S: StreamSink + Send>(
                     }
                     let w = lease.worker.as_mut().expect("a leased worker");
                     let r = run_block_with(w, &g, grid, functions, &o, i)?;
+                    // Summaries are made here, in parallel; only their
+                    // assembly runs in block order.
+                    let summary = if topology && r.clean {
+                        Some(super::summary::summarize(&r.out).map_err(|_| unclean(r.index))?)
+                    } else {
+                        None
+                    };
                     if let Some(p) = &o.progress {
                         p.tick(&done, plan.kept.len());
                     }
-                    Ok(r)
+                    Ok(Done { result: r, summary })
                 },
             )
             .collect()
     };
+    let mut feeder = Feeder {
+        grid,
+        block: options.block,
+        numbering: VertexNumbering::new(grid),
+        assembler: topology.then(|| Assembler::new(options.mode, functions.len(), VertexNumbering::new(grid).plane())),
+        ids: Vec::new(),
+        pieces: Vec::new(),
+    };
     // Window w + 1 is computed while window w goes to the sink.
-    let mut pending: Option<Vec<BlockResult>> = None;
+    let mut pending: Option<Vec<Done>> = None;
     for ids in plan.kept.chunks(window) {
         let (next, fed) = rayon::join(
             || run_window(ids),
             || match pending.take() {
-                Some(rs) => feed(grid, options.block, rs, sink, &mut stats),
+                Some(rs) => feeder.feed(rs, sink, &mut stats),
                 None => Ok(()),
             },
         );
@@ -195,49 +280,100 @@ pub fn stream_sparse<S: StreamSink + Send>(
         pending = Some(next?);
     }
     if let Some(rs) = pending {
-        feed(grid, options.block, rs, sink, &mut stats)?;
+        feeder.feed(rs, sink, &mut stats)?;
     }
-    Ok(stats)
+    stats.vertices = feeder.numbering.count();
+    stats.peak_shared_keys = feeder.numbering.peak();
+    Ok((stats, feeder.assembler, feeder.numbering.count()))
 }
 
-/// Hands a window's results to the sink in order, dropping each after.
-fn feed<S: StreamSink>(
-    grid: &BoxGrid,
+/// A block computed, with its summary when topology is asked for.
+struct Done {
+    result: BlockResult,
+    summary: Option<BlockSummary>,
+}
+
+fn unclean(index: usize) -> NetworkError {
+    NetworkError::BlockResults(format!(
+        "block {index}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
+         network faces may lie on tet faces, which only the in-memory merge pairs: \
+         run without streaming"
+    ))
+}
+
+/// The in-order half of the stream: vertex numbering, assembly, the sink.
+struct Feeder<'a> {
+    grid: &'a BoxGrid,
     block: usize,
-    results: Vec<BlockResult>,
-    sink: &mut S,
-    stats: &mut StreamStats,
-) -> Result<(), StreamError> {
-    for r in results {
-        if !r.clean {
-            return Err(NetworkError::BlockResults(format!(
-                "block {}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
-                 network faces may lie on tet faces, which only the in-memory merge pairs: \
-                 run without streaming",
-                r.index
-            ))
-            .into());
+    numbering: VertexNumbering,
+    assembler: Option<Assembler>,
+    ids: Vec<u32>,
+    pieces: Vec<u32>,
+}
+
+impl Feeder<'_> {
+    /// Hands a window's results to the sink in order, dropping each after.
+    fn feed<S: StreamSink>(
+        &mut self,
+        results: Vec<Done>,
+        sink: &mut S,
+        stats: &mut StreamStats,
+    ) -> Result<(), StreamError> {
+        for Done { result: r, summary } in results {
+            if !r.clean {
+                return Err(unclean(r.index).into());
+            }
+            let b = super::sparse::block_at(self.grid, self.block, r.index).expect("a planned block exists");
+            let (lo, hi) = super::sparse::cubes(&b);
+            let out = &r.out;
+            stats.sampled_vertices += r.sampled_vertices;
+            stats.active += (out.active_tets > 0) as usize;
+            stats.active_tets += out.active_tets;
+            stats.faces += out.poly_label.len();
+            stats.block_vertices += out.keys.len();
+            let base = self.assembler.as_ref().map_or(0, |a| a.pieces());
+            let vertex_piece: &[u32] = summary.as_ref().map_or(&[], |s| &s.vertex_piece);
+            // Shared vertices seen before join components, once the block's
+            // pieces exist in the assembly.
+            let mut repeats: Vec<(u32, u32)> = Vec::new();
+            self.numbering
+                .block(
+                    lo[0],
+                    &out.keys,
+                    &out.shared,
+                    &out.poly_verts,
+                    &mut self.ids,
+                    |v| vertex_piece.get(v as usize).map_or(0, |p| base + p),
+                    |first, v| {
+                        if let Some(p) = vertex_piece.get(v as usize) {
+                            repeats.push((first, base + p));
+                        }
+                    },
+                )
+                .map_err(NetworkError::BlockResults)?;
+            self.pieces.clear();
+            if let (Some(a), Some(s)) = (self.assembler.as_mut(), &summary) {
+                a.add(r.index, lo[0], out, s, &self.ids)?;
+                for (x, y) in repeats {
+                    a.same_vertex(x, y);
+                }
+                self.pieces.extend(s.poly_piece.iter().map(|&p| base + p));
+            }
+            sink.block(&StreamBlock {
+                index: r.index,
+                lo,
+                hi,
+                keys: &out.keys,
+                shared: &out.shared,
+                points: &out.points,
+                poly_start: &out.poly_start,
+                poly_verts: &out.poly_verts,
+                poly_label: &out.poly_label,
+                vertex_ids: &self.ids,
+                poly_piece: &self.pieces,
+                active_tets: out.active_tets,
+            })?;
         }
-        let b = super::sparse::block_at(grid, block, r.index).expect("a planned block exists");
-        let (lo, hi) = super::sparse::cubes(&b);
-        let out = &r.out;
-        stats.sampled_vertices += r.sampled_vertices;
-        stats.active += (out.active_tets > 0) as usize;
-        stats.active_tets += out.active_tets;
-        stats.faces += out.poly_label.len();
-        stats.block_vertices += out.keys.len();
-        sink.block(&StreamBlock {
-            index: r.index,
-            lo,
-            hi,
-            keys: &out.keys,
-            shared: &out.shared,
-            points: &out.points,
-            poly_start: &out.poly_start,
-            poly_verts: &out.poly_verts,
-            poly_label: &out.poly_label,
-            active_tets: out.active_tets,
-        })?;
+        Ok(())
     }
-    Ok(())
 }

@@ -138,19 +138,17 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topol
     // pieces touching only at points (tangent spheres) break it.
     let edge_connected = sheet_uf.components().1 == components;
     let rays = ray.filter(|_| edge_connected).and_then(|ctx| {
-        super::raytrace::ray_cells(
-            ctx,
-            &super::raytrace::RayInput {
-                keys: &m.keys,
-                face_start: &m.face_start,
-                face_verts: &m.face_verts,
-                face_patch: &face_patch,
-                shell_of_hp: &shell_of_hp,
-                num_shells: shells.len(),
-                vertex_comp: &vertex_comp,
-                num_comps: components,
-            },
-        )
+        let inp = super::raytrace::RayInput {
+            keys: &m.keys,
+            face_start: &m.face_start,
+            face_verts: &m.face_verts,
+            face_patch: &face_patch,
+            shell_of_hp: &shell_of_hp,
+            vertex_comp: &vertex_comp,
+            num_comps: components,
+        };
+        let starts = inp.starts()?;
+        super::raytrace::ray_cells(ctx, &mut super::raytrace::MergedIndex::new(&inp), &starts, shells.len())
     });
     if let Some((shell_cell, ncells)) = rays {
         let mut t = ray_topology(
@@ -264,7 +262,7 @@ fn ray_topology(
 /// Orders chain edges into curves between corners (vertices where the
 /// number of chain edges is not 2: junctions of 3+ chains, and chain ends
 /// on the grid boundary); closed loops without corners are chains too.
-fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
+pub(crate) fn chains(nv: usize, chain_edges: &[[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
     let mut deg = vec![0u32; nv];
     for &[a, b] in chain_edges {
         deg[a as usize] += 1;
@@ -354,7 +352,9 @@ fn cyclic_patches(
         .map(|c| {
             let n = c.len().saturating_sub(1);
             (0..n)
-                .find_map(|k| by_edge.get(&edge(c, k)).and_then(|pairs| wedge_cycle(pairs, face_patch)))
+                .find_map(|k| {
+                    by_edge.get(&edge(c, k)).and_then(|pairs| wedge_cycle(pairs, &|x| face_patch[x as usize / 2]))
+                })
                 .or_else(|| {
                     (0..n).find_map(|k| {
                         let faces = chain_faces.get(&edge(c, k))?;
@@ -368,7 +368,7 @@ fn cyclic_patches(
 
 /// The cycle of faces around an edge from one complex's wedges (pairs of
 /// face sides `2 f + s` facing the same cell), or `None` if it does not close.
-fn wedge_cycle(pairs: &[(u32, u32)], face_patch: &[u32]) -> Option<Vec<u32>> {
+pub(crate) fn wedge_cycle(pairs: &[(u32, u32)], patch_of: &dyn Fn(u32) -> u32) -> Option<Vec<u32>> {
     let start = pairs[0].0;
     let mut cur = start;
     let mut out = Vec::new();
@@ -383,7 +383,7 @@ fn wedge_cycle(pairs: &[(u32, u32)], face_patch: &[u32]) -> Option<Vec<u32>> {
                 None
             }
         })?;
-        out.push(face_patch[next as usize / 2]);
+        out.push(patch_of(next));
         cur = next ^ 1; // cross the face
         if cur == start || next == start {
             break;

@@ -1,0 +1,453 @@
+//! Topology assembled from block summaries (issue 6; Du et al. Sec. 7):
+//! patches, chains, corners, components, shells and cells of a network whose
+//! polygons are never held together (they stream to disk, `stream.rs`).
+//!
+//! Blocks come in index order (x slabs outermost). Each brings its
+//! [`BlockSummary`]; the assembly keeps, for the whole run, only numbers
+//! per patch piece (a few per active block) and the network's chain edges
+//! (a curve's worth); for about two slabs it keeps the open edges and open
+//! tet-face pieces of the blocks' boundaries, closing each once no later
+//! block can reach it (its grid element lies left of the current slab):
+//!
+//! - patches: pieces joined across closed open edges met by exactly two
+//!   polygons (as `topology.rs` joins faces across edges of two faces);
+//! - chains: edges met by three or more polygons, ordered into curves
+//!   between corners by `topology::chains`;
+//! - components: pieces joined at a vertex, inside a block or across blocks
+//!   through a shared vertex key; edge-connected pieces (for ray shooting's
+//!   precondition) likewise through any edge;
+//! - shells: half-pieces joined by the blocks' wedge unions and across block
+//!   faces by their open tet-face pieces, then every half-piece of a patch side;
+//! - cells: ray shooting (Sec. 7.1, `raytrace.rs`), asking a block re-run on
+//!   demand (`rerun.rs`) which component a hit vertex is in and which shell
+//!   a hit face side belongs to.
+//!
+//! Numbering is deterministic (block order): patches by their first piece,
+//! shells by their smallest half-patch, cells by their smallest shell (as
+//! `canon.rs` numbers cells), vertices as streamed (`numbering.rs`).
+
+use rustc_hash::FxHashMap;
+
+use super::block::{BlockOut, Label, OpenT};
+use super::numbering::max_x;
+use super::summary::{BlockSummary, ShellNode};
+use super::uf::UnionFind;
+use super::{CellInfo, Mode, NetworkError, Patch};
+use crate::complex::NONE;
+
+/// The topology of a streamed network, without its polygons (they went to
+/// the stream's sink, each with its patch piece: [`NetworkSummary::piece_patch`]
+/// and [`NetworkSummary::piece_cells`] map pieces to patches and cells).
+#[derive(Clone, Debug)]
+pub struct NetworkSummary {
+    /// IA or MI.
+    pub mode: Mode,
+    /// Number of functions.
+    pub functions: usize,
+    /// Network vertices (numbered as streamed).
+    pub vertices: usize,
+    /// Polygons.
+    pub faces: usize,
+    /// Network edges.
+    pub edges: usize,
+    /// Patches, numbered by their first piece.
+    pub patches: Vec<Patch>,
+    /// Chains as paths of streamed vertex ids (a closed chain repeats its first vertex).
+    pub chains: Vec<Vec<u32>>,
+    /// Per chain, the patches around it in cyclic order, from the wedges of
+    /// a per-tet complex at one of its edges (empty if the chain has none inside a tet).
+    pub chain_patches: Vec<Vec<u32>>,
+    /// Corner vertices (streamed ids, ascending).
+    pub corners: Vec<u32>,
+    /// Shells as lists of half-patches (`2p` positive side of patch `p`, `2p + 1` negative).
+    pub shells: Vec<Vec<u32>>,
+    /// Cells (volumes are not computed: 0).
+    pub cells: Vec<CellInfo>,
+    /// Connected components of the network.
+    pub components: usize,
+    /// Tets with a part of the network.
+    pub active_tets: usize,
+    /// Patch of each patch piece.
+    pub piece_patch: Vec<u32>,
+    /// `[cell on the positive side, cell on the negative side]` of each patch piece.
+    pub piece_cells: Vec<[u32; 2]>,
+}
+
+impl NetworkSummary {
+    /// The counts the reference reports, by name (as [`Network::counts`](super::Network::counts)).
+    pub fn counts(&self) -> Vec<(&'static str, usize)> {
+        vec![
+            ("vertices", self.vertices),
+            ("faces", self.faces),
+            ("edges", self.edges),
+            ("patches", self.patches.len()),
+            ("chains", self.chains.len()),
+            ("corners", self.corners.len()),
+            ("shells", self.shells.len()),
+            ("cells", self.cells.len()),
+            ("components", self.components),
+            ("active_tets", self.active_tets),
+        ]
+    }
+}
+
+/// An edge of the block boundary not yet closed.
+struct OpenEdge {
+    /// Polygons around it so far.
+    faces: u32,
+    /// Pieces of its first two polygons.
+    pieces: [u32; 2],
+    /// It is closed once the current slab starts right of this x index.
+    retire: u32,
+}
+
+/// The assembly state (module doc).
+pub(crate) struct Assembler {
+    mode: Mode,
+    functions: usize,
+    plane: u64,
+    slab: usize,
+    // Per piece.
+    piece_label: Vec<[u16; 2]>,
+    piece_faces: Vec<u32>,
+    piece_side_label: Vec<[Label; 2]>,
+    piece_start: Vec<(u32, u32)>,
+    /// Shell node of the piece's positive side (the negative one follows).
+    piece_node: Vec<u32>,
+    patch_uf: UnionFind,
+    sheet_uf: UnionFind,
+    comp_uf: UnionFind,
+    shell_uf: UnionFind,
+    open_edges: FxHashMap<[u32; 2], OpenEdge>,
+    open_t: FxHashMap<OpenT, u32>,
+    chain_edges: Vec<[u32; 2]>,
+    /// Wedges (edge, side `2 f + s`, side) with streamed face ids, and the piece of each face in one.
+    wedges: Vec<([u32; 2], u32, u32)>,
+    wedge_piece: FxHashMap<u32, u32>,
+    edges: usize,
+    faces: u64,
+    active_tets: usize,
+    /// (block index, its first piece), ascending.
+    pub(crate) block_pieces: Vec<(usize, u32)>,
+    /// Most open edges and tet-face pieces held at once.
+    pub(crate) peak_open: usize,
+}
+
+impl Assembler {
+    pub(crate) fn new(mode: Mode, functions: usize, plane: u64) -> Assembler {
+        Assembler {
+            mode,
+            functions,
+            plane,
+            slab: 0,
+            piece_label: Vec::new(),
+            piece_faces: Vec::new(),
+            piece_side_label: Vec::new(),
+            piece_start: Vec::new(),
+            piece_node: Vec::new(),
+            patch_uf: UnionFind::default(),
+            sheet_uf: UnionFind::default(),
+            comp_uf: UnionFind::default(),
+            shell_uf: UnionFind::default(),
+            open_edges: FxHashMap::default(),
+            open_t: FxHashMap::default(),
+            chain_edges: Vec::new(),
+            wedges: Vec::new(),
+            wedge_piece: FxHashMap::default(),
+            edges: 0,
+            faces: 0,
+            active_tets: 0,
+            block_pieces: Vec::new(),
+            peak_open: 0,
+        }
+    }
+
+    /// Pieces so far (the next block's first piece).
+    pub(crate) fn pieces(&self) -> u32 {
+        self.piece_label.len() as u32
+    }
+
+    /// Joins the components of two (global) pieces: a shared vertex seen again.
+    pub(crate) fn same_vertex(&mut self, a: u32, b: u32) {
+        self.comp_uf.union(a, b);
+    }
+
+    /// Adds block `index` (cubes from x index `lo_x`), its output, summary
+    /// and the streamed ids of its vertices (`numbering.rs`). The caller has
+    /// already reported repeated shared vertices through [`Assembler::same_vertex`]
+    /// with pieces numbered from [`Assembler::pieces`].
+    pub(crate) fn add(
+        &mut self,
+        index: usize,
+        lo_x: usize,
+        out: &BlockOut,
+        s: &BlockSummary,
+        ids: &[u32],
+    ) -> Result<(), NetworkError> {
+        if lo_x > self.slab {
+            self.slab = lo_x;
+            self.close(lo_x);
+        }
+        let base = self.pieces();
+        let n = s.piece_label.len() as u32;
+        self.block_pieces.push((index, base));
+        self.active_tets += out.active_tets;
+        let face_base = self.faces;
+        self.faces += out.poly_label.len() as u64;
+        if self.faces >= (1 << 31) {
+            return Err(NetworkError::BlockResults(
+                "more than 2^31 polygons: too many for the streamed topology".into(),
+            ));
+        }
+        // Pieces and their nodes: 2 half-pieces each, then the block's extra classes.
+        let node_base = self.shell_uf.len() as u32;
+        for c in 0..n as usize {
+            self.piece_label.push(s.piece_label[c]);
+            self.piece_faces.push(s.piece_faces[c]);
+            self.piece_side_label.push(s.piece_side_label[c].clone());
+            self.piece_start.push(s.piece_start[c]);
+            self.piece_node.push(node_base + 2 * c as u32);
+            self.patch_uf.push();
+            self.sheet_uf.push();
+            self.comp_uf.push();
+            self.shell_uf.push();
+            self.shell_uf.push();
+        }
+        for _ in 0..s.extras {
+            self.shell_uf.push();
+        }
+        for &(a, b) in &s.sheet_pairs {
+            self.sheet_uf.union(base + a, base + b);
+        }
+        for &(a, b) in &s.vertex_pairs {
+            self.comp_uf.union(base + a, base + b);
+        }
+        for &(a, b) in &s.shell_pairs {
+            self.shell_uf.union(node_base + a, node_base + b);
+        }
+        let node = |x: ShellNode| match x {
+            ShellNode::Half(h) => node_base + h,
+            ShellNode::Extra(e) => node_base + 2 * n + e,
+        };
+        for (key, x) in &s.open_t {
+            let x = node(*x);
+            match self.open_t.remove(key) {
+                Some(o) => self.shell_uf.union(o, x),
+                None => {
+                    self.open_t.insert(key.clone(), x);
+                }
+            }
+        }
+        self.edges += s.inner_edges;
+        let gid = |v: u32| ids[v as usize];
+        for &[a, b] in &s.chain_edges {
+            let (x, y) = (gid(a), gid(b));
+            self.chain_edges.push([x.min(y), x.max(y)]);
+        }
+        for ([a, b], around) in &s.open_edges {
+            let (x, y) = (gid(*a), gid(*b));
+            let key = [x.min(y), x.max(y)];
+            let e = self.open_edges.entry(key).or_insert_with(|| OpenEdge {
+                faces: 0,
+                pieces: [NONE; 2],
+                retire: max_x(self.plane, &out.keys[*a as usize]).min(max_x(self.plane, &out.keys[*b as usize])) as u32,
+            });
+            if e.faces == 0 {
+                self.edges += 1;
+            }
+            for &p in around {
+                if (e.faces as usize) < 2 {
+                    e.pieces[e.faces as usize] = base + p;
+                }
+                e.faces += 1;
+                // Any edge joins its polygons' sheets.
+                self.sheet_uf.union(e.pieces[0], base + p);
+            }
+        }
+        for &([a, b], x, y) in &s.wedges {
+            let (u, v) = (gid(a), gid(b));
+            let side = |z: u32| 2 * face_base as u32 + z;
+            self.wedges.push(([u.min(v), u.max(v)], side(x), side(y)));
+            for z in [x, y] {
+                self.wedge_piece.insert(face_base as u32 + z / 2, base + s.poly_piece[z as usize / 2]);
+            }
+        }
+        self.peak_open = self.peak_open.max(self.open_edges.len() + self.open_t.len());
+        Ok(())
+    }
+
+    /// Closes the open edges and tet-face pieces no block from x index `slab` on can reach.
+    fn close(&mut self, slab: usize) {
+        let Assembler { open_edges, patch_uf, chain_edges, open_t, plane, .. } = self;
+        open_edges.retain(|key, e| {
+            if (e.retire as usize) >= slab {
+                return true;
+            }
+            match e.faces {
+                2 => patch_uf.union(e.pieces[0], e.pieces[1]),
+                1 => {}
+                _ => chain_edges.push(*key),
+            }
+            false
+        });
+        let plane = *plane;
+        // An unpaired tet-face piece left of the slab lies on the grid boundary.
+        open_t.retain(|k, _| k.0.iter().map(|&v| (v as u64 / plane) as usize).max().unwrap_or(0) >= slab);
+    }
+
+    /// The topology, with cells by ray shooting through `index` (built by
+    /// the caller from the assembly's pieces, components and shells: see
+    /// [`Assembled`]). `row0` holds the values at grid vertex 0 (the label
+    /// of a cell bounded by no face).
+    pub(crate) fn finish(
+        mut self,
+        vertices: usize,
+        rays: impl FnOnce(&Assembled) -> Option<(Vec<u32>, usize)>,
+        row0: &[f64],
+    ) -> Result<NetworkSummary, NetworkError> {
+        self.close(usize::MAX);
+        let np = self.piece_label.len();
+        let (piece_patch, npatch) = self.patch_uf.components();
+        let mut patches: Vec<Patch> = (0..npatch).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
+        let mut patch_piece = vec![NONE; npatch];
+        for c in 0..np {
+            let p = piece_patch[c] as usize;
+            patches[p].label = self.piece_label[c];
+            patches[p].faces += self.piece_faces[c] as usize;
+            if patch_piece[p] == NONE {
+                patch_piece[p] = c as u32;
+            }
+        }
+        // Every half-piece of a patch side is on one shell.
+        for c in 0..np {
+            let first = patch_piece[piece_patch[c] as usize] as usize;
+            for s in 0..2 {
+                self.shell_uf.union(self.piece_node[first] + s, self.piece_node[c] + s);
+            }
+        }
+        let mut shell_of_root: FxHashMap<u32, u32> = FxHashMap::default();
+        let mut shells: Vec<Vec<u32>> = Vec::new();
+        let mut shell_of_hp = vec![NONE; 2 * npatch];
+        for hp in 0..2 * npatch {
+            let r = self.shell_uf.find(self.piece_node[patch_piece[hp / 2] as usize] + (hp % 2) as u32);
+            let s = *shell_of_root.entry(r).or_insert_with(|| {
+                shells.push(Vec::new());
+                shells.len() as u32 - 1
+            });
+            shells[s as usize].push(hp as u32);
+            shell_of_hp[hp] = s;
+        }
+        let (piece_comp, ncomp) = self.comp_uf.components();
+        let sheets = self.sheet_uf.components().1;
+        let mut starts = vec![(u32::MAX, u32::MAX); ncomp];
+        for c in 0..np {
+            let k = piece_comp[c] as usize;
+            starts[k] = starts[k].min(self.piece_start[c]);
+        }
+        let half_shell: Vec<u32> = (0..2 * np).map(|h| shell_of_hp[2 * piece_patch[h / 2] as usize + h % 2]).collect();
+        let a = Assembled { piece_comp, half_shell, starts, num_shells: shells.len() };
+        // Ray shooting assumes the pieces of one component meet along edges.
+        let cells_of = if sheets == ncomp && a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
+        let Some((shell_cell, ncells)) = cells_of else {
+            return Err(NetworkError::BlockResults(
+                "cells could not be found by ray shooting (network pieces touching only at points, \
+                 or a ray running along the network): stream the polygons only, or run in memory (cell grouping)"
+                    .into(),
+            ));
+        };
+        // Cells numbered by their smallest shell (the shell-less outer cell last).
+        let mut first_shell = vec![u32::MAX; ncells];
+        for (s, &c) in shell_cell.iter().enumerate() {
+            first_shell[c as usize] = first_shell[c as usize].min(s as u32);
+        }
+        let mut order: Vec<u32> = (0..ncells as u32).collect();
+        order.sort_by_key(|&c| first_shell[c as usize]);
+        let mut renum = vec![0u32; ncells];
+        for (i, &c) in order.iter().enumerate() {
+            renum[c as usize] = i as u32;
+        }
+        let mut cells: Vec<CellInfo> =
+            (0..ncells).map(|_| CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }).collect();
+        for (s, &c) in shell_cell.iter().enumerate() {
+            cells[renum[c as usize] as usize].shells.push(s as u32);
+        }
+        let mut piece_cells = vec![[NONE; 2]; np];
+        for c in 0..np {
+            for s in 0..2 {
+                let cell = renum[shell_cell[a.half_shell[2 * c + s] as usize] as usize];
+                piece_cells[c][s] = cell;
+                if cells[cell as usize].label.is_empty() {
+                    cells[cell as usize].label = self.piece_side_label[c][s].clone();
+                }
+            }
+        }
+        super::label_free_cells(&mut cells, self.mode, row0);
+        let (chains, corners) = compact_chains(&mut self.chain_edges);
+        let chain_patches = self.chain_patches(&chains, &piece_patch);
+        Ok(NetworkSummary {
+            mode: self.mode,
+            functions: self.functions,
+            vertices,
+            faces: self.faces as usize,
+            edges: self.edges,
+            patches,
+            chains,
+            chain_patches,
+            corners,
+            shells,
+            cells,
+            components: ncomp,
+            active_tets: self.active_tets,
+            piece_patch,
+            piece_cells,
+        })
+    }
+
+    /// Cyclic patch orders of the chains from the per-tet wedges.
+    fn chain_patches(&self, chains: &[Vec<u32>], piece_patch: &[u32]) -> Vec<Vec<u32>> {
+        let mut by_edge: FxHashMap<[u32; 2], Vec<(u32, u32)>> = FxHashMap::default();
+        let mut wedges = self.wedges.clone();
+        wedges.sort_unstable();
+        for &(e, x, y) in &wedges {
+            by_edge.entry(e).or_default().push((x, y));
+        }
+        let patch_of = |side: u32| piece_patch[self.wedge_piece[&(side / 2)] as usize];
+        let edge = |c: &[u32], k: usize| [c[k].min(c[k + 1]), c[k].max(c[k + 1])];
+        chains
+            .iter()
+            .map(|c| {
+                let n = c.len().saturating_sub(1);
+                let cyc = (0..n)
+                    .find_map(|k| by_edge.get(&edge(c, k)).and_then(|p| super::topology::wedge_cycle(p, &patch_of)))
+                    .unwrap_or_default();
+                super::canon::min_rotation(&cyc)
+            })
+            .collect()
+    }
+}
+
+/// What ray shooting needs from the assembly.
+pub(crate) struct Assembled {
+    /// Network component of each piece.
+    pub piece_comp: Vec<u32>,
+    /// Shell of each half-piece `2 * piece + side`.
+    pub half_shell: Vec<u32>,
+    /// Per component, the smallest grid edge carrying one of its vertices.
+    pub starts: Vec<(u32, u32)>,
+    /// Number of shells.
+    pub num_shells: usize,
+}
+
+/// Chains and corners from chain edges on streamed vertex ids: the ids are
+/// compacted to the chain vertices first (`topology::chains` indexes by vertex).
+fn compact_chains(edges: &mut [[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
+    edges.sort_unstable();
+    let mut verts: Vec<u32> = edges.iter().flatten().copied().collect();
+    verts.sort_unstable();
+    verts.dedup();
+    let local = |v: u32| verts.binary_search(&v).expect("a chain vertex") as u32;
+    let compact: Vec<[u32; 2]> = edges.iter().map(|&[a, b]| [local(a), local(b)]).collect();
+    let (chains, corners) = super::topology::chains(verts.len(), &compact);
+    let back = |v: &u32| verts[*v as usize];
+    (chains.iter().map(|c| c.iter().map(back).collect()).collect(), corners.iter().map(back).collect())
+}

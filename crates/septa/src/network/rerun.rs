@@ -1,0 +1,158 @@
+//! Ray shooting's questions (Du et al. Sec. 7.1, `raytrace.rs`) answered
+//! for a streamed network, whose polygons are no longer in memory: the
+//! block holding the tet a ray looks at is run again (blocks are pure
+//! functions of the input, so it gives the same polygons, and its summary
+//! the same patch pieces, as when it was streamed) and its pieces are
+//! mapped to components and shells through the assembly (`assembly.rs`).
+//! A ray looks at two or three tets per network component, so only a few
+//! blocks are run again; the last few are kept.
+
+use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
+
+use super::assembly::Assembled;
+use super::block::{BlockOut, Worker};
+use super::raytrace::RayIndex;
+use super::{NetworkOptions, VKey};
+use crate::grid::{BoxGrid, Grid};
+use crate::scene::Primitive;
+
+/// A block run again, indexed for lookups.
+struct Rerun {
+    index: usize,
+    out: BlockOut,
+    /// Global piece of each polygon.
+    piece: Vec<u32>,
+    vmap: FxHashMap<VKey, u32>,
+    /// Polygons at block vertex `v`: `polys[start[v]..start[v + 1]]`.
+    start: Vec<u32>,
+    polys: Vec<u32>,
+}
+
+/// [`RayIndex`] by re-running blocks (module doc).
+pub(crate) struct RerunIndex<'a> {
+    pub grid: &'a BoxGrid,
+    pub g: &'a Grid,
+    pub functions: &'a [Primitive],
+    pub options: &'a NetworkOptions,
+    /// (block index, its first piece), ascending: the streamed blocks.
+    pub block_pieces: &'a [(usize, u32)],
+    pub assembled: &'a Assembled,
+    pub worker: Worker,
+    cache: Vec<Rerun>,
+    /// Blocks run again (for the summary).
+    pub reruns: usize,
+}
+
+/// How many re-run blocks are kept.
+const KEEP: usize = 8;
+
+impl<'a> RerunIndex<'a> {
+    pub(crate) fn new(
+        grid: &'a BoxGrid,
+        g: &'a Grid,
+        functions: &'a [Primitive],
+        options: &'a NetworkOptions,
+        block_pieces: &'a [(usize, u32)],
+        assembled: &'a Assembled,
+    ) -> RerunIndex<'a> {
+        RerunIndex {
+            grid,
+            g,
+            functions,
+            options,
+            block_pieces,
+            assembled,
+            worker: Worker::default(),
+            cache: Vec::new(),
+            reruns: 0,
+        }
+    }
+
+    /// The block holding `tet`, run again (`None`: it was never streamed,
+    /// so it holds no network, or it fails now, which it did not before).
+    fn block_of(&mut self, tet: &[u32; 4]) -> Option<&Rerun> {
+        let size = self.options.block.max(1);
+        let n = self.grid.res.map(|r| r.div_ceil(size));
+        let ijk = tet
+            .iter()
+            .map(|&v| self.grid.vertex_ijk(v))
+            .fold([usize::MAX; 3], |m, x| [m[0].min(x[0]), m[1].min(x[1]), m[2].min(x[2])]);
+        let b = ijk.map(|c| c / size);
+        let index = (b[0] * n[1] + b[1]) * n[2] + b[2];
+        if let Some(i) = self.cache.iter().position(|r| r.index == index) {
+            let r = self.cache.remove(i);
+            self.cache.push(r);
+            return self.cache.last();
+        }
+        let at = self.block_pieces.binary_search_by_key(&index, |x| x.0).ok()?;
+        let base = self.block_pieces[at].1;
+        let r = super::sparse::run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index)
+            .ok()?;
+        self.reruns += 1;
+        let out = r.out;
+        let s = super::summary::summarize(&out).ok()?;
+        let piece = s.poly_piece.iter().map(|&p| base + p).collect();
+        let vmap = out.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
+        let nv = out.keys.len();
+        let mut start = vec![0u32; nv + 1];
+        for &v in &out.poly_verts {
+            start[v as usize + 1] += 1;
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut polys = vec![0u32; out.poly_verts.len()];
+        for p in 0..out.poly_label.len() {
+            for j in out.poly_start[p]..out.poly_start[p + 1] {
+                let v = out.poly_verts[j as usize] as usize;
+                polys[fill[v] as usize] = p as u32;
+                fill[v] += 1;
+            }
+        }
+        if self.cache.len() == KEEP {
+            self.cache.remove(0);
+        }
+        self.cache.push(Rerun { index, out, piece, vmap, start, polys });
+        self.cache.last()
+    }
+}
+
+impl Rerun {
+    fn polys_at(&self, v: u32) -> &[u32] {
+        &self.polys[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+    }
+}
+
+impl RayIndex for RerunIndex<'_> {
+    fn component(&mut self, tet: &[u32; 4], key: VKey) -> Option<u32> {
+        let assembled = self.assembled;
+        let r = self.block_of(tet)?;
+        let v = *r.vmap.get(&key)?;
+        let p = *r.polys_at(v).first()?;
+        let piece = r.piece[p as usize];
+        Some(assembled.piece_comp[piece as usize])
+    }
+
+    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32> {
+        let assembled = self.assembled;
+        let r = self.block_of(tet)?;
+        let mut ids: SmallVec<[u32; 8]> = SmallVec::new();
+        for k in keys {
+            ids.push(*r.vmap.get(k)?);
+        }
+        ids.sort_unstable();
+        for &p in r.polys_at(ids[0]) {
+            let o = &r.out;
+            let mut vs: SmallVec<[u32; 8]> =
+                o.poly_verts[o.poly_start[p as usize] as usize..o.poly_start[p as usize + 1] as usize].into();
+            vs.sort_unstable();
+            if vs == ids {
+                let piece = r.piece[p as usize] as usize;
+                return Some(assembled.half_shell[2 * piece + side]);
+            }
+        }
+        None
+    }
+}
