@@ -205,6 +205,10 @@ fn streamed_topology_equals_the_in_memory_network() {
     for name in ["separate8", "nested8"] {
         check(&cube_grid(28), &spec(name), Mode::Mi, 4, 2, &format!("{name} MI"));
     }
+    // No network in the grid (every block skipped): one cell, the grid's label.
+    let far = vec![septa::scene::Primitive::sphere([5.0, 5.0, 5.0], 0.5)];
+    let sum = check(&cube_grid(12), &far, Mode::Ia, 4, 1, "far sphere").expect("rays apply");
+    assert_eq!((sum.faces, sum.cells.len(), sum.cells[0].label.as_slice()), (0, 1, &[0u64][..]));
 }
 
 #[test]
