@@ -9,9 +9,10 @@ use std::time::Instant;
 /// Arguments of `septa bench`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// What to time: `tet` (one tetrahedron, paper Table 3) or `grid`
+    /// What to time: `tet` (one tetrahedron, paper Table 3), `grid`
     /// (a whole grid against marching tetrahedra and a label-separating
-    /// extractor, paper Sec. 8.3).
+    /// extractor, paper Sec. 8.3) or `stream` (topology from block
+    /// summaries while streaming, against the in-memory run).
     what: String,
     /// Grid: cubes per axis.
     #[arg(long, default_value_t = 64)]
@@ -48,7 +49,8 @@ pub fn run(a: Args) -> CliResult {
     match a.what.as_str() {
         "tet" => bench_tet(&a),
         "grid" => crate::bench_grid::bench_grid(&a.mode, a.functions, a.resolution, a.threads, a.repeat, a.json),
-        w => Err(format!("unknown benchmark {w:?}; expected `tet` or `grid`").into()),
+        "stream" => crate::bench_stream::bench_stream(&a.mode, a.functions, a.resolution, a.threads, a.repeat, a.json),
+        w => Err(format!("unknown benchmark {w:?}; expected `tet`, `grid` or `stream`").into()),
     }
 }
 

@@ -3,6 +3,7 @@ use clap::{Parser, Subcommand};
 
 mod bench;
 mod bench_grid;
+mod bench_stream;
 mod cut;
 mod demo;
 mod labels;
