@@ -14,7 +14,9 @@ composes (so local and distributed outputs are identical by construction):
    ray shooting) is found and the :class:`septa.Network` assembled.
 
 Scheduling is Dask's: ``client.map`` over batches of block indices and
-``client.gather``. Without a client (``client=None``) the job runs in this
+``client.gather``. For networks larger than the client's memory,
+:func:`stream_ply` feeds results in block order to a streamed PLY and the
+topology assembled from block summaries, a bounded number in flight. Without a client (``client=None``) the job runs in this
 process with the same core (``compute_sparse``).
 
 >>> import septa.distributed as sd
@@ -36,11 +38,12 @@ import json
 import math
 import os
 import time
+from collections import deque
 
 from . import _septa
 from .network import Network
 
-__all__ = ["arrangement", "material_interface", "region_surfaces", "job_spec"]
+__all__ = ["arrangement", "material_interface", "region_surfaces", "stream_ply", "job_spec"]
 
 # Python shape field names -> the scene / reference JSON's.
 _RENAME = {
@@ -189,3 +192,67 @@ def region_surfaces(scene, *, client, grid=None, block=16, batch=None) -> Networ
     if isinstance(scene, (list, tuple)):
         raise _septa.InputError("region_surfaces: needs a scene (with its region rule), not a list of functions")
     return _distributed(job_spec(scene, grid=grid, block=block), client, batch, regions=True)
+
+
+def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=16, batch=None, in_flight=None,
+               triangles=False, topology=True) -> dict:
+    """Streams a network larger than memory to the PLY ``path``, blocks run
+    on a Dask cluster: the distributed form of :func:`septa.stream.stream_ply`.
+
+    Workers return block results as bytes; here they are fed in block order
+    to Septa's stream (vertex numbering, the PLY, the topology assembled from
+    block summaries) and dropped, so this process holds a bounded number of
+    results however large the grid: at most ``in_flight`` batches (default
+    two per worker thread) of ``batch`` blocks are submitted at a time.
+    ``mode``: ``"ia"`` or ``"mi"`` (default: the scene's, else IA). Returns
+    the same dict as :func:`septa.stream.stream_ply`, and writes the same
+    bytes: the PLY and ``<path>.topology.json`` do not depend on where the
+    blocks ran. On an error or Ctrl-C no PLY is left and pending tasks are cancelled.
+
+    >>> import septa, tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "s.ply"
+    >>> fs = [septa.shapes.sphere([0.1, 0, 0], 0.5), septa.shapes.sphere([-0.2, 0.1, 0], 0.4)]
+    >>> s = stream_ply(fs, out, client=None, grid=16, block=8)
+    >>> s["counts"]["cells"], out.exists()
+    (4, True)
+    """
+    job = job_spec(scene_or_functions, mode=mode, grid=grid, block=block)
+    text = json.dumps(job, separators=(",", ":"))
+    plan = _septa.sparse_plan(text)
+    kept = plan[1]
+    writer = _septa.StreamWriter(text, os.fspath(path), plan, bool(triangles), bool(topology))
+    if client is None:
+        step = batch or 64
+        for i in range(0, len(kept), step):
+            writer.feed(_septa.sparse_blocks(text, kept[i:i + step]))
+        return writer.finish()
+    threads = sum(client.nthreads().values()) or 1
+    if batch is None:
+        # Small tasks: each result waits here until the blocks before it are in.
+        batch = max(1, math.ceil(len(kept) / (16 * threads)))
+    in_flight = in_flight or 2 * threads
+    batches = iter([kept[i:i + batch] for i in range(0, len(kept), batch)])
+    [job_future] = client.scatter([text], broadcast=True)
+    pending = deque()
+
+    def submit():
+        b = next(batches, None)
+        if b is not None:
+            pending.append(client.submit(_run_blocks, job_future, b, pure=False))
+
+    try:
+        for _ in range(in_flight):
+            submit()
+        while pending:
+            fut = pending.popleft()
+            results = fut.result()
+            fut.release()
+            submit()
+            writer.feed(results)
+            del results
+        return writer.finish()
+    except BaseException:
+        for fut in pending:
+            fut.cancel()
+        del writer  # an unfinished stream removes its files
+        raise

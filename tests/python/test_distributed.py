@@ -132,3 +132,23 @@ def test_continuation_of_a_python_function_on_the_cluster(client):
         b, lb = dist.summary()["blocks"], local.summary()["blocks"]
         assert b["rounds"] == lb["rounds"] > 3 and b["seeds"] == lb["seeds"] == 1
         assert b["sampled"] == lb["sampled"] and b["skipped"] > 0
+
+
+def test_distributed_stream_writes_the_local_files(client, tmp_path):
+    """Blocks on the cluster, fed in order here: the PLY and the topology
+    JSON are byte for byte those of the single-process stream."""
+    spec = SPECS / "ia18.json"
+    local = septa.stream.stream_ply(spec, tmp_path / "local.ply", grid=24, block=6, mode="ia")
+    dist = sd.stream_ply(spec, tmp_path / "dist.ply", client=client, grid=24, block=6, mode="ia", batch=3, in_flight=2)
+    assert dist["counts"] == local["counts"] and dist["counts"]["cells"] > 1
+    assert (tmp_path / "dist.ply").read_bytes() == (tmp_path / "local.ply").read_bytes()
+    strip = lambda p: json.loads(p.read_text()) | {"seconds": None}
+    assert strip(tmp_path / "dist.topology.json") == strip(tmp_path / "local.topology.json")
+    net = sd.arrangement(spec, client=client, grid=24, block=6)
+    s = net.summary()
+    assert all(dist["counts"][k] == s[k] for k in ("vertices", "faces", "patches", "chains", "shells", "cells"))
+    # A job the stream refuses (a function vanishing at grid vertices) leaves no file.
+    planes = [septa.shapes.plane([0, 0, 0], [1, 0, 0])]
+    with pytest.raises(septa.InputError, match="exactly 0"):
+        sd.stream_ply(planes, tmp_path / "bad.ply", client=client, grid=8, block=4)
+    assert not list(tmp_path.glob("*bad*")) and not list(tmp_path.glob(".bad*"))

@@ -68,5 +68,6 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(distributed::sparse_finish_regions, m)?)?;
     m.add_function(wrap_pyfunction!(distributed::sparse_network, m)?)?;
     m.add_function(wrap_pyfunction!(stream::stream_ply, m)?)?;
+    m.add_class::<stream::StreamWriter>()?;
     Ok(())
 }

@@ -7,10 +7,10 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyBytes, PyDict};
 use septa::io::ply_stream::{PlyStreamSink, PlyStreamStats};
-use septa::network::stream::{stream_sparse, stream_topology, StreamStats};
-use septa::network::NetworkSummary;
+use septa::network::stream::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
+use septa::network::{BlockResult, NetworkSummary, SparsePlan};
 
 use crate::InputError;
 
@@ -54,6 +54,18 @@ pub fn stream_ply<'py>(
         crate::on_threads(threads, run)
     })?;
     let (stats, ply, summary) = r.map_err(InputError::new_err)?;
+    result_dict(py, path, &stats, &ply, summary.as_ref(), &topo_path)
+}
+
+/// The dict both ways of streaming return.
+fn result_dict<'py>(
+    py: Python<'py>,
+    path: &str,
+    stats: &StreamStats,
+    ply: &PlyStreamStats,
+    summary: Option<&NetworkSummary>,
+    topo_path: &Path,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("path", path)?;
     d.set_item("faces", ply.polygons)?;
@@ -75,4 +87,78 @@ pub fn stream_ply<'py>(
         d.set_item("topology", topo_path.display().to_string())?;
     }
     Ok(d)
+}
+
+/// StreamWriter(job, path, plan, triangles, topology)
+/// --
+///
+/// The in-order half of a stream whose blocks are computed elsewhere (on a
+/// Dask cluster: `septa.distributed.stream_ply`): `feed(results)` takes
+/// block results as bytes (`sparse_blocks`), in the plan's order, numbers
+/// their vertices, writes their polygons to the PLY `path` and assembles the
+/// topology from their summaries; `finish()` shoots the rays, writes
+/// `<path>.topology.json` and returns the same dict as `stream_ply`. Dropped
+/// unfinished (an error, Ctrl-C), it leaves no file.
+#[pyclass(module = "septa._septa")]
+pub struct StreamWriter {
+    state: Option<(StreamFeeder, PlyStreamSink)>,
+    path: String,
+}
+
+#[pymethods]
+impl StreamWriter {
+    #[new]
+    fn new(job: &str, path: &str, plan: (usize, Vec<usize>, bool), triangles: bool, topology: bool) -> PyResult<Self> {
+        let r = (|| -> Result<StreamWriter, String> {
+            let j = crate::distributed::parse_job(job)?;
+            let plan = SparsePlan { blocks: plan.0, kept: plan.1, dense: plan.2 };
+            let feeder =
+                StreamFeeder::new(&j.grid, &j.functions, &j.options, &plan, topology).map_err(|e| e.to_string())?;
+            let sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
+                .map_err(|e| format!("{path}: {e}"))?
+                .triangulated(triangles);
+            Ok(StreamWriter { state: Some((feeder, sink)), path: path.to_string() })
+        })();
+        r.map_err(InputError::new_err)
+    }
+
+    /// Feeds block results (bytes, in the plan's order).
+    fn feed(&mut self, py: Python<'_>, results: Vec<Bound<'_, PyBytes>>) -> PyResult<()> {
+        let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
+        let Some((feeder, sink)) = self.state.as_mut() else {
+            return Err(InputError::new_err("the stream is finished"));
+        };
+        let r: Result<(), String> = py.detach(|| {
+            for (i, b) in slices.iter().enumerate() {
+                let block = BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}"))?;
+                feeder.feed(block, sink).map_err(|e| e.to_string())?;
+            }
+            Ok(())
+        });
+        if r.is_err() {
+            self.state = None; // drops the sink: no file is left
+        }
+        r.map_err(InputError::new_err)
+    }
+
+    /// Finishes the stream (module doc) and returns its summary dict.
+    fn finish<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let Some((feeder, sink)) = self.state.take() else {
+            return Err(InputError::new_err("the stream is finished"));
+        };
+        let path = self.path.clone();
+        let topo_path = Path::new(&path).with_extension("topology.json");
+        type Out = (StreamStats, PlyStreamStats, Option<NetworkSummary>);
+        let r: Result<Out, String> = py.detach(|| {
+            let (stats, summary) = feeder.finish().map_err(|e| e.to_string())?;
+            let ply = sink.finish_with(summary.as_ref()).map_err(|e| format!("{path}: {e}"))?;
+            if let Some(t) = &summary {
+                septa::io::summary_out::write_summary_json(t, &topo_path, &[])
+                    .map_err(|e| format!("{}: {e}", topo_path.display()))?;
+            }
+            Ok((stats, ply, summary))
+        });
+        let (stats, ply, summary) = r.map_err(InputError::new_err)?;
+        result_dict(py, &path, &stats, &ply, summary.as_ref(), &topo_path)
+    }
 }

@@ -250,3 +250,50 @@ fn streamed_topology_is_the_same_for_any_window_and_thread_count() {
         assert!(run(t, w) == first, "threads {t} window {w}");
     }
 }
+
+#[test]
+fn blocks_computed_elsewhere_stream_the_same() {
+    // Blocks run one by one and shipped as bytes (as on a Dask cluster),
+    // fed in plan order: the same faces, pieces and topology as the local stream.
+    use septa::network::stream::StreamFeeder;
+    use septa::network::{plan_sparse, run_block, BlockResult};
+    let f = spec("mi18");
+    let grid = cube_grid(24);
+    let mut o = NetworkOptions::new(Mode::Mi);
+    o.block = 8;
+    let mut local = Collect::default();
+    let (ls, lsum) = stream_topology(&grid, &f, &o, 0, &mut local).unwrap();
+    let plan = plan_sparse(&grid, &f, &o).unwrap();
+    let bytes: Vec<Vec<u8>> = plan.kept.iter().map(|&i| run_block(&grid, &f, &o, i).unwrap().to_bytes()).collect();
+    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    let mut remote = Collect::default();
+    for b in &bytes {
+        feeder.feed(BlockResult::from_bytes(b).unwrap(), &mut remote).unwrap();
+    }
+    let (rs, rsum) = feeder.finish().unwrap();
+    let rsum = rsum.expect("topology");
+    assert_eq!(local.faces, remote.faces);
+    assert_eq!(local.keys, remote.keys);
+    assert_eq!(lsum.counts(), rsum.counts());
+    assert_eq!((&lsum.patches, &lsum.chains, &lsum.corners), (&rsum.patches, &rsum.chains, &rsum.corners));
+    assert_eq!(
+        (&lsum.shells, &lsum.piece_patch, &lsum.piece_cells),
+        (&rsum.shells, &rsum.piece_patch, &rsum.piece_cells)
+    );
+    assert_eq!(lsum.chain_patches, rsum.chain_patches);
+    assert_eq!(format!("{:?}", lsum.cells), format!("{:?}", rsum.cells));
+    assert_eq!((ls.faces, ls.vertices, ls.active_tets), (rs.faces, rs.vertices, rs.active_tets));
+    // Misuse is an error naming the block, never a wrong stream.
+    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    let e = feeder.feed(BlockResult::from_bytes(&bytes[1]).unwrap(), &mut Collect::default()).unwrap_err();
+    assert!(e.to_string().contains("out of order"), "{e}");
+    let mut other = o.clone();
+    other.block = 6;
+    let mut feeder = StreamFeeder::new(&grid, &f, &other, &plan_sparse(&grid, &f, &other).unwrap(), true).unwrap();
+    let e = feeder.feed(BlockResult::from_bytes(&bytes[0]).unwrap(), &mut Collect::default()).unwrap_err();
+    assert!(e.to_string().contains("another job"), "{e}");
+    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    feeder.feed(BlockResult::from_bytes(&bytes[0]).unwrap(), &mut Collect::default()).unwrap();
+    let e = feeder.finish().unwrap_err();
+    assert!(e.to_string().contains(&format!("1 of the plan's {} blocks", plan.kept.len())), "{e}");
+}

@@ -15,6 +15,7 @@ mod block;
 mod boxfast;
 mod canon;
 pub mod continuation;
+mod feeder;
 mod keys;
 mod merge;
 mod numbering;

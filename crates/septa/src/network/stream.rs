@@ -38,11 +38,11 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use super::assembly::{Assembler, NetworkSummary};
+use super::assembly::NetworkSummary;
 use super::block::Worker;
-use super::numbering::VertexNumbering;
+pub use super::feeder::StreamFeeder;
+use super::feeder::{summary_of, BlockSummary};
 use super::sparse::{check_functions, plan_sparse, run_block_with, BlockResult};
-use super::summary::BlockSummary;
 use super::{NetworkError, NetworkOptions, VKey};
 use crate::grid::{BoxGrid, Grid};
 use crate::scene::Primitive;
@@ -188,31 +188,12 @@ pub fn stream_topology<S: StreamSink + Send>(
     window: usize,
     sink: &mut S,
 ) -> Result<(StreamStats, NetworkSummary), StreamError> {
-    let (mut stats, asm, vertices) = drive(grid, functions, options, window, sink, true)?;
-    let asm = asm.expect("topology was asked for");
-    let g = Grid::Box(grid.clone());
-    let pv = super::sparse::PointValues { grid, functions };
-    let ctx = super::sparse::ctx(&g, functions.len(), options, &pv);
-    let row0: Vec<f64> = (0..functions.len()).map(|f| functions[f].eval(grid.vertex(0))).collect();
-    let block_pieces = asm.block_pieces.clone();
-    stats.peak_open = asm.peak_open;
-    let mut reruns = 0;
-    let summary = asm.finish(
-        vertices as usize,
-        |a| {
-            let mut index = super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, a);
-            let r = super::raytrace::ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
-            reruns = index.reruns;
-            r
-        },
-        &row0,
-    )?;
-    stats.reruns = reruns;
-    Ok((stats, summary))
+    let (stats, summary) = drive(grid, functions, options, window, sink, true)?;
+    Ok((stats, summary.expect("topology was asked for")))
 }
 
-/// Runs the kept blocks a window at a time and feeds them in order to the
-/// sink (and, for topology, their summaries to an [`Assembler`]).
+/// Runs the kept blocks a window at a time and feeds them in order to a
+/// [`StreamFeeder`] (summaries are made in the parallel part).
 fn drive<S: StreamSink + Send>(
     grid: &BoxGrid,
     functions: &[Primitive],
@@ -220,20 +201,18 @@ fn drive<S: StreamSink + Send>(
     window: usize,
     sink: &mut S,
     topology: bool,
-) -> Result<(StreamStats, Option<Assembler>, u64), StreamError> {
+) -> Result<(StreamStats, Option<NetworkSummary>), StreamError> {
     check_functions(functions.len())?;
     let mut o = options.clone();
     o.volumes = false;
     o.raytrace = true;
     let plan = plan_sparse(grid, functions, &o)?;
     let window = if window == 0 { 4 * rayon::current_num_threads() } else { window };
-    let mut stats = StreamStats { blocks: plan.blocks, window, ..StreamStats::default() };
-    stats.sampled = plan.kept.len();
-    stats.skipped = plan.blocks - plan.kept.len();
+    let mut feeder = StreamFeeder::new(grid, functions, &o, &plan, topology)?;
     let g = Grid::Box(grid.clone());
     let pool: Mutex<Vec<Worker>> = Mutex::new(Vec::new());
     let done = AtomicUsize::new(0);
-    let run_window = |ids: &[usize]| -> Result<Vec<Done>, NetworkError> {
+    let run_window = |ids: &[usize]| -> Result<Vec<(BlockResult, Option<BlockSummary>)>, NetworkError> {
         ids.par_iter()
             .map_init(
                 || Lease { worker: Some(pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default()), pool: &pool },
@@ -245,34 +224,28 @@ fn drive<S: StreamSink + Send>(
                     let r = run_block_with(w, &g, grid, functions, &o, i)?;
                     // Summaries are made here, in parallel; only their
                     // assembly runs in block order.
-                    let summary = if topology && r.clean {
-                        Some(super::summary::summarize(&r.out).map_err(|_| unclean(r.index))?)
-                    } else {
-                        None
-                    };
+                    let summary = if topology && r.clean { Some(summary_of(&r)?) } else { None };
                     if let Some(p) = &o.progress {
                         p.tick(&done, plan.kept.len());
                     }
-                    Ok(Done { result: r, summary })
+                    Ok((r, summary))
                 },
             )
             .collect()
     };
-    let mut feeder = Feeder {
-        grid,
-        block: options.block,
-        numbering: VertexNumbering::new(grid),
-        assembler: topology.then(|| Assembler::new(options.mode, functions.len(), VertexNumbering::new(grid).plane())),
-        ids: Vec::new(),
-        pieces: Vec::new(),
-    };
     // Window w + 1 is computed while window w goes to the sink.
-    let mut pending: Option<Vec<Done>> = None;
+    let mut pending: Option<Vec<(BlockResult, Option<BlockSummary>)>> = None;
+    let mut feed = |rs: Vec<(BlockResult, Option<BlockSummary>)>, sink: &mut S| -> Result<(), StreamError> {
+        for (r, summary) in rs {
+            feeder.feed_with(r, summary, sink)?;
+        }
+        Ok(())
+    };
     for ids in plan.kept.chunks(window) {
         let (next, fed) = rayon::join(
             || run_window(ids),
             || match pending.take() {
-                Some(rs) => feeder.feed(rs, sink, &mut stats),
+                Some(rs) => feed(rs, sink),
                 None => Ok(()),
             },
         );
@@ -280,100 +253,9 @@ fn drive<S: StreamSink + Send>(
         pending = Some(next?);
     }
     if let Some(rs) = pending {
-        feeder.feed(rs, sink, &mut stats)?;
+        feed(rs, sink)?;
     }
-    stats.vertices = feeder.numbering.count();
-    stats.peak_shared_keys = feeder.numbering.peak();
-    Ok((stats, feeder.assembler, feeder.numbering.count()))
-}
-
-/// A block computed, with its summary when topology is asked for.
-struct Done {
-    result: BlockResult,
-    summary: Option<BlockSummary>,
-}
-
-fn unclean(index: usize) -> NetworkError {
-    NetworkError::BlockResults(format!(
-        "block {index}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
-         network faces may lie on tet faces, which only the in-memory merge pairs: \
-         run without streaming"
-    ))
-}
-
-/// The in-order half of the stream: vertex numbering, assembly, the sink.
-struct Feeder<'a> {
-    grid: &'a BoxGrid,
-    block: usize,
-    numbering: VertexNumbering,
-    assembler: Option<Assembler>,
-    ids: Vec<u32>,
-    pieces: Vec<u32>,
-}
-
-impl Feeder<'_> {
-    /// Hands a window's results to the sink in order, dropping each after.
-    fn feed<S: StreamSink>(
-        &mut self,
-        results: Vec<Done>,
-        sink: &mut S,
-        stats: &mut StreamStats,
-    ) -> Result<(), StreamError> {
-        for Done { result: r, summary } in results {
-            if !r.clean {
-                return Err(unclean(r.index).into());
-            }
-            let b = super::sparse::block_at(self.grid, self.block, r.index).expect("a planned block exists");
-            let (lo, hi) = super::sparse::cubes(&b);
-            let out = &r.out;
-            stats.sampled_vertices += r.sampled_vertices;
-            stats.active += (out.active_tets > 0) as usize;
-            stats.active_tets += out.active_tets;
-            stats.faces += out.poly_label.len();
-            stats.block_vertices += out.keys.len();
-            let base = self.assembler.as_ref().map_or(0, |a| a.pieces());
-            let vertex_piece: &[u32] = summary.as_ref().map_or(&[], |s| &s.vertex_piece);
-            // Shared vertices seen before join components, once the block's
-            // pieces exist in the assembly.
-            let mut repeats: Vec<(u32, u32)> = Vec::new();
-            self.numbering
-                .block(
-                    lo[0],
-                    &out.keys,
-                    &out.shared,
-                    &out.poly_verts,
-                    &mut self.ids,
-                    |v| vertex_piece.get(v as usize).map_or(0, |p| base + p),
-                    |first, v| {
-                        if let Some(p) = vertex_piece.get(v as usize) {
-                            repeats.push((first, base + p));
-                        }
-                    },
-                )
-                .map_err(NetworkError::BlockResults)?;
-            self.pieces.clear();
-            if let (Some(a), Some(s)) = (self.assembler.as_mut(), &summary) {
-                a.add(r.index, lo[0], out, s, &self.ids)?;
-                for (x, y) in repeats {
-                    a.same_vertex(x, y);
-                }
-                self.pieces.extend(s.poly_piece.iter().map(|&p| base + p));
-            }
-            sink.block(&StreamBlock {
-                index: r.index,
-                lo,
-                hi,
-                keys: &out.keys,
-                shared: &out.shared,
-                points: &out.points,
-                poly_start: &out.poly_start,
-                poly_verts: &out.poly_verts,
-                poly_label: &out.poly_label,
-                vertex_ids: &self.ids,
-                poly_piece: &self.pieces,
-                active_tets: out.active_tets,
-            })?;
-        }
-        Ok(())
-    }
+    let (mut stats, summary) = feeder.finish()?;
+    stats.window = window;
+    Ok((stats, summary))
 }

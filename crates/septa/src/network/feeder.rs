@@ -1,0 +1,219 @@
+//! The in-order half of a stream (issue 6): block results, in the plan's
+//! order, get their vertices' streamed ids (`numbering.rs`), go to the sink,
+//! and, for topology, their summaries to the assembly (`assembly.rs`);
+//! [`StreamFeeder::finish`] shoots the rays (`rerun.rs`).
+//!
+//! [`stream_sparse`](super::stream::stream_sparse) and
+//! [`stream_topology`](super::stream::stream_topology) compute the blocks on
+//! this machine and feed them here; a caller whose blocks were computed
+//! elsewhere (on a Dask cluster, as bytes: [`BlockResult::from_bytes`])
+//! feeds them the same way, so the stream and its topology are the same
+//! wherever the blocks ran.
+
+use super::assembly::{Assembler, NetworkSummary};
+use super::numbering::VertexNumbering;
+use super::sparse::{block_at, cubes, JobKey, SparsePlan};
+use super::stream::{StreamBlock, StreamError, StreamSink, StreamStats};
+pub(crate) use super::summary::BlockSummary;
+use super::{BlockResult, NetworkError, NetworkOptions};
+use crate::grid::{BoxGrid, Grid};
+use crate::scene::Primitive;
+
+/// Feeds block results to a sink in plan order (module doc).
+pub struct StreamFeeder {
+    grid: BoxGrid,
+    functions: Vec<Primitive>,
+    options: NetworkOptions,
+    job: JobKey,
+    kept: Vec<usize>,
+    next: usize,
+    numbering: VertexNumbering,
+    assembler: Option<Assembler>,
+    ids: Vec<u32>,
+    pieces: Vec<u32>,
+    stats: StreamStats,
+}
+
+/// The summary of a clean block (an error naming the block otherwise).
+pub(crate) fn summary_of(r: &BlockResult) -> Result<BlockSummary, NetworkError> {
+    super::summary::summarize(&r.out).map_err(|_| unclean(r.index))
+}
+
+fn unclean(index: usize) -> NetworkError {
+    NetworkError::BlockResults(format!(
+        "block {index}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
+         network faces may lie on tet faces, which only the in-memory merge pairs: \
+         run without streaming"
+    ))
+}
+
+impl StreamFeeder {
+    /// A feeder for the blocks `plan.kept` of a sparse job
+    /// ([`plan_sparse`](super::plan_sparse) on the same grid, functions and
+    /// options); with `topology`, the assembly runs too.
+    pub fn new(
+        grid: &BoxGrid,
+        functions: &[Primitive],
+        options: &NetworkOptions,
+        plan: &SparsePlan,
+        topology: bool,
+    ) -> Result<StreamFeeder, NetworkError> {
+        super::sparse::check_functions(functions.len())?;
+        if plan.dense {
+            return Err(NetworkError::BlockResults(
+                "the plan asks for the dense path (volumes or cell grouping): nothing to stream".into(),
+            ));
+        }
+        let numbering = VertexNumbering::new(grid);
+        let assembler = topology.then(|| Assembler::new(options.mode, functions.len(), numbering.plane()));
+        let stats = StreamStats {
+            blocks: plan.blocks,
+            sampled: plan.kept.len(),
+            skipped: plan.blocks - plan.kept.len(),
+            ..StreamStats::default()
+        };
+        Ok(StreamFeeder {
+            grid: grid.clone(),
+            functions: functions.to_vec(),
+            options: options.clone(),
+            job: JobKey::of(grid, functions.len(), options),
+            kept: plan.kept.clone(),
+            next: 0,
+            numbering,
+            assembler,
+            ids: Vec::new(),
+            pieces: Vec::new(),
+            stats,
+        })
+    }
+
+    /// Feeds the next block's result (it must be block `plan.kept[i]` for
+    /// the `i`-th call, of this job) to `sink`, then drops it.
+    pub fn feed<S: StreamSink + ?Sized>(&mut self, result: BlockResult, sink: &mut S) -> Result<(), StreamError> {
+        let summary = match (&self.assembler, result.clean) {
+            (Some(_), true) => Some(summary_of(&result)?),
+            _ => None,
+        };
+        self.feed_with(result, summary, sink)
+    }
+
+    /// [`StreamFeeder::feed`] with the block's summary already made (in parallel).
+    pub(crate) fn feed_with<S: StreamSink + ?Sized>(
+        &mut self,
+        r: BlockResult,
+        summary: Option<BlockSummary>,
+        sink: &mut S,
+    ) -> Result<(), StreamError> {
+        if !r.job.same(&self.job) {
+            return Err(NetworkError::BlockResults(format!(
+                "block {} belongs to another job ({:?}, expected {:?})",
+                r.index, r.job, self.job
+            ))
+            .into());
+        }
+        match self.kept.get(self.next) {
+            Some(&i) if i == r.index => self.next += 1,
+            want => {
+                return Err(NetworkError::BlockResults(format!(
+                    "block {} fed out of order (expected {})",
+                    r.index,
+                    want.map_or("no more blocks".to_string(), |i| format!("block {i}"))
+                ))
+                .into())
+            }
+        }
+        if !r.clean {
+            return Err(unclean(r.index).into());
+        }
+        let b = block_at(&self.grid, self.options.block, r.index).expect("a planned block exists");
+        let (lo, hi) = cubes(&b);
+        let out = &r.out;
+        let stats = &mut self.stats;
+        stats.sampled_vertices += r.sampled_vertices;
+        stats.active += (out.active_tets > 0) as usize;
+        stats.active_tets += out.active_tets;
+        stats.faces += out.poly_label.len();
+        stats.block_vertices += out.keys.len();
+        let base = self.assembler.as_ref().map_or(0, |a| a.pieces());
+        let vertex_piece: &[u32] = summary.as_ref().map_or(&[], |s| &s.vertex_piece);
+        // Shared vertices seen before join components, once the block's
+        // pieces exist in the assembly.
+        let mut repeats: Vec<(u32, u32)> = Vec::new();
+        self.numbering
+            .block(
+                lo[0],
+                &out.keys,
+                &out.shared,
+                &out.poly_verts,
+                &mut self.ids,
+                |v| vertex_piece.get(v as usize).map_or(0, |p| base + p),
+                |first, v| {
+                    if let Some(p) = vertex_piece.get(v as usize) {
+                        repeats.push((first, base + p));
+                    }
+                },
+            )
+            .map_err(NetworkError::BlockResults)?;
+        self.pieces.clear();
+        if let (Some(a), Some(s)) = (self.assembler.as_mut(), &summary) {
+            a.add(r.index, lo[0], out, s, &self.ids)?;
+            for (x, y) in repeats {
+                a.same_vertex(x, y);
+            }
+            self.pieces.extend(s.poly_piece.iter().map(|&p| base + p));
+        }
+        sink.block(&StreamBlock {
+            index: r.index,
+            lo,
+            hi,
+            keys: &out.keys,
+            shared: &out.shared,
+            points: &out.points,
+            poly_start: &out.poly_start,
+            poly_verts: &out.poly_verts,
+            poly_label: &out.poly_label,
+            vertex_ids: &self.ids,
+            poly_piece: &self.pieces,
+            active_tets: out.active_tets,
+        })?;
+        Ok(())
+    }
+
+    /// After the last block: the stream's statistics and, with topology,
+    /// the network's topology (cells by ray shooting, running the few
+    /// blocks a ray looks at again on the current rayon pool's thread).
+    pub fn finish(self) -> Result<(StreamStats, Option<NetworkSummary>), StreamError> {
+        if self.next != self.kept.len() {
+            return Err(NetworkError::BlockResults(format!(
+                "{} of the plan's {} blocks fed",
+                self.next,
+                self.kept.len()
+            ))
+            .into());
+        }
+        let mut stats = self.stats;
+        stats.vertices = self.numbering.count();
+        stats.peak_shared_keys = self.numbering.peak();
+        let Some(asm) = self.assembler else { return Ok((stats, None)) };
+        stats.peak_open = asm.peak_open;
+        let (grid, functions, options) = (&self.grid, &self.functions[..], &self.options);
+        let g = Grid::Box(grid.clone());
+        let pv = super::sparse::PointValues { grid, functions };
+        let ctx = super::sparse::ctx(&g, functions.len(), options, &pv);
+        let row0: Vec<f64> = functions.iter().map(|f| f.eval(grid.vertex(0))).collect();
+        let block_pieces = asm.block_pieces.clone();
+        let mut reruns = 0;
+        let summary = asm.finish(
+            stats.vertices as usize,
+            |a| {
+                let mut index = super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, a);
+                let r = super::raytrace::ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
+                reruns = index.reruns;
+                r
+            },
+            &row0,
+        )?;
+        stats.reruns = reruns;
+        Ok((stats, Some(summary)))
+    }
+}
