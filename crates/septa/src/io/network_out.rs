@@ -9,7 +9,7 @@ use std::path::Path;
 
 use super::atomic::write_atomic_with;
 use crate::complex::NONE;
-use crate::network::{Mode, Network};
+use crate::network::{CellInfo, Mode, Network, Patch};
 
 pub(crate) fn list<W: Write + ?Sized, T: std::fmt::Display>(
     w: &mut W,
@@ -34,10 +34,6 @@ fn id(x: u32) -> i64 {
 }
 
 /// The cell label as JSON: IA a list of booleans (function positive), MI `[material]`.
-fn cell_label(net: &Network, c: usize) -> String {
-    label_json(net.mode, net.functions, &net.cells[c].label)
-}
-
 /// A cell label as JSON: IA one boolean per function (`f > 0`), MI `[material]`.
 pub(crate) fn label_json(mode: Mode, functions: usize, l: &[u64]) -> String {
     match mode {
@@ -89,61 +85,99 @@ pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> 
             }
             write!(w, "[{},{}]", id(c[0]), id(c[1]))?;
         }
-        w.write_all(b"],\n\"patches\":[")?;
-        for (i, p) in net.patches.iter().enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            write!(w, "{{\"label\":[{},{}],\"faces\":{}}}", p.label[0], p.label[1], p.faces)?;
-        }
-        w.write_all(b"],\n\"chains\":[")?;
-        for (i, c) in net.chains.iter().enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            list(w, c.iter())?;
-        }
-        w.write_all(b"],\n\"chain_patches\":[")?;
-        for (i, c) in net.chain_patches.iter().enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            list(w, c.iter())?;
-        }
-        w.write_all(b"],\n\"corners\":")?;
-        list(w, net.corners.iter())?;
-        w.write_all(b",\n\"shells\":[")?;
-        for (i, s) in net.shells.iter().enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            list(w, s.iter())?;
-        }
-        w.write_all(b"],\n\"cells\":[")?;
-        for c in 0..net.cells.len() {
-            if c > 0 {
-                w.write_all(b",")?;
-            }
-            w.write_all(b"{\"shells\":")?;
-            list(w, net.cells[c].shells.iter())?;
-            write!(w, ",\"label\":{}}}", cell_label(net, c))?;
-        }
-        w.write_all(b"],\n\"counts\":{")?;
-        for (i, (k, v)) in net.counts().iter().enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            write!(w, "\"{k}\":{v}")?;
-        }
-        w.write_all(b"},\n\"seconds\":{")?;
-        for (i, (k, v)) in net.seconds.iter().chain(extra_seconds.iter()).enumerate() {
-            if i > 0 {
-                w.write_all(b",")?;
-            }
-            write!(w, "\"{k}\":{v}")?;
-        }
-        w.write_all(b"}}\n")
+        w.write_all(b"],\n")?;
+        write_topology(
+            w,
+            &TopologyJson {
+                mode: net.mode,
+                functions: net.functions,
+                patches: &net.patches,
+                chains: &net.chains,
+                chain_patches: &net.chain_patches,
+                corners: &net.corners,
+                shells: &net.shells,
+                cells: &net.cells,
+            },
+        )?;
+        let seconds: Vec<(&str, f64)> = net.seconds.iter().chain(extra_seconds.iter()).copied().collect();
+        write_counts_seconds(w, &net.counts(), &seconds)
     })
+}
+
+/// The topology part of `network.json`, shared with a stream's
+/// `topology.json` (`summary_out.rs`).
+pub(crate) struct TopologyJson<'a> {
+    pub mode: Mode,
+    pub functions: usize,
+    pub patches: &'a [Patch],
+    pub chains: &'a [Vec<u32>],
+    pub chain_patches: &'a [Vec<u32>],
+    pub corners: &'a [u32],
+    pub shells: &'a [Vec<u32>],
+    pub cells: &'a [CellInfo],
+}
+
+/// Writes `"patches":[..],\n"chains":[..],\n"chain_patches":[..],\n"corners":[..],\n"shells":[..],\n"cells":[..]`.
+pub(crate) fn write_topology<W: Write + ?Sized>(w: &mut W, t: &TopologyJson) -> std::io::Result<()> {
+    w.write_all(b"\"patches\":[")?;
+    for (i, p) in t.patches.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        write!(w, "{{\"label\":[{},{}],\"faces\":{}}}", p.label[0], p.label[1], p.faces)?;
+    }
+    for (name, xs) in [("chains", t.chains), ("chain_patches", t.chain_patches)] {
+        write!(w, "],\n\"{name}\":[")?;
+        lists(w, xs)?;
+    }
+    w.write_all(b"],\n\"corners\":")?;
+    list(w, t.corners.iter())?;
+    w.write_all(b",\n\"shells\":[")?;
+    lists(w, t.shells)?;
+    w.write_all(b"],\n\"cells\":[")?;
+    for (i, c) in t.cells.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        w.write_all(b"{\"shells\":")?;
+        list(w, c.shells.iter())?;
+        write!(w, ",\"label\":{}}}", label_json(t.mode, t.functions, &c.label))?;
+    }
+    w.write_all(b"]")
+}
+
+/// Comma-separated JSON lists.
+fn lists<W: Write + ?Sized>(w: &mut W, xs: &[Vec<u32>]) -> std::io::Result<()> {
+    for (i, c) in xs.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        list(w, c.iter())?;
+    }
+    Ok(())
+}
+
+/// Writes `,\n"counts":{..},\n"seconds":{..}}\n`, closing the document.
+pub(crate) fn write_counts_seconds<W: Write + ?Sized>(
+    w: &mut W,
+    counts: &[(&str, usize)],
+    seconds: &[(&str, f64)],
+) -> std::io::Result<()> {
+    w.write_all(b",\n\"counts\":{")?;
+    for (i, (k, v)) in counts.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        write!(w, "\"{k}\":{v}")?;
+    }
+    w.write_all(b"},\n\"seconds\":{")?;
+    for (i, (k, v)) in seconds.iter().enumerate() {
+        if i > 0 {
+            w.write_all(b",")?;
+        }
+        write!(w, "\"{k}\":{v}")?;
+    }
+    w.write_all(b"}}\n")
 }
 
 /// A colour per patch (golden-ratio hue walk).

@@ -76,18 +76,18 @@ pub struct NetworkSummary {
 impl NetworkSummary {
     /// The counts the reference reports, by name (as [`Network::counts`](super::Network::counts)).
     pub fn counts(&self) -> Vec<(&'static str, usize)> {
-        vec![
-            ("vertices", self.vertices),
-            ("faces", self.faces),
-            ("edges", self.edges),
-            ("patches", self.patches.len()),
-            ("chains", self.chains.len()),
-            ("corners", self.corners.len()),
-            ("shells", self.shells.len()),
-            ("cells", self.cells.len()),
-            ("components", self.components),
-            ("active_tets", self.active_tets),
-        ]
+        super::named_counts([
+            self.vertices,
+            self.faces,
+            self.edges,
+            self.patches.len(),
+            self.chains.len(),
+            self.corners.len(),
+            self.shells.len(),
+            self.cells.len(),
+            self.components,
+            self.active_tets,
+        ])
     }
 }
 

@@ -259,19 +259,27 @@ impl Network {
 
     /// The counts the reference reports, by name.
     pub fn counts(&self) -> Vec<(&'static str, usize)> {
-        vec![
-            ("vertices", self.points.len()),
-            ("faces", self.num_faces()),
-            ("edges", self.edges.len()),
-            ("patches", self.patches.len()),
-            ("chains", self.chains.len()),
-            ("corners", self.corners.len()),
-            ("shells", self.shells.len()),
-            ("cells", self.cells.len()),
-            ("components", self.components),
-            ("active_tets", self.active_tets),
-        ]
+        named_counts([
+            self.points.len(),
+            self.num_faces(),
+            self.edges.len(),
+            self.patches.len(),
+            self.chains.len(),
+            self.corners.len(),
+            self.shells.len(),
+            self.cells.len(),
+            self.components,
+            self.active_tets,
+        ])
     }
+}
+
+/// The reference's counts in its order, named (one list for the in-memory
+/// network and the streamed summary).
+pub(crate) fn named_counts(c: [usize; 10]) -> Vec<(&'static str, usize)> {
+    const NAMES: [&str; 10] =
+        ["vertices", "faces", "edges", "patches", "chains", "corners", "shells", "cells", "components", "active_tets"];
+    NAMES.into_iter().zip(c).collect()
 }
 
 /// Whether ray shooting is sure to apply: a box grid and no network vertex

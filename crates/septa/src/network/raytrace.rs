@@ -77,25 +77,32 @@ pub(crate) struct MergedIndex<'a> {
 
 impl<'a> MergedIndex<'a> {
     pub(crate) fn new(inp: &'a RayInput<'a>) -> MergedIndex<'a> {
-        let nv = inp.keys.len();
-        let mut start = vec![0u32; nv + 1];
-        for &v in inp.face_verts {
-            start[v as usize + 1] += 1;
-        }
-        for v in 0..nv {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut vf = vec![0u32; inp.face_verts.len()];
-        for f in 0..inp.face_patch.len() {
-            for j in inp.face_start[f]..inp.face_start[f + 1] {
-                let v = inp.face_verts[j as usize] as usize;
-                vf[fill[v] as usize] = f as u32;
-                fill[v] += 1;
-            }
-        }
+        let (start, vf) = faces_at_vertices(inp.keys.len(), inp.face_start, inp.face_verts);
         MergedIndex { inp, vmap: KeyIndex::new(inp.keys), start, vf }
     }
+}
+
+/// The faces at each of `nv` vertices, as `(start, faces)`: face ids at `v`
+/// are `faces[start[v]..start[v + 1]]` (polygon `f` is
+/// `face_verts[face_start[f]..face_start[f + 1]]`).
+pub(crate) fn faces_at_vertices(nv: usize, face_start: &[u32], face_verts: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    let mut start = vec![0u32; nv + 1];
+    for &v in face_verts {
+        start[v as usize + 1] += 1;
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut faces = vec![0u32; face_verts.len()];
+    for f in 0..face_start.len().saturating_sub(1) {
+        for j in face_start[f]..face_start[f + 1] {
+            let v = face_verts[j as usize] as usize;
+            faces[fill[v] as usize] = f as u32;
+            fill[v] += 1;
+        }
+    }
+    (start, faces)
 }
 
 impl RayIndex for MergedIndex<'_> {

@@ -94,23 +94,7 @@ impl<'a> RerunIndex<'a> {
         let s = super::summary::summarize(&out).ok()?;
         let piece = s.poly_piece.iter().map(|&p| base + p).collect();
         let vmap = out.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
-        let nv = out.keys.len();
-        let mut start = vec![0u32; nv + 1];
-        for &v in &out.poly_verts {
-            start[v as usize + 1] += 1;
-        }
-        for v in 0..nv {
-            start[v + 1] += start[v];
-        }
-        let mut fill = start.clone();
-        let mut polys = vec![0u32; out.poly_verts.len()];
-        for p in 0..out.poly_label.len() {
-            for j in out.poly_start[p]..out.poly_start[p + 1] {
-                let v = out.poly_verts[j as usize] as usize;
-                polys[fill[v] as usize] = p as u32;
-                fill[v] += 1;
-            }
-        }
+        let (start, polys) = super::raytrace::faces_at_vertices(out.keys.len(), &out.poly_start, &out.poly_verts);
         if self.cache.len() == KEEP {
             self.cache.remove(0);
         }
