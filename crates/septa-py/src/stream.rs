@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
+use rayon::prelude::*;
 use septa::io::ply_stream::{PlyStreamSink, PlyStreamStats};
 use septa::network::stream::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
 use septa::network::{BlockResult, NetworkSummary, SparsePlan};
@@ -128,12 +129,15 @@ impl StreamWriter {
         let Some((feeder, sink)) = self.state.as_mut() else {
             return Err(InputError::new_err("the stream is finished"));
         };
+        // Decoded and summarised in parallel here; only the assembly and
+        // the file are in order (the client's share of a distributed stream).
         let r: Result<(), String> = py.detach(|| {
-            for (i, b) in slices.iter().enumerate() {
-                let block = BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}"))?;
-                feeder.feed(block, sink).map_err(|e| e.to_string())?;
-            }
-            Ok(())
+            let blocks = slices
+                .par_iter()
+                .enumerate()
+                .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
+                .collect::<Result<Vec<_>, _>>()?;
+            feeder.feed_all(blocks, sink).map_err(|e| e.to_string())
         });
         if r.is_err() {
             self.state = None; // drops the sink: no file is left

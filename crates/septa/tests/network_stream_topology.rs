@@ -267,9 +267,13 @@ fn blocks_computed_elsewhere_stream_the_same() {
     let bytes: Vec<Vec<u8>> = plan.kept.iter().map(|&i| run_block(&grid, &f, &o, i).unwrap().to_bytes()).collect();
     let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
     let mut remote = Collect::default();
-    for b in &bytes {
+    // One by one, then a batch summarised in parallel.
+    let half = bytes.len() / 2;
+    for b in &bytes[..half] {
         feeder.feed(BlockResult::from_bytes(b).unwrap(), &mut remote).unwrap();
     }
+    let rest: Vec<BlockResult> = bytes[half..].iter().map(|b| BlockResult::from_bytes(b).unwrap()).collect();
+    feeder.feed_all(rest, &mut remote).unwrap();
     let (rs, rsum) = feeder.finish().unwrap();
     let rsum = rsum.expect("topology");
     assert_eq!(local.faces, remote.faces);

@@ -20,7 +20,7 @@ pub fn write_summary_json(s: &NetworkSummary, path: &Path, seconds: &[(&str, f64
             Mode::Ia => "ia",
             Mode::Mi => "mi",
         };
-        write!(w, "{{\"mode\":\"{mode}\",\"functions\":{},\n", s.functions)?;
+        writeln!(w, "{{\"mode\":\"{mode}\",\"functions\":{},", s.functions)?;
         write_topology(
             w,
             &TopologyJson {

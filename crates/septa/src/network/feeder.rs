@@ -97,6 +97,26 @@ impl StreamFeeder {
         self.feed_with(result, summary, sink)
     }
 
+    /// Feeds several consecutive block results, making their summaries in
+    /// parallel on the current rayon pool first (the assembly itself is in
+    /// order): what a client receiving batches from many workers should call.
+    pub fn feed_all<S: StreamSink + ?Sized>(
+        &mut self,
+        results: Vec<BlockResult>,
+        sink: &mut S,
+    ) -> Result<(), StreamError> {
+        use rayon::prelude::*;
+        let topology = self.assembler.is_some();
+        let summaries: Vec<Option<BlockSummary>> = results
+            .par_iter()
+            .map(|r| if topology && r.clean { summary_of(r).map(Some) } else { Ok(None) })
+            .collect::<Result<_, _>>()?;
+        for (r, s) in results.into_iter().zip(summaries) {
+            self.feed_with(r, s, sink)?;
+        }
+        Ok(())
+    }
+
     /// [`StreamFeeder::feed`] with the block's summary already made (in parallel).
     pub(crate) fn feed_with<S: StreamSink + ?Sized>(
         &mut self,
