@@ -205,6 +205,18 @@ fn streamed_topology_equals_the_in_memory_network() {
     for name in ["separate8", "nested8"] {
         check(&cube_grid(28), &spec(name), Mode::Mi, 4, 2, &format!("{name} MI"));
     }
+    // Surfaces crossing the grid boundary (open edges and tet-face pieces
+    // on the boundary stay unpaired) and a chain leaving the grid.
+    use septa::scene::Primitive as P;
+    let crossing = vec![
+        P::plane([0.013, 0.0, 0.0], [1.0, 0.1, 0.0]),
+        P::sphere([1.0, 1.0, 1.0], 0.71),
+        P::cylinder([0.0, 0.0, 0.0], [0.0, 0.2, 1.0], 0.43),
+    ];
+    for (mode, block, window) in [(Mode::Ia, 4, 1), (Mode::Ia, 7, 3), (Mode::Mi, 5, 2)] {
+        check(&cube_grid(21), &crossing, mode, block, window, &format!("crossing {mode:?} block {block}"))
+            .expect("rays apply");
+    }
     // No network in the grid (every block skipped): one cell, the grid's label.
     let far = vec![septa::scene::Primitive::sphere([5.0, 5.0, 5.0], 0.5)];
     let sum = check(&cube_grid(12), &far, Mode::Ia, 4, 1, "far sphere").expect("rays apply");
