@@ -86,15 +86,7 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
     let np = out.poly_label.len();
     let poly = |p: usize| &out.poly_verts[out.poly_start[p] as usize..out.poly_start[p + 1] as usize];
     // Polygon sides as (a, b, polygon), a < b, sorted: a run is one edge.
-    let mut sides: Vec<(u32, u32, u32)> = Vec::with_capacity(out.poly_verts.len());
-    for p in 0..np {
-        let vs = poly(p);
-        for j in 0..vs.len() {
-            let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
-            sides.push((a.min(b), a.max(b), p as u32));
-        }
-    }
-    sides.sort_unstable();
+    let sides = sorted_sides(out.keys.len(), np, &poly);
     let mut s = BlockSummary::default();
     let mut uf = UnionFind::new(np);
     let mut runs: Vec<(usize, usize)> = Vec::new(); // open or chain edges, resolved after pieces
@@ -199,6 +191,43 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
     }
     s.poly_piece = poly_piece;
     Ok(s)
+}
+
+/// Every polygon side as `(a, b, polygon)` with `a < b`, sorted: a
+/// counting sort by `a` (linear in the sides), then each short bucket by
+/// `(b, polygon)`; the same order as sorting the whole list.
+fn sorted_sides<'a>(nv: usize, np: usize, poly: &impl Fn(usize) -> &'a [u32]) -> Vec<(u32, u32, u32)> {
+    let side = |vs: &[u32], j: usize| {
+        let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
+        (a.min(b), a.max(b))
+    };
+    let mut start = vec![0u32; nv + 1];
+    for p in 0..np {
+        let vs = poly(p);
+        for j in 0..vs.len() {
+            start[side(vs, j).0 as usize + 1] += 1;
+        }
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut sides = vec![(0u32, 0u32, 0u32); start[nv] as usize];
+    for p in 0..np {
+        let vs = poly(p);
+        for j in 0..vs.len() {
+            let (a, b) = side(vs, j);
+            sides[fill[a as usize] as usize] = (a, b, p as u32);
+            fill[a as usize] += 1;
+        }
+    }
+    for v in 0..nv {
+        let bucket = &mut sides[start[v] as usize..start[v + 1] as usize];
+        if bucket.len() > 1 {
+            bucket.sort_unstable();
+        }
+    }
+    sides
 }
 
 /// `(x, root)` for every element that is not its set's root.
