@@ -25,6 +25,8 @@ pub struct Args {
 pub struct JobRow {
     /// Counts as in `--json` (vertices, faces, patches, chains, corners, shells, cells).
     pub counts: serde_json::Value,
+    /// Whether the folder gets a viewer (a streamed network is for files, not a browser).
+    pub viewer: bool,
 }
 
 /// One built-in demo job: a name, what it shows, and how to run it into a folder.
@@ -48,6 +50,11 @@ pub fn jobs() -> Vec<Job> {
             run: sphere_plane_hole,
         },
         Job { name: "cut-torus", about: "a torus mesh cut by a 6x6x6 grid of planes (TopoCut)", run: cut_torus },
+        Job {
+            name: "stream-ia18",
+            about: "IA of 18 spheres on a grid 2x finer, streamed to a PLY, topology from block summaries",
+            run: stream_ia18,
+        },
     ]
 }
 
@@ -74,7 +81,7 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
     };
     let net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
     septa::io::network_out::write_all(&net, dir, &[])?;
-    Ok(JobRow { counts: counts(&net) })
+    Ok(JobRow { counts: counts(&net), viewer: true })
 }
 
 fn cad_part(dir: &Path, _: &Args) -> JobResult {
@@ -83,6 +90,23 @@ fn cad_part(dir: &Path, _: &Args) -> JobResult {
 
 fn apollonius(dir: &Path, a: &Args) -> JobResult {
     scene_network("apollonius-18", Some(a.grid), dir)
+}
+
+/// The reference's 18 spheres (IA) streamed block by block: `stream.ply`
+/// (faces with patch and cells) and `stream.topology.json`, in bounded memory.
+fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
+    use septa::network::{stream::stream_topology, Mode, NetworkOptions};
+    let spec = include_str!("../../../data/specs/ia18.json");
+    let functions = septa::scene::load_function_list(spec, "data/specs/ia18.json", None)?;
+    let n = 2 * a.grid;
+    let grid = septa::grid::BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], septa::grid::Split::Five)?;
+    let path = dir.join("stream.ply");
+    let mut sink = septa::io::ply_stream::PlyStreamSink::create(&path, &grid, Mode::Ia, functions.len())?;
+    let (_, summary) = stream_topology(&grid, &functions, &NetworkOptions::new(Mode::Ia), 0, &mut sink)?;
+    sink.finish_with(Some(&summary))?;
+    septa::io::summary_out::write_summary_json(&summary, &dir.join("stream.topology.json"), &[])?;
+    let counts = summary.counts().into_iter().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect();
+    Ok(JobRow { counts, viewer: false })
 }
 
 fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
@@ -94,7 +118,7 @@ fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
     c["faces"] = serde_json::json!(r.faces.len());
     c["patches"] = serde_json::json!(r.surfaces.len());
     c["chains"] = serde_json::json!(r.curves.len());
-    Ok(JobRow { counts: c })
+    Ok(JobRow { counts: c, viewer: true })
 }
 
 /// A closed, outward torus mesh (genus 1, so some cut-cells wrap its hole).
@@ -138,6 +162,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("cut.json"))?)?;
     Ok(JobRow {
         counts: serde_json::json!({"vertices": j["cut_vertices"], "faces": j["cut_faces"], "cells": j["cut_cells"]}),
+        viewer: true,
     })
 }
 
@@ -156,7 +181,9 @@ pub fn run(args: Args) -> CliResult {
         let t = Instant::now();
         let row = (job.run)(&dir, &args).map_err(|e| format!("demo job {}: {e}", job.name))?;
         let seconds = t.elapsed().as_secs_f64();
-        crate::view::write_viewer(&dir, job.name)?;
+        if row.viewer {
+            crate::view::write_viewer(&dir, job.name)?;
+        }
         rows.push((job.name, row, seconds));
     }
     print!("{:<22}", "job");
@@ -177,7 +204,8 @@ pub fn run(args: Args) -> CliResult {
         println!("To try the viewer now: septa view tests/fixtures/two-planes");
     } else {
         println!("Open a result in the viewer: septa view {}/{}", args.out.display(), rows[0].0);
-        println!("(each job folder already has viewer/index.html)");
+        println!("(each job folder but the streamed one already has viewer/index.html; stream.ply opens in ParaView,");
+        println!(" coloured by its per-face patch or cell0/cell1)");
     }
     Ok(())
 }

@@ -76,5 +76,13 @@ fn demo_prints_table() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("vertices") && text.contains("cells") && text.contains("septa view"), "{text}");
     assert!(dir.join("d").is_dir());
+    // The streamed job: the reference's topology of 18 spheres (1944 patches,
+    // 1908 chains, 636 corners, 672 shells and cells), files but no viewer.
+    let row = text.lines().find(|l| l.starts_with("stream-ia18")).unwrap_or_else(|| panic!("{text}"));
+    let cols: Vec<&str> = row.split_whitespace().collect();
+    assert_eq!(&cols[3..8], &["1944", "1908", "636", "672", "672"], "{row}");
+    let s = dir.join("d").join("stream-ia18");
+    assert!(s.join("stream.ply").is_file() && s.join("stream.topology.json").is_file());
+    assert!(!s.join("viewer").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
