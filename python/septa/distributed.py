@@ -125,7 +125,7 @@ def _run_blocks(job_text: str, indices: list) -> list:
     return core.sparse_blocks(job_text, list(indices))
 
 
-def _distributed(job: dict, client, batch, regions=False):
+def _distributed(job: dict, client, batch, regions=False, normals=False):
     text = json.dumps(job, separators=(",", ":"))
     t0 = time.perf_counter()
     plan = _septa.sparse_plan(text)
@@ -146,10 +146,9 @@ def _distributed(job: dict, client, batch, regions=False):
             results = [b for part in client.gather(futures) for b in part]
     t2 = time.perf_counter()
     if regions:
-        data = json.loads(_septa.sparse_finish_regions(text, plan, results))
-        net = Network(data)
-        net.surfaces = data["counts"]["surfaces"]
-        net.curves = data["counts"]["curves"]
+        from .jobs import _region_network
+
+        net = _region_network(json.loads(_septa.sparse_finish_regions(text, plan, results, normals)))
     else:
         net = Network._from_core(_septa.sparse_finish(text, plan, results))
     if "blocks" in net._counts and isinstance(net._counts["blocks"], dict):
@@ -185,13 +184,13 @@ def material_interface(scene_or_functions, *, client, grid=None, block=16, batch
     return _distributed(job_spec(scene_or_functions, mode="mi", grid=grid, block=block), client, batch)
 
 
-def region_surfaces(scene, *, client, grid=None, block=16, batch=None) -> Network:
+def region_surfaces(scene, *, client, grid=None, block=16, batch=None, normals=False) -> Network:
     """Surfaces and curves of interest of a scene's region rule (as
-    :func:`septa.region_surfaces`, without normals), blocks on a Dask cluster.
-    ``scene``: a scene dict, a scene file path or ``"builtin:NAME"``."""
+    :func:`septa.region_surfaces`, with the same ``normals``), blocks on a
+    Dask cluster. ``scene``: a scene dict, a scene file path or ``"builtin:NAME"``."""
     if isinstance(scene, (list, tuple)):
         raise _septa.InputError("region_surfaces: needs a scene (with its region rule), not a list of functions")
-    return _distributed(job_spec(scene, grid=grid, block=block), client, batch, regions=True)
+    return _distributed(job_spec(scene, grid=grid, block=block), client, batch, regions=True, normals=normals)
 
 
 def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=16, batch=None, in_flight=None,

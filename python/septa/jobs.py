@@ -97,11 +97,19 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     region pairs, polygons counter-clockwise seen from the lesser region) and
     whose chains are the curves; ``net.surfaces`` and ``net.curves`` list
     each one's regions and topology (Euler characteristic, boundary loops).
+    With ``normals=True`` (Bloomenthal 4.5.3.2: one vertex copy per region
+    pair), ``net.normals`` holds one row per copy: ``"vertex"`` (point id),
+    ``"regions"`` (the pair) and ``"normal"`` (unit gradient normal pointing
+    into the lesser region), and ``net.indices_normal``, aligned with
+    ``net.indices``, the copy of each polygon corner (else both are None).
 
     >>> import septa
     >>> net = septa.region_surfaces("builtin:sphere-with-hole")
     >>> [(s["regions"], s["euler"], s["boundary_loops"]) for s in net.surfaces]
     [([0, 2], 1, 1)]
+    >>> net = septa.region_surfaces("builtin:sphere-with-hole", normals=True)
+    >>> len(net.indices_normal) == len(net.indices), net.normals["normal"].shape[1]
+    (True, 3)
     """
     scene = scene_or_functions
     if isinstance(scene, (list, tuple)):
@@ -116,10 +124,25 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     elif rule is not None or surfaces is not None or curves is not None:
         raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
-    data = json.loads(_septa.regions(text, normals=normals))
+    return _region_network(json.loads(_septa.regions(text, normals=normals)))
+
+
+def _region_network(data: dict) -> Network:
+    """A region-surfaces document as a :class:`Network` with ``surfaces``,
+    ``curves`` and, when computed, ``normals``."""
     net = Network(data)
     net.surfaces = data["counts"]["surfaces"]
     net.curves = data["counts"]["curves"]
+    net.normals = None
+    net.indices_normal = None
+    if "normals" in data:
+        n = data["normals"]
+        net.normals = {
+            "vertex": np.asarray(n["vertex"], dtype=np.int64),
+            "regions": np.asarray(n["regions"], dtype=np.int64).reshape(-1, 2),
+            "normal": np.asarray(n["normal"], dtype=np.float64).reshape(-1, 3),
+        }
+        net.indices_normal = np.asarray([c for f in data["face_normals"] for c in f], dtype=np.int64)
     return net
 
 

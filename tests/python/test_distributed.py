@@ -88,6 +88,11 @@ def test_region_surfaces_distributed(client):
     assert net.surfaces == ref.surfaces and net.curves == ref.curves
     assert net.points.tobytes() == ref.points.tobytes()
     assert np.array_equal(net.indices, ref.indices)
+    # Normals (one copy per vertex and region pair) the same as the local run's.
+    net = sd.region_surfaces("builtin:sphere-with-hole", client=client, block=8, normals=True)
+    ref = septa.region_surfaces("builtin:sphere-with-hole", normals=True)
+    assert all(np.array_equal(net.normals[k], ref.normals[k]) for k in ("vertex", "regions", "normal"))
+    assert np.array_equal(net.indices_normal, ref.indices_normal)
 
 
 def test_bad_block_results_are_clear_errors():

@@ -192,18 +192,21 @@ pub fn sparse_finish<'py>(
     network_dict(py, &net, Some(&stats))
 }
 
-/// sparse_finish_regions(job, plan, results)
+/// sparse_finish_regions(job, plan, results, normals=False)
 /// --
 ///
 /// Step 3 for a scene's region surfaces: as `sparse_finish`, then the
-/// surfaces and curves of interest of the scene's region rule; returns the
+/// surfaces and curves of interest of the scene's region rule (and, with
+/// `normals`, the per region pair vertex normals); returns the
 /// `network.json` document as JSON text (as `regions`).
 #[pyfunction]
+#[pyo3(signature = (job, plan, results, normals = false))]
 pub fn sparse_finish_regions<'py>(
     py: Python<'py>,
     job: &str,
     plan: (usize, Vec<usize>, bool),
     results: Vec<Bound<'py, PyBytes>>,
+    normals: bool,
 ) -> PyResult<String> {
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let r: Result<String, String> = py.detach(|| {
@@ -211,6 +214,9 @@ pub fn sparse_finish_regions<'py>(
         let scene = j.scene.as_ref().ok_or("region surfaces need a scene (with its region rule)")?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
+        if normals {
+            septa::regions::add_normals(&mut out, &scene.functions);
+        }
         out.sparse = Some(stats);
         Ok(septa::io::regions_out::document(&out).to_string())
     });

@@ -1,6 +1,14 @@
 //! Writers for region surfaces: `network.json` in the schema every Septa
 //! job writes (the viewer reads it) and `surfaces.obj` (a group per
 //! surface, `l` polylines for curves). Files are written atomically.
+//!
+//! With normals (Bloomenthal 4.5.3.2: one vertex copy per region pair, each
+//! with the gradient normal pointing into the lesser region), `network.json`
+//! gets `"normals": {"vertex": [..], "regions": [[a, b], ..], "normal":
+//! [[x, y, z], ..]}` (one row per copy) and `"face_normals"` (per polygon,
+//! the copy of each of its vertices), and `surfaces.obj` writes the copies
+//! as `vn` lines referenced by `f v//vn`: a vertex shared by two surfaces
+//! keeps one position and gets one normal per surface.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -30,6 +38,27 @@ pub fn summary(r: &RegionSurfaces) -> Value {
     })
 }
 
+/// Per polygon of `r`, the normal copy (row of `r.normals`) of each of its
+/// vertices: the copy of (vertex, the polygon's region pair). Empty without normals.
+pub fn face_normals(r: &RegionSurfaces) -> Vec<Vec<u32>> {
+    if r.normals.is_empty() {
+        return Vec::new();
+    }
+    let net = &r.network;
+    // `r.normals` is sorted by (vertex, pair): binary search.
+    let copy = |v: u32, pair: [crate::scene::RegionId; 2]| -> u32 {
+        r.normals.binary_search_by(|(w, q, _)| (*w, *q).cmp(&(v, pair))).map(|i| i as u32).unwrap_or(u32::MAX)
+    };
+    (0..r.faces.len())
+        .map(|i| {
+            let [cp, cn] = net.face_cells[r.faces[i] as usize];
+            let (a, b) = (r.cell_region[cp as usize], r.cell_region[cn as usize]);
+            let pair = [a.min(b), a.max(b)];
+            r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize].iter().map(|&v| copy(v, pair)).collect()
+        })
+        .collect()
+}
+
 /// The `network.json` document of region surfaces (the schema every job writes).
 pub fn document(r: &RegionSurfaces) -> Value {
     let net = &r.network;
@@ -40,7 +69,7 @@ pub fn document(r: &RegionSurfaces) -> Value {
     corners.sort_unstable();
     corners.dedup();
     let regions: std::collections::BTreeSet<_> = r.cell_region.iter().copied().collect();
-    json!({
+    let mut doc = json!({
         "mode": "regions",
         "points": net.points,
         "faces": polys,
@@ -54,7 +83,16 @@ pub fn document(r: &RegionSurfaces) -> Value {
         "cells": regions.iter().map(|g| json!({"shells": [], "label": [g]})).collect::<Vec<_>>(),
         "counts": summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
-    })
+    });
+    if !r.normals.is_empty() {
+        doc["normals"] = json!({
+            "vertex": r.normals.iter().map(|n| n.0).collect::<Vec<_>>(),
+            "regions": r.normals.iter().map(|n| n.1).collect::<Vec<_>>(),
+            "normal": r.normals.iter().map(|n| n.2).collect::<Vec<_>>(),
+        });
+        doc["face_normals"] = json!(face_normals(r));
+    }
+    doc
 }
 
 /// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
@@ -68,11 +106,18 @@ pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
     for p in &net.points {
         writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();
     }
+    for (_, _, n) in &r.normals {
+        writeln!(obj, "vn {} {} {}", n[0], n[1], n[2]).unwrap();
+    }
+    let copies = face_normals(r);
     for (s, surf) in r.surfaces.iter().enumerate() {
         writeln!(obj, "g surface_{s}_regions_{}_{}", surf.regions[0], surf.regions[1]).unwrap();
         for (i, poly) in polys.iter().enumerate() {
             if r.face_surface[i] as usize == s {
-                let ids: Vec<String> = poly.iter().map(|v| (v + 1).to_string()).collect();
+                let ids: Vec<String> = match copies.get(i) {
+                    Some(c) => poly.iter().zip(c).map(|(v, n)| format!("{}//{}", v + 1, n + 1)).collect(),
+                    None => poly.iter().map(|v| (v + 1).to_string()).collect(),
+                };
                 writeln!(obj, "f {}", ids.join(" ")).unwrap();
             }
         }

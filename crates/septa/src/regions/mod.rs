@@ -144,7 +144,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
         let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
         let mut out = from_network(net, &scene.regions, &scene.interest);
         if options.normals {
-            out.normals = normals(&out, &scene.functions);
+            add_normals(&mut out, &scene.functions);
         }
         out.sparse = Some(stats);
         return Ok(out);
@@ -156,7 +156,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     let net = compute(&grid, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
     let mut out = from_network(net, &scene.regions, &scene.interest);
     if options.normals {
-        out.normals = normals(&out, &scene.functions);
+        add_normals(&mut out, &scene.functions);
     }
     out.seconds.insert(0, ("sample", (t1 - t0).as_secs_f64()));
     Ok(out)
@@ -197,6 +197,13 @@ pub fn from_network(network: Network, rule: &RegionRule, interest: &Interest) ->
         seconds,
         sparse: None,
     }
+}
+
+/// Fills [`RegionSurfaces::normals`] from the gradients of the network's
+/// `functions` (for region surfaces made by [`from_network`], e.g. from
+/// block results merged elsewhere).
+pub fn add_normals(r: &mut RegionSurfaces, functions: &[Primitive]) {
+    r.normals = normals(r, functions);
 }
 
 /// Per (vertex, region pair) normals from the gradient of the function (IA)
