@@ -83,7 +83,8 @@ def material_interface(grid_or_vertices, tets, values=None, *, threads=None, loo
     return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells)
 
 
-def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False):
+def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False,
+                    clean=None):
     """Non-manifold implicit shape: the surfaces and curves of interest of a region rule.
 
     ``scene_or_functions`` is a scene (a dict in the scene-file form, a path,
@@ -102,6 +103,11 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     ``"regions"`` (the pair) and ``"normal"`` (unit gradient normal pointing
     into the lesser region), and ``net.indices_normal``, aligned with
     ``net.indices``, the copy of each polygon corner (else both are None).
+    ``clean``: a factor (e.g. 0.2) to clean up small and thin triangles
+    (Bloomenthal 4.5.3.1): edges shorter than it times the smallest cube
+    edge are collapsed where the surfaces' topology, curves and corners
+    stay; the polygons become triangles; ``net.summary()["clean"]`` says
+    how many edges were collapsed and refused.
 
     >>> import septa
     >>> net = septa.region_surfaces("builtin:sphere-with-hole")
@@ -124,7 +130,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     elif rule is not None or surfaces is not None or curves is not None:
         raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
-    return _region_network(json.loads(_septa.regions(text, normals=normals)))
+    return _region_network(json.loads(_septa.regions(text, normals=normals, clean=clean)))
 
 
 def _region_network(data: dict) -> Network:

@@ -142,3 +142,20 @@ def test_region_normals_one_copy_per_vertex_and_region_pair(tmp_path):
     trimesh = pytest.importorskip("trimesh")
     m = trimesh.load(str(out / "surfaces.obj"), process=False, force="mesh")
     assert len(m.faces) >= len(faces)
+
+
+def test_region_clean_up_keeps_topology_and_reports(tmp_path):
+    """clean=0.2: small and thin triangles collapsed (Bloomenthal 4.5.3.1),
+    the same surfaces (regions, Euler characteristic, boundary loops) and
+    curves; polygons become triangles; bad factors are clear errors."""
+    raw = septa.region_surfaces("builtin:saucer-square")
+    net = septa.region_surfaces("builtin:saucer-square", clean=0.2, normals=True)
+    topo = lambda n: sorted((tuple(s["regions"]), s["euler"], s["boundary_loops"]) for s in n.surfaces)
+    assert topo(net) == topo(raw)
+    assert [(c["regions"], c["closed"]) for c in net.curves] == [(c["regions"], c["closed"]) for c in raw.curves]
+    c = net.summary()["clean"]
+    assert c["collapsed"] > 0 and c["triangles_after"] == len(net) < c["triangles_before"]
+    assert (np.diff(net.offsets) == 3).all()
+    assert np.array_equal(net.normals["vertex"][net.indices_normal], net.indices)
+    with pytest.raises(septa.InputError, match="clean"):
+        septa.region_surfaces("builtin:saucer-square", clean=-1.0)

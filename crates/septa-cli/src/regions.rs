@@ -17,9 +17,15 @@ pub struct Args {
     /// Print the built-in scenes and exit.
     #[arg(long)]
     list: bool,
-    /// Per-vertex normals from the analytic gradients.
+    /// Per-vertex normals from the analytic gradients (one vertex copy per
+    /// region pair: `normals` in network.json, `vn` in surfaces.obj).
     #[arg(long)]
     normals: bool,
+    /// Clean up small and thin triangles (Bloomenthal 4.5.3.1): collapse
+    /// edges shorter than FACTOR times the smallest cube edge wherever that
+    /// keeps every surface's topology, curve and corner; output triangles.
+    #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2")]
+    clean: Option<f64>,
     /// Print one JSON object with counts, surfaces and curves.
     #[arg(long)]
     json: bool,
@@ -45,7 +51,12 @@ pub fn run(a: Args) -> CliResult {
         return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
     };
     let scene = Scene::load(&path)?;
-    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: !a.dense })?;
+    if let Some(f) = a.clean {
+        if !(f.is_finite() && f >= 0.0) {
+            return Err(format!("--clean: expected a factor >= 0, not {f}").into());
+        }
+    }
+    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean })?;
     if let Some(dir) = &a.output {
         regions_out::write(&r, dir)?;
     }

@@ -5,7 +5,7 @@ use pyo3::prelude::*;
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::Scene;
 
-/// regions(scene, normals=False)
+/// regions(scene, normals=False, clean=None)
 /// --
 ///
 /// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
@@ -13,8 +13,13 @@ use septa::scene::Scene;
 /// (`mode` "regions"; `patches` are the surfaces with their region pairs,
 /// `chains` the curves); the GIL is released while it is computed.
 #[pyfunction]
-#[pyo3(signature = (scene, normals = false))]
-pub fn regions(py: Python<'_>, scene: &str, normals: bool) -> PyResult<String> {
+#[pyo3(signature = (scene, normals = false, clean = None))]
+pub fn regions(py: Python<'_>, scene: &str, normals: bool, clean: Option<f64>) -> PyResult<String> {
+    if let Some(f) = clean {
+        if !(f.is_finite() && f >= 0.0) {
+            return Err(InputError::new_err(format!("clean: expected a factor >= 0, not {f}")));
+        }
+    }
     let result: Result<String, String> = py.detach(|| {
         let s = if scene.trim_start().starts_with('{') {
             Scene::from_json(scene, "<scene>", None)
@@ -22,7 +27,8 @@ pub fn regions(py: Python<'_>, scene: &str, normals: bool) -> PyResult<String> {
             Scene::load(scene)
         }
         .map_err(|e| e.to_string())?;
-        let r = region_surfaces(&s, &RegionOptions { normals, ..Default::default() }).map_err(|e| e.to_string())?;
+        let r =
+            region_surfaces(&s, &RegionOptions { normals, clean, ..Default::default() }).map_err(|e| e.to_string())?;
         Ok(septa::io::regions_out::document(&r).to_string())
     });
     result.map_err(InputError::new_err)

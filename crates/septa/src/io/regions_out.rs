@@ -35,6 +35,8 @@ pub fn summary(r: &RegionSurfaces) -> Value {
         "curves": r.curves.iter().map(|c| json!({"regions": c.regions, "closed": c.closed, "length": c.length,
             "vertices": c.vertices.len()})).collect::<Vec<_>>(),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "clean": r.clean.map(|c| json!({"triangles_before": c.triangles_before, "triangles_after": c.triangles_after,
+            "collapsed": c.collapsed, "refused": c.refused})),
     })
 }
 

@@ -25,6 +25,7 @@
 //! assert_eq!((shape.surfaces[0].euler, shape.surfaces[0].boundary_loops), (1, 1));
 //! ```
 
+mod clean;
 mod curves;
 mod labels;
 mod surfaces;
@@ -37,6 +38,7 @@ use crate::network::sparse::{compute_sparse, SparseStats};
 use crate::network::{compute, Network, NetworkError, NetworkOptions};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
+pub use clean::{clean, CleanStats};
 pub use curves::Curve;
 pub use labels::label_surfaces;
 pub use surfaces::Surface;
@@ -52,11 +54,16 @@ pub struct RegionOptions {
     /// bounds enclose the rounded samples (docs/sparse.md). Default value:
     /// `true`; `false` samples every grid vertex.
     pub sparse: bool,
+    /// Clean up small and thin triangles (Bloomenthal 4.5.3.1, [`clean`]):
+    /// edges shorter than this factor times the grid's smallest cube edge
+    /// are collapsed where that keeps the combinatorics. Default value:
+    /// `None` (the exact polygons as they are).
+    pub clean: Option<f64>,
 }
 
 impl Default for RegionOptions {
     fn default() -> RegionOptions {
-        RegionOptions { normals: false, sparse: true }
+        RegionOptions { normals: false, sparse: true, clean: None }
     }
 }
 
@@ -87,6 +94,8 @@ pub struct RegionSurfaces {
     pub seconds: Vec<(&'static str, f64)>,
     /// Block counts of sparse evaluation (`None` on the dense path).
     pub sparse: Option<SparseStats>,
+    /// What the clean-up did (`None`: not asked for).
+    pub clean: Option<CleanStats>,
 }
 
 impl RegionSurfaces {
@@ -142,10 +151,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     };
     if options.sparse {
         let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
-        let mut out = from_network(net, &scene.regions, &scene.interest);
-        if options.normals {
-            add_normals(&mut out, &scene.functions);
-        }
+        let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);
         out.sparse = Some(stats);
         return Ok(out);
     }
@@ -154,10 +160,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     let values = sample_grid(&scene.functions, &points);
     let t1 = Instant::now();
     let net = compute(&grid, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
-    let mut out = from_network(net, &scene.regions, &scene.interest);
-    if options.normals {
-        add_normals(&mut out, &scene.functions);
-    }
+    let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);
     out.seconds.insert(0, ("sample", (t1 - t0).as_secs_f64()));
     Ok(out)
 }
@@ -196,7 +199,27 @@ pub fn from_network(network: Network, rule: &RegionRule, interest: &Interest) ->
         normals: Vec::new(),
         seconds,
         sparse: None,
+        clean: None,
     }
+}
+
+/// The optional steps after extraction: clean-up, then normals (of the
+/// cleaned triangles).
+fn finish(mut out: RegionSurfaces, scene: &Scene, options: &RegionOptions) -> RegionSurfaces {
+    if let Some(factor) = options.clean {
+        let g = &scene.grid;
+        let h =
+            (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.resolution[a] as f64).fold(f64::INFINITY, f64::min);
+        let t = Instant::now();
+        let (cleaned, stats) = clean(&out, factor * h);
+        out = cleaned;
+        out.clean = Some(stats);
+        out.seconds.push(("clean", t.elapsed().as_secs_f64()));
+    }
+    if options.normals {
+        add_normals(&mut out, &scene.functions);
+    }
+    out
 }
 
 /// Fills [`RegionSurfaces::normals`] from the gradients of the network's

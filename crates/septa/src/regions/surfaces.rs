@@ -77,13 +77,32 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     let (comp, count) = uf.components();
     let mut surfaces: Vec<Surface> =
         (0..count).map(|_| Surface { regions: [0, 0], faces: 0, euler: 0, boundary_loops: 0 }).collect();
+    for i in 0..n {
+        surfaces[comp[i] as usize].regions = pairs[i];
+    }
+    count_surfaces(&mut surfaces, &loop_start, &loops, &comp);
+    Extracted { faces, loop_start, loops, face_surface: comp, surfaces }
+}
+
+/// Recounts the surfaces of `r` (faces, Euler characteristic, boundary
+/// loops) from its polygons, keeping their region pairs.
+pub(crate) fn recount(r: &mut super::RegionSurfaces) {
+    count_surfaces(&mut r.surfaces, &r.loop_start, &r.loops, &r.face_surface);
+}
+
+/// Fills each surface's polygon count, Euler characteristic `V - E + F` and
+/// number of boundary loops (cycles of edges used by one polygon).
+fn count_surfaces(surfaces: &mut [Surface], loop_start: &[u32], loops: &[u32], face_surface: &[u32]) {
+    let count = surfaces.len();
     let mut verts: Vec<Vec<u32>> = vec![Vec::new(); count];
     let mut edges: Vec<Vec<(u32, u32)>> = vec![Vec::new(); count];
-    for i in 0..n {
-        let s = comp[i] as usize;
-        surfaces[s].regions = pairs[i];
+    for s in surfaces.iter_mut() {
+        s.faces = 0;
+    }
+    for i in 0..face_surface.len() {
+        let s = face_surface[i] as usize;
         surfaces[s].faces += 1;
-        let p = poly(i);
+        let p = &loops[loop_start[i] as usize..loop_start[i + 1] as usize];
         verts[s].extend_from_slice(p);
         for k in 0..p.len() {
             edges[s].push(edge(p[k], p[(k + 1) % p.len()]));
@@ -111,7 +130,6 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
         surfaces[s].euler = verts[s].len() as i64 - distinct as i64 + surfaces[s].faces as i64;
         surfaces[s].boundary_loops = count_loops(&boundary);
     }
-    Extracted { faces, loop_start, loops, face_surface: comp, surfaces }
 }
 
 /// Connected components of a set of edges.
