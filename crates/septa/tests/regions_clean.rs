@@ -3,8 +3,9 @@
 //! factors, each surface keeps its region pair, Euler characteristic and
 //! boundary loops; each curve its regions, closedness and ends, its
 //! vertices a subsequence of the original; every surface stays
-//! consistently oriented; no triangle is degenerate; and it does collapse
-//! edges (the shortest edge grows).
+//! consistently oriented; no triangle is degenerate; the smallest angle
+//! never gets worse; and it does collapse and flip edges (the shortest edge
+//! grows).
 
 use std::collections::{BTreeMap, HashMap};
 
@@ -38,7 +39,7 @@ fn is_subsequence(small: &[u32], big: &[u32]) -> bool {
 
 #[test]
 fn clean_up_keeps_the_combinatorics() {
-    let mut collapsed = 0;
+    let (mut collapsed, mut flipped) = (0, 0);
     for (name, _) in septa::scene::builtin::list() {
         let scene = Scene::load(&format!("builtin:{name}")).unwrap();
         let r = region_surfaces(&scene, &RegionOptions::default()).unwrap();
@@ -50,6 +51,7 @@ fn clean_up_keeps_the_combinatorics() {
             let what = format!("{name} close {factor}");
             let (c, stats) = clean(&r, factor * h);
             collapsed += stats.collapsed;
+            flipped += stats.flipped;
             assert_eq!(topology(&c), topology(&r), "{what}: surfaces");
             assert_eq!(c.curves.len(), r.curves.len(), "{what}");
             for (a, b) in c.curves.iter().zip(&r.curves) {
@@ -78,12 +80,14 @@ fn clean_up_keeps_the_combinatorics() {
             }
             assert!(directed.values().all(|&n| n == 1), "{what}: orientation");
             assert_eq!(stats.triangles_after, c.faces.len());
+            assert!(stats.min_angle[1] >= stats.min_angle[0], "{what}: smallest angle {:?}", stats.min_angle);
             if stats.collapsed > 0 {
                 assert!(shortest_edge(&c) > shortest_edge(&r), "{what}: the shortest edge grows");
             }
         }
     }
     assert!(collapsed > 100, "the clean-up collapses edges ({collapsed})");
+    assert!(flipped > 10, "the clean-up flips edges under thin triangles ({flipped})");
 }
 
 #[test]

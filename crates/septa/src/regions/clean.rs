@@ -21,6 +21,13 @@
 //!   the triangles on `uv`, and no two triangles `uxy` and `vxy` exist;
 //! - **no fold**: no triangle of `u`'s star turns over or becomes degenerate.
 //!
+//! A thin triangle whose obtuse vertex lies closer than the threshold to
+//! the opposite edge (Bloomenthal's second case) has that edge flipped
+//! instead of the vertex moved onto it: a flip of a non-feature edge
+//! between two triangles of one surface keeps every count (vertices, edges,
+//! triangles) and every feature, provided the new edge does not exist yet
+//! and neither new triangle turns over.
+//!
 //! `u` goes to `v`'s position (a network vertex): no new coordinates are
 //! made. Floating point only chooses which short edges to collapse; which
 //! collapses are allowed is decided combinatorially. The result is checked
@@ -35,7 +42,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use super::RegionSurfaces;
 
 /// What the clean-up did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CleanStats {
     /// Triangles before (the kept polygons fanned).
     pub triangles_before: usize,
@@ -46,6 +53,33 @@ pub struct CleanStats {
     /// Short edges left because a collapse would have changed the shape's
     /// combinatorics (link condition, a corner or feature) or folded a triangle.
     pub refused: usize,
+    /// Edges flipped under a thin triangle's obtuse vertex.
+    pub flipped: usize,
+    /// Smallest triangle angle before and after, in degrees (a measure of
+    /// thin triangles; floating point, for reporting).
+    pub min_angle: [f64; 2],
+}
+
+/// Smallest angle (degrees) of the live triangles.
+fn min_angle(m: &Mesh) -> f64 {
+    let mut best = 180.0f64;
+    for (t, tri) in m.tris.iter().enumerate() {
+        if m.alive[t] {
+            best = best.min(tri_min_angle(tri.map(|x| m.points[x as usize])));
+        }
+    }
+    best
+}
+
+/// Smallest angle (degrees) of a triangle (0 when degenerate).
+fn tri_min_angle(p: [P3; 3]) -> f64 {
+    let mut best = 180.0f64;
+    for k in 0..3 {
+        let (u, v) = (sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
+        let c = dot(u, v) / (len(u) * len(v));
+        best = best.min(if c.is_finite() { c.clamp(-1.0, 1.0).acos().to_degrees() } else { 0.0 });
+    }
+    best
 }
 
 type P3 = [f64; 3];
@@ -86,7 +120,9 @@ struct Mesh<'a> {
 
 impl Mesh<'_> {
     fn star(&self, v: u32) -> Vec<u32> {
-        self.at.get(&v).map_or_else(Vec::new, |ts| ts.iter().copied().filter(|&t| self.alive[t as usize]).collect())
+        self.at.get(&v).map_or_else(Vec::new, |ts| {
+            ts.iter().copied().filter(|&t| self.alive[t as usize] && self.tris[t as usize].contains(&v)).collect()
+        })
     }
 
     fn neighbours(&self, v: u32) -> FxHashSet<u32> {
@@ -144,21 +180,25 @@ impl Mesh<'_> {
                 return false;
             }
         }
-        // No fold: u's other triangles keep their orientation and some area.
+        // No fold: u's other triangles keep their orientation, and the
+        // smallest angle around u does not get worse.
         let pv = self.points[v as usize];
+        let (mut old, mut new) = (180.0f64, 180.0f64);
         for &t in &su {
             let tri = self.tris[t as usize];
+            let p = tri.map(|x| self.points[x as usize]);
+            old = old.min(tri_min_angle(p));
             if tri.contains(&v) {
                 continue;
             }
-            let p = tri.map(|x| self.points[x as usize]);
             let q = tri.map(|x| if x == u { pv } else { self.points[x as usize] });
             let (n0, n1) = (cross(sub(p[1], p[0]), sub(p[2], p[0])), cross(sub(q[1], q[0]), sub(q[2], q[0])));
-            if !(dot(n0, n1) > 0.0) || len(n1) <= 1e-12 * len(n0) {
+            if !(dot(n0, n1) > 0.0) {
                 return false;
             }
+            new = new.min(tri_min_angle(q));
         }
-        true
+        new >= old
     }
 
     fn collapse(&mut self, u: u32, v: u32) {
@@ -187,6 +227,95 @@ impl Mesh<'_> {
             self.feature_deg.remove(&u);
         }
     }
+}
+
+/// Flips the edge under the obtuse vertex of each thin triangle where that
+/// is safe (module doc); a few rounds, until none is left. Returns the flips.
+fn flip_thin(m: &mut Mesh, close: f64) -> usize {
+    let mut flips = 0;
+    for _round in 0..4 {
+        let mut edges: FxHashMap<(u32, u32), Vec<u32>> = FxHashMap::default();
+        for t in 0..m.tris.len() {
+            if m.alive[t] {
+                let tri = m.tris[t];
+                for k in 0..3 {
+                    edges.entry(key(tri[k], tri[(k + 1) % 3])).or_default().push(t as u32);
+                }
+            }
+        }
+        let mut changed = 0;
+        for ti in 0..m.tris.len() {
+            if !m.alive[ti] {
+                continue;
+            }
+            let t = ti as u32;
+            let tri = m.tris[ti];
+            let p = tri.map(|x| m.points[x as usize]);
+            let n = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+            for k in 0..3 {
+                // Vertex k opposite edge (a, b): thin when obtuse at k and near the edge.
+                let (a, b, c) = (tri[(k + 1) % 3], tri[(k + 2) % 3], tri[k]);
+                let (pa, pb, pc) = (p[(k + 1) % 3], p[(k + 2) % 3], p[k]);
+                let base = len(sub(pb, pa));
+                if !(dot(sub(pa, pc), sub(pb, pc)) < 0.0 && len(n) / base < close) {
+                    continue;
+                }
+                let e = key(a, b);
+                if m.feature.contains(&e) {
+                    continue;
+                }
+                let Some(ts) = edges.get(&e) else { continue };
+                if ts.len() != 2 || m.surface[ts[0] as usize] != m.surface[ts[1] as usize] {
+                    continue;
+                }
+                let other = if ts[0] == t { ts[1] } else { ts[0] };
+                if !m.alive[other as usize] {
+                    continue;
+                }
+                let d = m.tris[other as usize].iter().copied().find(|&x| x != a && x != b).expect("a triangle");
+                if edges.contains_key(&key(c, d)) || c == d {
+                    continue;
+                }
+                // t is (a, b, c) in its orientation (a -> b), other has b -> a:
+                // the new pair (c, a, d) and (d, b, c) keeps both orientations.
+                let (pd, nt) = (m.points[d as usize], n);
+                let n1 = cross(sub(pa, pc), sub(pd, pc));
+                let n2 = cross(sub(pb, pd), sub(pc, pd));
+                if !(dot(n1, nt) > 0.0 && dot(n2, nt) > 0.0) {
+                    continue;
+                }
+                // Only a flip that raises the pair's smallest angle.
+                let old = tri_min_angle([pa, pb, pc]).min(tri_min_angle([pb, pa, pd]));
+                if tri_min_angle([pc, pa, pd]).min(tri_min_angle([pd, pb, pc])) <= old {
+                    continue;
+                }
+                m.tris[ti] = [c, a, d];
+                m.tris[other as usize] = [d, b, c];
+                for (x, tt) in [(c, other), (d, t)] {
+                    m.at.entry(x).or_default().push(tt);
+                }
+                // The triangles no longer at a (other) and b (t) are filtered by `star`.
+                edges.remove(&e);
+                edges.insert(key(c, d), vec![t, other]);
+                for (x, y, from, to) in [(a, d, other, t), (b, c, t, other)] {
+                    if let Some(l) = edges.get_mut(&key(x, y)) {
+                        for z in l.iter_mut() {
+                            if *z == from {
+                                *z = to;
+                            }
+                        }
+                    }
+                }
+                changed += 1;
+                break;
+            }
+        }
+        flips += changed;
+        if changed == 0 {
+            break;
+        }
+    }
+    flips
 }
 
 /// Cleans `r` (module doc): edges shorter than `close` (a length) are
@@ -253,6 +382,7 @@ pub fn clean(r: &RegionSurfaces, close: f64) -> (RegionSurfaces, CleanStats) {
         }
     }
     let mut stats = CleanStats { triangles_before: n, ..CleanStats::default() };
+    stats.min_angle[0] = min_angle(&m);
     let mut removed: FxHashMap<u32, u32> = FxHashMap::default();
     while let Some(Reverse((_, a, b))) = heap.pop() {
         if removed.contains_key(&a) || removed.contains_key(&b) || !m.neighbours(a).contains(&b) {
@@ -277,6 +407,8 @@ pub fn clean(r: &RegionSurfaces, close: f64) -> (RegionSurfaces, CleanStats) {
             }
         }
     }
+    stats.flipped = flip_thin(&mut m, close);
+    stats.min_angle[1] = min_angle(&m);
     // Rebuild the region surfaces from the live triangles.
     let resolve = |mut v: u32| {
         while let Some(&w) = removed.get(&v) {
