@@ -75,3 +75,35 @@ fn regions_sparse_by_default_and_npz_stays_dense() {
     assert!(s.get("blocks").is_none(), "{s}");
     assert_eq!(s["cells"], 16, "{s}");
 }
+
+#[test]
+fn stream_writes_topology_unless_polygons_only() {
+    let spec = root().join("data/specs/ia18.json");
+    let spec = spec.to_str().unwrap();
+    let dir = scratch("stream");
+    let (a, b) = (dir.join("a.ply"), dir.join("b.ply"));
+    let full = septa(&["ia", spec, "--grid", "20", "--block", "8", "--json", "-o", dir.join("mem").to_str().unwrap()]);
+    let s = septa(&["ia", spec, "--grid", "20", "--block", "8", "--json", "--stream", a.to_str().unwrap()]);
+    // The topology streamed equals the in-memory run's counts, and its JSON is beside the PLY.
+    for k in ["vertices", "faces", "edges", "patches", "chains", "corners", "shells", "cells", "components"] {
+        assert_eq!(s["counts"][k], full[k], "{k}");
+    }
+    let topo: serde_json::Value = serde_json::from_slice(&std::fs::read(dir.join("a.topology.json")).unwrap()).unwrap();
+    assert_eq!(topo["counts"], s["counts"]);
+    assert_eq!(topo["cells"].as_array().unwrap().len(), full["cells"].as_u64().unwrap() as usize);
+    let p = septa(&[
+        "ia",
+        spec,
+        "--grid",
+        "20",
+        "--block",
+        "8",
+        "--json",
+        "--stream",
+        b.to_str().unwrap(),
+        "--polygons-only",
+    ]);
+    assert!(p.get("counts").is_none() && !dir.join("b.topology.json").exists());
+    assert_eq!((p["faces"].clone(), p["vertices"].clone()), (s["faces"].clone(), s["vertices"].clone()));
+    let _ = std::fs::remove_dir_all(&dir);
+}
