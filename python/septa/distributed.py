@@ -81,7 +81,7 @@ def job_spec(scene_or_functions, *, mode=None, grid=None, block=16) -> dict:
     ``scene_or_functions``: a list of primitives (``septa.shapes`` objects or
     dicts in the reference / scene JSON form), a scene dict, ``"builtin:NAME"``,
     or the path of a reference function file (a JSON list) or scene file
-    (read here, so workers need no access to it; mesh paths inside a scene are
+    (JSON, or TOML with a ``.toml`` name; read here, so workers need no access to it; mesh paths inside a scene are
     resolved on the workers). ``grid``: ``n`` or ``{"resolution", "bounds",
     "split"}`` (required for a list of functions; overrides a scene's).
     """
@@ -91,12 +91,20 @@ def job_spec(scene_or_functions, *, mode=None, grid=None, block=16) -> dict:
     if isinstance(src, (str, os.PathLike)) and not str(src).startswith("builtin:"):
         path = os.fspath(src)
         try:
-            with open(path) as fh:
-                src = json.load(fh)
+            if path.endswith(".toml"):
+                import tomllib
+
+                with open(path, "rb") as fh:
+                    src = tomllib.load(fh)
+            else:
+                with open(path) as fh:
+                    src = json.load(fh)
         except OSError as e:
             raise _septa.InputError(f"{path}: cannot read ({e.strerror})") from e
         except json.JSONDecodeError as e:
             raise _septa.InputError(f"{path}:{e.lineno}: invalid JSON: {e.msg}") from e
+        except ValueError as e:  # tomllib.TOMLDecodeError
+            raise _septa.InputError(f"{path}: invalid TOML: {e}") from e
         base = os.path.dirname(os.path.abspath(path))
     if isinstance(src, str):
         job["scene"] = src

@@ -89,3 +89,50 @@ def test_python_equals_command_line(tmp_path):
     assert _counts(py) == _counts(cli)
     # And the written network loads to the same summary.
     assert _counts(septa.load(tmp_path / "o").summary()) == _counts(cli)
+
+
+def test_toml_scenes(tmp_path):
+    """A scene may be TOML (``.toml``): the same network as its JSON twin,
+    from septa.region_surfaces and septa.distributed; errors name the line."""
+    import json as _json
+
+    import septa
+    from septa import distributed as sd
+
+    toml = """mode = "ia"
+surfaces = [[0, 2]]
+[grid]
+resolution = 12
+bounds = [[-1, -1, -1], [1, 1, 1]]
+[[functions]]
+name = "small"
+type = "sphere"
+center = [0.25, 0.15, 0.5]
+radius = 0.3
+[[functions]]
+name = "large"
+type = "sphere"
+center = [0, 0, 0]
+radius = 0.6
+[[regions]]
+when = "small"
+region = 1
+[[regions]]
+when = "large"
+region = 2
+[[regions]]
+region = 0
+"""
+    import tomllib
+
+    (tmp_path / "s.toml").write_text(toml)
+    (tmp_path / "s.json").write_text(_json.dumps(tomllib.loads(toml)))
+    a = septa.region_surfaces(str(tmp_path / "s.toml"))
+    b = septa.region_surfaces(str(tmp_path / "s.json"))
+    assert a.points.tobytes() == b.points.tobytes() and (a.indices == b.indices).all() and len(a) > 0
+    c = sd.arrangement(tmp_path / "s.toml", client=None, block=4)
+    d = sd.arrangement(tmp_path / "s.json", client=None, block=4)
+    assert c.summary()["cells"] == d.summary()["cells"] == 4
+    (tmp_path / "bad.toml").write_text(toml.replace("radius = 0.6", "radius = -0.6"))
+    with pytest.raises(septa.InputError, match=r"bad.toml:15:10: functions\[1\].radius"):
+        septa.region_surfaces(str(tmp_path / "bad.toml"))

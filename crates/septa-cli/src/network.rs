@@ -111,7 +111,7 @@ fn sparse_applies(args: &Args) -> bool {
         return true;
     }
     let Ok(text) = std::fs::read_to_string(&args.input) else { return false };
-    match serde_json::from_str::<serde_json::Value>(&text) {
+    match input_value(&text, &args.input) {
         Ok(json) => json.get("tetMeshFile").is_none(),
         Err(_) => false,
     }
@@ -290,6 +290,17 @@ fn topology_path(out: &std::path::Path) -> std::path::PathBuf {
     out.with_extension("topology.json")
 }
 
+/// The input file's value tree: JSON, or a TOML scene (`.toml`) read into
+/// the same tree (the scene itself is parsed again by `Scene::load`, whose
+/// errors name TOML lines).
+fn input_value(text: &str, path: &std::path::Path) -> Result<serde_json::Value, String> {
+    if path.extension().and_then(|e| e.to_str()) == Some("toml") {
+        let v: toml::Value = toml::from_str(text).map_err(|e| format!("{}: not TOML: {e}", path.display()))?;
+        return serde_json::to_value(v).map_err(|e| format!("{}: {e}", path.display()));
+    }
+    serde_json::from_str(text).map_err(|e| format!("{}: not JSON: {e}", path.display()))
+}
+
 fn split(args: &Args) -> Result<Split, String> {
     match args.split {
         5 => Ok(Split::Five),
@@ -321,8 +332,14 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
     // A reference config JSON ({"funcFile", "tetMeshFile" | "gridResolution", "gridBbox"})
     // or a function list.
     let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{}: {e}", args.input.display()))?;
-    let json: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", args.input.display()))?;
+    let json: serde_json::Value = input_value(&text, &args.input)?;
+    if json.get("functions").is_some() {
+        // A scene (JSON or TOML) on the dense path: its functions sampled at every vertex.
+        let (g, funcs) = load_sparse(args)?;
+        let grid = Grid::Box(g);
+        let values = septa::scene::sample_grid(&funcs, &grid.vertices());
+        return Ok((grid, values, funcs.len()));
+    }
     let (funcs, mesh, grid_res, bounds) = if let Some(cfg) = json.as_object() {
         let dir = args.input.parent().unwrap_or(std::path::Path::new("."));
         let file = cfg
@@ -387,7 +404,7 @@ fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), B
         return Ok((BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split)?, scene.functions));
     }
     let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{name}: {e}"))?;
-    let json: serde_json::Value = serde_json::from_str(&text).map_err(|e| format!("{name}: not JSON: {e}"))?;
+    let json: serde_json::Value = input_value(&text, &args.input)?;
     if json.is_object() && json.get("input").is_none() {
         let scene = septa::scene::Scene::load(&name)?;
         // A reference config has no split: `--split`, as on the dense path.

@@ -107,3 +107,32 @@ fn stream_writes_topology_unless_polygons_only() {
     assert_eq!((p["faces"].clone(), p["vertices"].clone()), (s["faces"].clone(), s["vertices"].clone()));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn scenes_in_json_and_toml_give_the_same_network_sparse_and_dense() {
+    let dir = scratch("toml");
+    let json = r#"{"mode": "ia", "grid": {"resolution": 14, "bounds": [[-1,-1,-1],[1,1,1]]},
+      "functions": [{"name": "a", "type": "sphere", "center": [0.25,0.15,0.5], "radius": 0.3},
+                    {"name": "b", "type": "sphere", "center": [0,0,0], "radius": 0.6}]}"#;
+    let toml = "mode = \"ia\"\n[grid]\nresolution = 14\nbounds = [[-1, -1, -1], [1, 1, 1]]\n\
+        [[functions]]\nname = \"a\"\ntype = \"sphere\"\ncenter = [0.25, 0.15, 0.5]\nradius = 0.3\n\
+        [[functions]]\nname = \"b\"\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.6\n";
+    std::fs::write(dir.join("s.json"), json).unwrap();
+    std::fs::write(dir.join("s.toml"), toml).unwrap();
+    let mut outs = Vec::new();
+    for file in ["s.json", "s.toml"] {
+        for dense in [false, true] {
+            let out = dir.join(format!("{file}-{dense}"));
+            let f = dir.join(file);
+            let mut args = vec!["ia", f.to_str().unwrap(), "--json", "-o", out.to_str().unwrap()];
+            if dense {
+                args.push("--dense");
+            }
+            let s = septa(&args);
+            assert!(s["faces"].as_u64().unwrap() > 0, "{file} dense {dense}");
+            outs.push(network_json(&out));
+        }
+    }
+    assert!(outs.windows(2).all(|w| w[0] == w[1]), "JSON/TOML, sparse/dense: the same network.json");
+    let _ = std::fs::remove_dir_all(&dir);
+}

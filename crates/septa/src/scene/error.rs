@@ -86,6 +86,50 @@ pub(crate) fn err<T>(path: &JsonPath, message: impl Into<String>) -> Result<T, L
 
 /// Line and column (1-based) where the value at `path` starts in the JSON
 /// `text`, or `None` if the path is not there. `text` must be valid JSON.
+/// 1-based line and column of byte `offset` in `text`.
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+    (line, column)
+}
+
+/// Line and column of the value at `path` in TOML `text` (spans from
+/// toml_edit's parse), or of the deepest part of it that exists.
+pub(crate) fn locate_toml(text: &str, path: &JsonPath) -> Option<(usize, usize)> {
+    use toml_edit::{ImDocument, Item, Table, Value};
+    enum Node<'a> {
+        Item(&'a Item),
+        Table(&'a Table),
+        Value(&'a Value),
+    }
+    let doc = ImDocument::parse(text).ok()?;
+    let mut node = Node::Table(doc.as_table());
+    let mut span = None;
+    for seg in &path.0 {
+        let next = match (seg, &node) {
+            (Seg::Key(k), Node::Item(i)) => i.as_table_like().and_then(|t| t.get(k)).map(Node::Item),
+            (Seg::Key(k), Node::Table(t)) => t.get(k).map(Node::Item),
+            (Seg::Key(k), Node::Value(v)) => v.as_inline_table().and_then(|t| t.get(k)).map(Node::Value),
+            (Seg::Index(n), Node::Item(i)) => match i.as_array_of_tables() {
+                Some(a) => a.get(*n).map(Node::Table),
+                None => i.as_array().and_then(|a| a.get(*n)).map(Node::Value),
+            },
+            (Seg::Index(n), Node::Value(v)) => v.as_array().and_then(|a| a.get(*n)).map(Node::Value),
+            (Seg::Index(_), Node::Table(_)) => None,
+        };
+        let Some(next) = next else { break };
+        span = match &next {
+            Node::Item(i) => i.span(),
+            Node::Table(t) => t.span(),
+            Node::Value(v) => v.span(),
+        }
+        .or(span);
+        node = next;
+    }
+    span.map(|s| line_column(text, s.start))
+}
+
 pub(crate) fn locate(text: &str, path: &JsonPath) -> Option<(usize, usize)> {
     let b = text.as_bytes();
     let mut pos = ws(b, 0);

@@ -124,7 +124,48 @@ impl Scene {
             path: JsonPath::default(),
             message: format!("cannot read: {e}"),
         })?;
+        if path.ends_with(".toml") {
+            return Scene::from_toml(&text, path, Path::new(path).parent());
+        }
         Scene::from_json(&text, path, Path::new(path).parent())
+    }
+
+    /// Parse a TOML scene: the fields of the JSON form (`mode`, `[grid]`,
+    /// `[[functions]]`, `regions`, `surfaces`, `curves`, ...), read into
+    /// the same value tree and checked by the same code; errors name the
+    /// TOML line and column.
+    ///
+    /// ```
+    /// let text = r#"
+    /// mode = "ia"
+    /// [grid]
+    /// resolution = 16
+    /// bounds = [[-1, -1, -1], [1, 1, 1]]
+    /// [[functions]]
+    /// name = "ball"
+    /// type = "sphere"
+    /// center = [0, 0, 0]
+    /// radius = 0.5
+    /// "#;
+    /// let scene = septa::scene::Scene::from_toml(text, "ball.toml", None).unwrap();
+    /// assert_eq!(scene.functions.len(), 1);
+    /// ```
+    pub fn from_toml(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
+        let t: toml::Value = toml::from_str(text).map_err(|e| {
+            let (line, column) = e.span().map_or((0, 0), |s| super::error::line_column(text, s.start));
+            SceneError { file: file.to_string(), line, column, path: JsonPath::default(), message: e.message().into() }
+        })?;
+        let v = serde_json::to_value(&t).map_err(|e| SceneError {
+            file: file.to_string(),
+            line: 0,
+            column: 0,
+            path: JsonPath::default(),
+            message: format!("not a scene: {e}"),
+        })?;
+        scene(&v, base_dir).map_err(|l| {
+            let (line, column) = super::error::locate_toml(text, &l.path).unwrap_or((0, 0));
+            SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
+        })
     }
 
     /// Parse scene JSON `text`; `file` names it in errors and `base_dir`
