@@ -24,7 +24,7 @@
 
 use super::cells::Support;
 use super::geom::{dot3, sub3, v3, Ctx, Def, LineDir};
-use super::side_filter::{exact_box, morton, overlap, radius, BoxTree, FloatPlane};
+use super::side_filter::{exact_box, overlap, radius, FloatPlane, VertexGrid};
 use super::CutCellMesh;
 use rayon::prelude::*;
 use septa_exact::{det_sign_diff, filtered_sign, plane_point_sign, Exact, Interval, Ring, Sign};
@@ -171,7 +171,8 @@ fn enforce_line(c: &Ctx, x: &mut [[f64; 3]], pinned: &[bool], line: &Line, moved
         return 0;
     }
     let div = c.line_dir::<Interval>(line.dir);
-    let ok = |x: &[[f64; 3]], a: u32, b: u32| step_sign(c, &x[a as usize], &x[b as usize], line.dir, &div) == Sign::Positive;
+    let ok =
+        |x: &[[f64; 3]], a: u32, b: u32| step_sign(c, &x[a as usize], &x[b as usize], line.dir, &div) == Sign::Positive;
     let Some(t) = unit(div.map(|i| i.mid())) else {
         return 0;
     };
@@ -214,6 +215,17 @@ fn code(s: Support, np: usize) -> usize {
 fn ulp(x: &[f64; 3]) -> f64 {
     let m = x.iter().fold(f64::MIN_POSITIVE, |m, c| m.max(c.abs()));
     f64::from_bits(m.to_bits() + 1) - m
+}
+
+/// Cells whose faces times vertices are at most this are checked pair by
+/// pair (their data is in cache); larger ones through a [`VertexGrid`].
+const BRUTE: usize = 1 << 14;
+
+/// A vertex with its near box.
+type Item = (u32, [f64; 3], [f64; 3]);
+
+fn extent(b: &([f64; 3], [f64; 3])) -> f64 {
+    (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)
 }
 
 /// A (vertex, support) pair whose rounded vertex is not strictly on the
@@ -287,73 +299,78 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         }
     }
     // each face's box and sorted vertices (its vertices lie on its plane)
-    let face_box: Vec<([f64; 3], [f64; 3], Vec<u32>)> = out
+    let face_box: Vec<([f64; 3], [f64; 3])> = out
         .faces
         .par_iter()
         .map(|f| {
-            let mut vs: Vec<u32> = f.loops.iter().flatten().copied().collect();
-            vs.sort_unstable();
-            vs.dedup();
             let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for &v in &vs {
+            for &v in f.loops.iter().flatten() {
                 for k in 0..3 {
                     lo[k] = lo[k].min(rlo[v as usize][k]);
                     hi[k] = hi[k].max(rhi[v as usize][k]);
                 }
             }
-            (lo, hi, vs)
+            (lo, hi)
         })
         .collect();
-    // a near pair fails when the rounded point is not strictly on the exact side
-    let check = |x: &[[f64; 3]], r: &[f64], v: u32, fi: u32| -> Option<Bad> {
-        let (lo, hi, vs) = &face_box[fi as usize];
-        if !overlap(&rlo[v as usize], &rhi[v as usize], lo, hi) || vs.binary_search(&v).is_ok() {
-            return None;
-        }
+    // a near pair fails when the rounded point is not strictly on the exact
+    // side; `known` caches the exact side (2: not yet computed)
+    let check = |x: &[[f64; 3]], r: &[f64], v: u32, fi: u32, known: &mut i8| -> Option<Bad> {
         let s = out.faces[fi as usize].support;
         let fp = planes[code(s, np)].as_ref().unwrap();
         if fp.box_sign(&x[v as usize], &[r[v as usize]; 3]).is_some() {
             return None;
         }
-        let e = exact_side(c, defs[v as usize], s);
+        if *known == 2 {
+            *known = exact_side(c, defs[v as usize], s).as_i8();
+        }
+        let e = Sign::from_i8(*known);
         (e != Sign::Zero && float_side(c, &x[v as usize], s) != e).then_some((v, s, e))
     };
-    if dbg {
-        eprintln!("embed setup {:.4}", t0.elapsed().as_secs_f64());
-    }
     let x = &out.vertices;
-    let cell_verts: Vec<Vec<u32>> = cell_faces
+    // per cell: its vertices near each of its faces, by brute force on
+    // small cells and through a grid of buckets on large ones
+    let per_cell: Vec<(Vec<u32>, Vec<Bad>, Vec<(u32, u32, i8)>)> = cell_faces
         .par_iter()
         .map(|fs| {
-            let mut vs: Vec<u32> = fs.iter().flat_map(|&i| face_box[i as usize].2.iter().copied()).collect();
+            let mut vs: Vec<u32> =
+                fs.iter().flat_map(|&i| out.faces[i as usize].loops.iter().flatten().copied()).collect();
             vs.sort_unstable();
             vs.dedup();
-            vs
-        })
-        .collect();
-    let mut bad: Vec<Bad> = cell_faces
-        .par_iter()
-        .zip(&cell_verts)
-        .flat_map_iter(|(fs, vs)| {
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for &v in vs {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(x[v as usize][k]);
-                    hi[k] = hi[k].max(x[v as usize][k]);
+            let (items, wild): (Vec<Item>, Vec<Item>) =
+                vs.iter().map(|&v| (v, rlo[v as usize], rhi[v as usize])).partition(|it| r[it.0 as usize].is_finite());
+            let (mut b, mut pairs) = (Vec::new(), Vec::new());
+            let mut near = |it: &Item, fi: u32| {
+                let (flo, fhi) = &face_box[fi as usize];
+                // a face's own vertices lie on its plane
+                if overlap(&it.1, &it.2, flo, fhi) && !out.faces[fi as usize].loops.iter().flatten().any(|&u| u == it.0)
+                {
+                    let mut known = 2;
+                    b.extend(check(x, &r, it.0, fi, &mut known));
+                    pairs.push((it.0, fi, known));
+                }
+            };
+            if fs.len() * items.len() <= BRUTE {
+                fs.iter().for_each(|&fi| items.iter().for_each(|it| near(it, fi)));
+            } else {
+                let mut ext: Vec<f64> = fs.iter().map(|&fi| extent(&face_box[fi as usize])).collect();
+                let mid = ext.len() / 2;
+                let h = 2.0 * *ext.select_nth_unstable_by(mid, f64::total_cmp).1;
+                let grow = items.iter().map(|it| it.2[0] - it.1[0]).fold(0.0, f64::max);
+                let grid = VertexGrid::new(items, h);
+                for &fi in fs {
+                    let (flo, fhi) = &face_box[fi as usize];
+                    let (qlo, qhi) = (flo.map(|a| a - grow), fhi.map(|a| a + grow));
+                    if !grid.query(&qlo, &qhi, |it| near(it, fi)) {
+                        grid.items().iter().for_each(|it| near(it, fi));
+                    }
                 }
             }
-            let ext = [0, 1, 2].map(|k| hi[k] - lo[k]);
-            let mut order = vs.clone();
-            order.sort_by_cached_key(|&v| morton(&x[v as usize], &lo, &ext));
-            let tree = BoxTree::new(order, &rlo, &rhi);
-            let (mut b, mut stack) = (Vec::new(), Vec::new());
-            for &fi in fs {
-                let (flo, fhi, _) = &face_box[fi as usize];
-                tree.query(flo, fhi, &mut stack, |v| b.extend(check(x, &r, v, fi)));
-            }
-            b.into_iter()
+            fs.iter().for_each(|&fi| wild.iter().for_each(|it| near(it, fi)));
+            (vs, b, pairs)
         })
         .collect();
+    let mut bad: Vec<Bad> = per_cell.iter().flat_map(|(_, b, _)| b.iter().copied()).collect();
     if dbg {
         eprintln!("embed pairs {:.4}", t0.elapsed().as_secs_f64());
     }
@@ -364,21 +381,32 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     // 3. rounds on the moved vertices only: every other pair passed above
     // and neither its vertex nor the face boxes have moved
     let mut side_moved: Vec<u32> = Vec::new();
-    let (mut cells_of, mut lines_of) = (Vec::new(), Vec::new());
+    let mut lines_of = Vec::new();
+    let (mut start, mut flat) = (vec![0u32; nv + 1], Vec::new());
     if !bad.is_empty() {
-        cells_of = vec![Vec::new(); nv];
-        for (k, vs) in cell_verts.iter().enumerate() {
-            vs.iter().for_each(|&v| cells_of[v as usize].push(k as u32));
+        // the near faces of each vertex, compressed rows
+        let all = || per_cell.iter().flat_map(|(_, _, p)| p.iter());
+        all().for_each(|&(v, _, _)| start[v as usize + 1] += 1);
+        for i in 0..nv {
+            start[i + 1] += start[i];
+        }
+        flat = vec![(0u32, 0i8); start[nv] as usize];
+        let mut fill = start.clone();
+        for &(v, fi, known) in all() {
+            flat[fill[v as usize] as usize] = (fi, known);
+            fill[v as usize] += 1;
         }
         lines_of = vec![Vec::new(); nv];
         for (k, l) in lines.iter().enumerate() {
             l.verts.iter().for_each(|&v| lines_of[v as usize].push(k as u32));
         }
     }
-    for _round in 0..MAX_ROUNDS {
+
+    for round in 0..MAX_ROUNDS {
         if bad.is_empty() {
             break;
         }
+        let tried: Vec<u32> = bad.iter().map(|b| b.0).collect();
         let mut now: Vec<u32> = Vec::new();
         for &(v, s, e) in &bad {
             let xv = out.vertices[v as usize];
@@ -404,21 +432,29 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         }
         line_moved.extend(repaired.iter().copied());
         now.extend(repaired);
+        let moved_now = now.len();
+        now.extend(tried); // recounted even when no move helped
         now.sort_unstable();
         now.dedup();
         for &v in &now {
             r[v as usize] = radius(&out.vertices[v as usize], &boxes[v as usize]);
         }
         let x = &out.vertices;
-        bad = now
-            .par_iter()
-            .flat_map_iter(|&v| {
-                let fs = cells_of[v as usize].iter().flat_map(|&k| cell_faces[k as usize].iter().copied());
-                fs.filter_map(|fi| check(x, &r, v, fi)).collect::<Vec<_>>()
-            })
-            .collect();
+        let before = bad.len();
+        bad.clear();
+        for &v in &now {
+            for (fi, known) in &mut flat[start[v as usize] as usize..start[v as usize + 1] as usize] {
+                bad.extend(check(x, &r, v, *fi, known));
+            }
+        }
         bad.sort_unstable_by_key(key);
         bad.dedup_by_key(|b| key(b));
+        if dbg {
+            eprintln!("embed round {round}: moved {moved_now}, violations {before} -> {}", bad.len());
+        }
+        if bad.len() >= before {
+            break; // no progress: the rest is beyond these local moves
+        }
     }
     st.sidedness_violations = bad.len();
     side_moved.sort_unstable();

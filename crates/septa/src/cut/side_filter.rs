@@ -24,6 +24,7 @@
 
 use super::cells::Support;
 use super::geom::Ctx;
+use super::nodes::FxMap;
 use septa_exact::Interval;
 
 /// Relative enlargement of every computed bound (see the module doc).
@@ -108,112 +109,100 @@ pub fn exact_box(h: &[Interval; 3], w: &Interval) -> Option<[Interval; 3]> {
     Some([h[0].div(w)?, h[1].div(w)?, h[2].div(w)?])
 }
 
-/// A bounding-volume hierarchy over the boxes of a cell's vertices (in
-/// Morton order, halves split recursively), to find the vertices near a
-/// face without visiting every vertex of the cell.
-pub struct BoxTree {
-    items: Vec<u32>,
-    nodes: Vec<TreeNode>,
-}
-
-struct TreeNode {
-    lo: [f64; 3],
-    hi: [f64; 3],
-    start: u32,
-    end: u32,
-    /// Child node ids, or `u32::MAX` for a leaf.
-    kids: [u32; 2],
-}
-
-/// Items per leaf of a [`BoxTree`].
-const LEAF: usize = 4;
-
 /// True when the boxes `[alo, ahi]` and `[blo, bhi]` meet.
 #[inline]
 pub fn overlap(alo: &[f64; 3], ahi: &[f64; 3], blo: &[f64; 3], bhi: &[f64; 3]) -> bool {
     (0..3).all(|k| alo[k] <= bhi[k] && blo[k] <= ahi[k])
 }
 
-impl BoxTree {
-    /// The tree over `items` (already in a spatially coherent order) with
-    /// boxes `lo[i], hi[i]` indexed by item.
-    pub fn new(items: Vec<u32>, lo: &[[f64; 3]], hi: &[[f64; 3]]) -> BoxTree {
-        let mut t = BoxTree { items, nodes: Vec::new() };
-        if !t.items.is_empty() {
-            t.build(0, t.items.len(), lo, hi);
-        }
-        t
-    }
-
-    fn build(&mut self, start: usize, end: usize, lo: &[[f64; 3]], hi: &[[f64; 3]]) -> u32 {
-        let id = self.nodes.len() as u32;
-        self.nodes.push(TreeNode {
-            lo: [f64::INFINITY; 3],
-            hi: [f64::NEG_INFINITY; 3],
-            start: start as u32,
-            end: end as u32,
-            kids: [u32::MAX; 2],
-        });
-        let (mut blo, mut bhi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        if end - start <= LEAF {
-            for &v in &self.items[start..end] {
-                for k in 0..3 {
-                    blo[k] = blo[k].min(lo[v as usize][k]);
-                    bhi[k] = bhi[k].max(hi[v as usize][k]);
-                }
-            }
-        } else {
-            let mid = (start + end) / 2;
-            let a = self.build(start, mid, lo, hi);
-            let b = self.build(mid, end, lo, hi);
-            for c in [a, b] {
-                let n = &self.nodes[c as usize];
-                for k in 0..3 {
-                    blo[k] = blo[k].min(n.lo[k]);
-                    bhi[k] = bhi[k].max(n.hi[k]);
-                }
-            }
-            self.nodes[id as usize].kids = [a, b];
-        }
-        self.nodes[id as usize].lo = blo;
-        self.nodes[id as usize].hi = bhi;
-        id
-    }
-
-    /// Calls `f` on every item whose leaf box meets `[qlo, qhi]` (a superset
-    /// of the items whose own box meets it; callers test those boxes).
-    /// `stack` is scratch space (kept by the caller across queries).
-    pub fn query(&self, qlo: &[f64; 3], qhi: &[f64; 3], stack: &mut Vec<u32>, mut f: impl FnMut(u32)) {
-        if self.nodes.is_empty() {
-            return;
-        }
-        stack.clear();
-        stack.push(0);
-        while let Some(i) = stack.pop() {
-            let n = &self.nodes[i as usize];
-            if !overlap(&n.lo, &n.hi, qlo, qhi) {
-                continue;
-            }
-            if n.kids[0] == u32::MAX {
-                self.items[n.start as usize..n.end as usize].iter().for_each(|&v| f(v));
-            } else {
-                stack.extend(n.kids);
-            }
-        }
-    }
+/// A uniform grid of buckets of vertices (by rounded position), to find
+/// the vertices near a face without visiting every vertex of its cells.
+pub struct VertexGrid {
+    origin: [f64; 3],
+    h: f64,
+    /// Vertex ids sorted by bucket key, with their boxes (stored inline:
+    /// a query reads them contiguously).
+    items: Vec<(u32, [f64; 3], [f64; 3])>,
+    /// Bucket key to its range in `items`.
+    ranges: FxMap<u64, (u32, u32)>,
+    /// Some item was out of range: no query can be answered by buckets.
+    all: bool,
 }
 
-/// Morton key of a point in the box `[lo, lo + ext]` (10 bits per axis).
-pub fn morton(p: &[f64; 3], lo: &[f64; 3], ext: &[f64; 3]) -> u32 {
-    let mut key = 0u32;
-    let q = [0, 1, 2].map(|k| {
-        let t = if ext[k] > 0.0 { (p[k] - lo[k]) / ext[k] } else { 0.0 };
-        (t.clamp(0.0, 1.0) * 1023.0) as u32
-    });
-    for bit in (0..10).rev() {
-        for v in q {
-            key = (key << 1) | ((v >> bit) & 1);
+impl VertexGrid {
+    /// Buckets of side `h` over items `(vertex, lo, hi)` (finite boxes),
+    /// each in the bucket of its box centre.
+    pub fn new(items: Vec<(u32, [f64; 3], [f64; 3])>, h: f64) -> VertexGrid {
+        let centre = |it: &(u32, [f64; 3], [f64; 3])| [0, 1, 2].map(|k| 0.5 * it.1[k] + 0.5 * it.2[k]);
+        let mut origin = [f64::INFINITY; 3];
+        for it in &items {
+            let p = centre(it);
+            for k in 0..3 {
+                origin[k] = origin[k].min(p[k]);
+            }
         }
+        let h = if h.is_finite() && h > 0.0 { h } else { 1.0 };
+        let mut g = VertexGrid { origin, h, items: Vec::new(), ranges: FxMap::default(), all: false };
+        let mut keyed: Vec<(u64, (u32, [f64; 3], [f64; 3]))> = Vec::with_capacity(items.len());
+        for it in items {
+            match g.cell(&centre(&it)) {
+                Some(c) => keyed.push((g.key(&c), it)),
+                None => g.all = true,
+            }
+        }
+        if g.all {
+            // out of the grid's range: queries fall back to every item
+            g.items = keyed.into_iter().map(|(_, it)| it).collect();
+            return g;
+        }
+        keyed.sort_unstable_by_key(|k| k.0);
+        let mut start = 0;
+        for i in 1..=keyed.len() {
+            if i == keyed.len() || keyed[i].0 != keyed[start].0 {
+                g.ranges.insert(keyed[start].0, (start as u32, i as u32));
+                start = i;
+            }
+        }
+        g.items = keyed.into_iter().map(|(_, it)| it).collect();
+        g
     }
-    key
+
+    /// Every item.
+    pub fn items(&self) -> &[(u32, [f64; 3], [f64; 3])] {
+        &self.items
+    }
+
+    fn cell(&self, p: &[f64; 3]) -> Option<[i64; 3]> {
+        let c = [0, 1, 2].map(|k| ((p[k] - self.origin[k]) / self.h).floor());
+        c.iter().all(|v| v.is_finite() && v.abs() < 1e6).then(|| c.map(|v| v as i64))
+    }
+
+    fn key(&self, c: &[i64; 3]) -> u64 {
+        let f = |v: i64| ((v + (1 << 20)) as u64) & ((1 << 21) - 1);
+        (f(c[0]) << 42) | (f(c[1]) << 21) | f(c[2])
+    }
+
+    /// Calls `f` on every item whose box centre lies in a bucket that the
+    /// box `[lo, hi]` meets and returns true; returns false (calling
+    /// nothing) when that is not cheaper than visiting every item.
+    pub fn query(&self, lo: &[f64; 3], hi: &[f64; 3], mut f: impl FnMut(&(u32, [f64; 3], [f64; 3]))) -> bool {
+        if self.all {
+            return false;
+        }
+        let (Some(a), Some(b)) = (self.cell(lo), self.cell(hi)) else { return false };
+        let span: u64 = (0..3).map(|k| (b[k] - a[k] + 1).max(0) as u64).product();
+        if span > self.items.len() as u64 {
+            return false;
+        }
+        for i in a[0]..=b[0] {
+            for j in a[1]..=b[1] {
+                for k in a[2]..=b[2] {
+                    if let Some(&(s, e)) = self.ranges.get(&self.key(&[i, j, k])) {
+                        self.items[s as usize..e as usize].iter().for_each(&mut f);
+                    }
+                }
+            }
+        }
+        true
+    }
 }
