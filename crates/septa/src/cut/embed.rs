@@ -6,9 +6,9 @@
 //! 1. **vertex-vertex**: along every mesh edge and plane-plane line the
 //!    vertices advance in the exact line order;
 //! 2. **vertex-face** (the sidedness of Eq. (13)): for every cut-face `f`
-//!    and every cut-vertex `v` of a cell bounded by `f` that is not on
-//!    `f`'s supporting plane, the rounded `v` lies strictly on the same side
-//!    of that plane as the exact `v`.
+//!    and every cut-vertex `v` of a cell bounded by `f` that is near `f`
+//!    (see [`embed`]) and not on `f`'s supporting plane, the rounded `v`
+//!    lies strictly on the same side of that plane as the exact `v`.
 //!
 //! Both are decided exactly: the exact side from the vertex's face triple
 //! ([`Ctx::side`] and the triangle form below), the side of the rounded
@@ -24,20 +24,24 @@
 
 use super::cells::Support;
 use super::geom::{dot3, sub3, v3, Ctx, Def, LineDir};
-use super::side_filter::{exact_box, overlap, radius, FloatPlane, VertexGrid};
+use super::side_filter::{exact_box, overlap, radius, FloatPlane, GridItem, VertexGrid};
 use super::CutCellMesh;
 use rayon::prelude::*;
 use septa_exact::{det_sign_diff, filtered_sign, plane_point_sign, Exact, Interval, Ring, Sign};
 
 /// Rounds of (sidedness moves, line-order repair) on the moved vertices.
 pub const MAX_ROUNDS: usize = 8;
-/// Doublings of a move's step before giving up (2^64 ulps is far beyond
-/// any rounding error, so reaching it means the check cannot be met there).
+/// Doublings of a line-order move's step before giving up in the first
+/// sweep (2^64 ulps is far beyond any rounding error, so reaching it means
+/// the order cannot be met there).
 const MAX_DOUBLINGS: usize = 64;
-/// How far (in ulps of its largest coordinate, beyond the enclosure of its
-/// exact point) a vertex counts as near a face: far more than rounding and
-/// the moves here ever displace a vertex, so a vertex that is not near a
-/// face can never cross it in the embedding.
+/// Doublings in the rounds: a move there stays within 2^8 ulps, well
+/// inside the [`NEAR_ULPS`] margin that decided which faces are near.
+const ROUND_DOUBLINGS: usize = 8;
+/// How far (in ulps of its largest coordinate, beyond the distance of its
+/// rounded position from its exact point) a vertex counts as near a face:
+/// four times the largest single move of the rounds ([`ROUND_DOUBLINGS`]),
+/// so a vertex that is not near a face does not cross it.
 const NEAR_ULPS: f64 = 1024.0;
 
 /// A line carrying cut-vertices in their exact order along `dir`.
@@ -148,10 +152,9 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 /// Moves `x` along `sign * u` by the smallest power-of-two multiple of its
 /// ulp for which `ok` holds (TopoCut Sec. 6.1: "the smallest double
 /// floating-point change"); `None` when no such multiple is found.
-fn push(x: [f64; 3], u: [f64; 3], sign: f64, ok: impl Fn(&[f64; 3]) -> bool) -> Option<[f64; 3]> {
-    let m = x.iter().fold(f64::MIN_POSITIVE, |m, c| m.max(c.abs()));
-    let mut step = f64::from_bits(m.to_bits() + 1) - m; // ulp of the largest coordinate
-    for _ in 0..MAX_DOUBLINGS {
+fn push(x: [f64; 3], u: [f64; 3], sign: f64, doublings: usize, ok: impl Fn(&[f64; 3]) -> bool) -> Option<[f64; 3]> {
+    let mut step = ulp(&x); // of the largest coordinate
+    for _ in 0..doublings {
         let y = [0, 1, 2].map(|k| x[k] + sign * step * u[k]);
         if y.iter().all(|c| c.is_finite()) && ok(&y) {
             return Some(y);
@@ -166,7 +169,14 @@ fn push(x: [f64; 3], u: [f64; 3], sign: f64, ok: impl Fn(&[f64; 3]) -> bool) -> 
 /// vertex (exact coordinates) is never moved, its predecessor is pushed
 /// back instead. A few sweeps settle chains of backward pushes. Returns
 /// the number of pairs still out of order.
-fn enforce_line(c: &Ctx, x: &mut [[f64; 3]], pinned: &[bool], line: &Line, moved: &mut Vec<u32>) -> usize {
+fn enforce_line(
+    c: &Ctx,
+    x: &mut [[f64; 3]],
+    pinned: &[bool],
+    line: &Line,
+    doublings: usize,
+    moved: &mut Vec<u32>,
+) -> usize {
     if line.verts.len() < 2 {
         return 0;
     }
@@ -186,9 +196,9 @@ fn enforce_line(c: &Ctx, x: &mut [[f64; 3]], pinned: &[bool], line: &Line, moved
             let pa = x[a as usize];
             let pb = x[b as usize];
             let fixed = if !pinned[b as usize] {
-                push(pb, t, 1.0, |y| step_sign(c, &pa, y, line.dir, &div) == Sign::Positive).map(|y| (b, y))
+                push(pb, t, 1.0, doublings, |y| step_sign(c, &pa, y, line.dir, &div) == Sign::Positive).map(|y| (b, y))
             } else if !pinned[a as usize] {
-                push(pa, t, -1.0, |y| step_sign(c, y, &pb, line.dir, &div) == Sign::Positive).map(|y| (a, y))
+                push(pa, t, -1.0, doublings, |y| step_sign(c, y, &pb, line.dir, &div) == Sign::Positive).map(|y| (a, y))
             } else {
                 None
             };
@@ -219,10 +229,10 @@ fn ulp(x: &[f64; 3]) -> f64 {
 
 /// Cells whose faces times vertices are at most this are checked pair by
 /// pair (their data is in cache); larger ones through a [`VertexGrid`].
-const BRUTE: usize = 1 << 14;
+const BRUTE: usize = 1 << 12;
 
-/// A vertex with its near box.
-type Item = (u32, [f64; 3], [f64; 3]);
+/// A near (vertex, face) pair with the cached exact side (2: unknown).
+type NearPair = (u32, u32, i8);
 
 fn extent(b: &([f64; 3], [f64; 3])) -> f64 {
     (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)
@@ -243,8 +253,19 @@ pub fn round(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
     let (h, w) = c.hom::<Interval>(d);
     let m = w.mid();
     let guess = [h[0].mid() / m, h[1].mid() / m, h[2].mid() / m];
-    let x = if guess.iter().all(|x| x.is_finite()) { guess } else { c.approx(d) };
-    (x, exact_box(&h, &w))
+    let bx = exact_box(&h, &w);
+    // An ill-conditioned triple (nearly parallel planes, W nearly 0) has
+    // wide intervals and a midpoint quotient that can be far off (a point
+    // of the line z = 1/2 of two planes at angle 2^-60 came out at z = 3):
+    // then the rounding comes from the exact coordinates.
+    let tight = bx.as_ref().is_some_and(|b| (0..3).all(|k| b[k].hi - b[k].lo <= 8.0 * ulp(&guess)));
+    if tight && guess.iter().all(|x| x.is_finite()) {
+        return (guess, bx);
+    }
+    let (he, we) = c.hom::<Exact>(d);
+    let wf = we.to_f64_approx();
+    let x = [0, 1, 2].map(|k| he[k].to_f64_approx() / wf);
+    (if x.iter().all(|v| v.is_finite()) { x } else { c.approx(d) }, bx)
 }
 
 /// The embedding: `out.vertices` holds the rounded `out.vertex_defs` and
@@ -254,12 +275,13 @@ pub fn round(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
 /// that it is near (`out.faces[..].cells` are the final cells).
 ///
 /// "Near" (the paper checks "all the near faces"): the vertex's box, its
-/// rounded position widened by the enclosure of its exact point and by
-/// [`NEAR_ULPS`], meets the box of the face's vertex boxes. A vertex that
-/// is not near a face cannot cross the face's polygon, so those pairs
-/// cannot invert anything; checking them all would be quadratic in the
-/// size of a cell (545 M pairs on nefertiti R10) and, on nearly coplanar
-/// input triangles, infeasible in doubles.
+/// rounded position widened by its distance from its exact point and by
+/// [`NEAR_ULPS`] ulps, meets the box of the face's vertex boxes. While
+/// every vertex stays in its box, a vertex that is not near a face cannot
+/// cross the face's polygon, so such a pair cannot invert anything.
+/// Checking every pair of a cell instead would be quadratic in the cell's
+/// size (545 M pairs on nefertiti R10, 2.2 s) and, between nearly coplanar
+/// input triangles far apart, often infeasible in doubles.
 pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], lines: &[Line]) -> EmbedStats {
     let nv = out.vertices.len();
     let np = c.planes.len();
@@ -271,7 +293,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     // 1. line orders (the first half of the paper's heuristic)
     let mut line_moved: Vec<u32> = Vec::new();
     for l in lines {
-        enforce_line(c, &mut out.vertices, &pinned, l, &mut line_moved);
+        enforce_line(c, &mut out.vertices, &pinned, l, MAX_DOUBLINGS, &mut line_moved);
     }
     if dbg {
         eprintln!("embed lines {:.4}", t0.elapsed().as_secs_f64());
@@ -327,20 +349,23 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         let e = Sign::from_i8(*known);
         (e != Sign::Zero && float_side(c, &x[v as usize], s) != e).then_some((v, s, e))
     };
+    if dbg {
+        eprintln!("embed setup {:.4}", t0.elapsed().as_secs_f64());
+    }
     let x = &out.vertices;
     // per cell: its vertices near each of its faces, by brute force on
     // small cells and through a grid of buckets on large ones
-    let per_cell: Vec<(Vec<u32>, Vec<Bad>, Vec<(u32, u32, i8)>)> = cell_faces
+    let per_cell: Vec<(Vec<Bad>, Vec<NearPair>)> = cell_faces
         .par_iter()
         .map(|fs| {
             let mut vs: Vec<u32> =
                 fs.iter().flat_map(|&i| out.faces[i as usize].loops.iter().flatten().copied()).collect();
             vs.sort_unstable();
             vs.dedup();
-            let (items, wild): (Vec<Item>, Vec<Item>) =
+            let (items, wild): (Vec<GridItem>, Vec<GridItem>) =
                 vs.iter().map(|&v| (v, rlo[v as usize], rhi[v as usize])).partition(|it| r[it.0 as usize].is_finite());
             let (mut b, mut pairs) = (Vec::new(), Vec::new());
-            let mut near = |it: &Item, fi: u32| {
+            let mut near = |it: &GridItem, fi: u32| {
                 let (flo, fhi) = &face_box[fi as usize];
                 // a face's own vertices lie on its plane
                 if overlap(&it.1, &it.2, flo, fhi) && !out.faces[fi as usize].loops.iter().flatten().any(|&u| u == it.0)
@@ -367,10 +392,10 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
                 }
             }
             fs.iter().for_each(|&fi| wild.iter().for_each(|it| near(it, fi)));
-            (vs, b, pairs)
+            (b, pairs)
         })
         .collect();
-    let mut bad: Vec<Bad> = per_cell.iter().flat_map(|(_, b, _)| b.iter().copied()).collect();
+    let mut bad: Vec<Bad> = per_cell.iter().flat_map(|(b, _)| b.iter().copied()).collect();
     if dbg {
         eprintln!("embed pairs {:.4}", t0.elapsed().as_secs_f64());
     }
@@ -385,7 +410,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     let (mut start, mut flat) = (vec![0u32; nv + 1], Vec::new());
     if !bad.is_empty() {
         // the near faces of each vertex, compressed rows
-        let all = || per_cell.iter().flat_map(|(_, _, p)| p.iter());
+        let all = || per_cell.iter().flat_map(|(_, p)| p.iter());
         all().for_each(|&(v, _, _)| start[v as usize + 1] += 1);
         for i in 0..nv {
             start[i + 1] += start[i];
@@ -407,6 +432,8 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
             break;
         }
         let tried: Vec<u32> = bad.iter().map(|b| b.0).collect();
+        // a round that leaves more violations than it found is undone
+        let undo = (out.vertices.clone(), r.clone(), bad.clone(), side_moved.len(), line_moved.len());
         let mut now: Vec<u32> = Vec::new();
         for &(v, s, e) in &bad {
             let xv = out.vertices[v as usize];
@@ -416,7 +443,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
             let Some(u) = unit(planes[code(s, np)].as_ref().unwrap().n) else { continue };
             // along the face normal towards the exact side (Sec. 6.1)
             let sign = if e == Sign::Positive { 1.0 } else { -1.0 };
-            if let Some(y) = push(xv, u, sign, |y| float_side(c, y, s) == e) {
+            if let Some(y) = push(xv, u, sign, ROUND_DOUBLINGS, |y| float_side(c, y, s) == e) {
                 out.vertices[v as usize] = y;
                 now.push(v);
                 side_moved.push(v);
@@ -428,7 +455,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         touched.dedup();
         let mut repaired: Vec<u32> = Vec::new();
         for &k in &touched {
-            enforce_line(c, &mut out.vertices, &pinned, &lines[k as usize], &mut repaired);
+            enforce_line(c, &mut out.vertices, &pinned, &lines[k as usize], ROUND_DOUBLINGS, &mut repaired);
         }
         line_moved.extend(repaired.iter().copied());
         now.extend(repaired);
@@ -452,11 +479,27 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         if dbg {
             eprintln!("embed round {round}: moved {moved_now}, violations {before} -> {}", bad.len());
         }
-        if bad.len() >= before {
+        if bad.len() > before {
+            (out.vertices, r, bad) = (undo.0, undo.1, undo.2);
+            side_moved.truncate(undo.3);
+            line_moved.truncate(undo.4);
+            break;
+        }
+        if bad.len() == before {
             break; // no progress: the rest is beyond these local moves
         }
     }
     st.sidedness_violations = bad.len();
+    if dbg {
+        for b in bad.iter().take(6) {
+            let fp = planes[code(b.1, np)].as_ref().unwrap();
+            let n = unit(fp.n).unwrap_or([0.0; 3]);
+            let p = out.vertices[b.0 as usize];
+            let dist = (fp.n[0] * p[0] + fp.n[1] * p[1] + fp.n[2] * p[2] + fp.d)
+                / (fp.n.iter().map(|a| a * a).sum::<f64>()).sqrt();
+            eprintln!("bad {:?} {:?} {:?} at {:?} normal {:?} dist {dist:e}", b.0, defs[b.0 as usize], b.1, p, n);
+        }
+    }
     side_moved.sort_unstable();
     side_moved.dedup();
     line_moved.sort_unstable();

@@ -115,6 +115,9 @@ pub fn overlap(alo: &[f64; 3], ahi: &[f64; 3], blo: &[f64; 3], bhi: &[f64; 3]) -
     (0..3).all(|k| alo[k] <= bhi[k] && blo[k] <= ahi[k])
 }
 
+/// A vertex id with its box `[lo, hi]`.
+pub type GridItem = (u32, [f64; 3], [f64; 3]);
+
 /// A uniform grid of buckets of vertices (by rounded position), to find
 /// the vertices near a face without visiting every vertex of its cells.
 pub struct VertexGrid {
@@ -122,7 +125,7 @@ pub struct VertexGrid {
     h: f64,
     /// Vertex ids sorted by bucket key, with their boxes (stored inline:
     /// a query reads them contiguously).
-    items: Vec<(u32, [f64; 3], [f64; 3])>,
+    items: Vec<GridItem>,
     /// Bucket key to its range in `items`.
     ranges: FxMap<u64, (u32, u32)>,
     /// Some item was out of range: no query can be answered by buckets.
@@ -132,8 +135,8 @@ pub struct VertexGrid {
 impl VertexGrid {
     /// Buckets of side `h` over items `(vertex, lo, hi)` (finite boxes),
     /// each in the bucket of its box centre.
-    pub fn new(items: Vec<(u32, [f64; 3], [f64; 3])>, h: f64) -> VertexGrid {
-        let centre = |it: &(u32, [f64; 3], [f64; 3])| [0, 1, 2].map(|k| 0.5 * it.1[k] + 0.5 * it.2[k]);
+    pub fn new(items: Vec<GridItem>, h: f64) -> VertexGrid {
+        let centre = |it: &GridItem| [0, 1, 2].map(|k| 0.5 * it.1[k] + 0.5 * it.2[k]);
         let mut origin = [f64::INFINITY; 3];
         for it in &items {
             let p = centre(it);
@@ -143,7 +146,7 @@ impl VertexGrid {
         }
         let h = if h.is_finite() && h > 0.0 { h } else { 1.0 };
         let mut g = VertexGrid { origin, h, items: Vec::new(), ranges: FxMap::default(), all: false };
-        let mut keyed: Vec<(u64, (u32, [f64; 3], [f64; 3]))> = Vec::with_capacity(items.len());
+        let mut keyed: Vec<(u64, GridItem)> = Vec::with_capacity(items.len());
         for it in items {
             match g.cell(&centre(&it)) {
                 Some(c) => keyed.push((g.key(&c), it)),
@@ -168,7 +171,7 @@ impl VertexGrid {
     }
 
     /// Every item.
-    pub fn items(&self) -> &[(u32, [f64; 3], [f64; 3])] {
+    pub fn items(&self) -> &[GridItem] {
         &self.items
     }
 
@@ -185,7 +188,7 @@ impl VertexGrid {
     /// Calls `f` on every item whose box centre lies in a bucket that the
     /// box `[lo, hi]` meets and returns true; returns false (calling
     /// nothing) when that is not cheaper than visiting every item.
-    pub fn query(&self, lo: &[f64; 3], hi: &[f64; 3], mut f: impl FnMut(&(u32, [f64; 3], [f64; 3]))) -> bool {
+    pub fn query(&self, lo: &[f64; 3], hi: &[f64; 3], mut f: impl FnMut(&GridItem)) -> bool {
         if self.all {
             return false;
         }
