@@ -276,7 +276,7 @@ pub fn round(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
 ///
 /// "Near" (the paper checks "all the near faces"): the vertex's box, its
 /// rounded position widened by its distance from its exact point and by
-/// [`NEAR_ULPS`] ulps, meets the box of the face's vertex boxes. While
+/// `NEAR_ULPS` (1024) ulps, meets the box of the face's vertex boxes. While
 /// every vertex stays in its box, a vertex that is not near a face cannot
 /// cross the face's polygon, so such a pair cannot invert anything.
 /// Checking every pair of a cell instead would be quadratic in the cell's
@@ -433,7 +433,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         }
         let tried: Vec<u32> = bad.iter().map(|b| b.0).collect();
         // a round that leaves more violations than it found is undone
-        let undo = (out.vertices.clone(), r.clone(), bad.clone(), side_moved.len(), line_moved.len());
+        let undo = (out.vertices.clone(), bad.clone(), side_moved.len(), line_moved.len());
         let mut now: Vec<u32> = Vec::new();
         for &(v, s, e) in &bad {
             let xv = out.vertices[v as usize];
@@ -480,9 +480,9 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
             eprintln!("embed round {round}: moved {moved_now}, violations {before} -> {}", bad.len());
         }
         if bad.len() > before {
-            (out.vertices, r, bad) = (undo.0, undo.1, undo.2);
-            side_moved.truncate(undo.3);
-            line_moved.truncate(undo.4);
+            (out.vertices, bad) = (undo.0, undo.1);
+            side_moved.truncate(undo.2);
+            line_moved.truncate(undo.3);
             break;
         }
         if bad.len() == before {

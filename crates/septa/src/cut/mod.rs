@@ -24,11 +24,12 @@
 //!    floating-point embedding [Sec. 6.1]: rounded cut-vertices moved by
 //!    ulps until the exact order along every mesh edge and plane-plane line
 //!    holds and every vertex of a cell lies strictly on its exact side of
-//!    the supporting plane of each face of the cell (the vertex-face orders
-//!    of Eq. (13)), both checked by exact predicates on the doubles; moves
-//!    and remaining violations counted ([`CutStats::moved_vertices`],
-//!    [`CutStats::sidedness_moved`], [`CutStats::sidedness_violations`]);
-//!    volumes, triangulation of faces for output.
+//!    the supporting plane of each face of the cell near it (the
+//!    vertex-face orders of Eq. (13)), both checked by exact predicates on
+//!    the doubles; moves and remaining violations counted
+//!    ([`CutStats::moved_vertices`], [`CutStats::sidedness_moved`],
+//!    [`CutStats::sidedness_violations`]); volumes, triangulation of faces
+//!    for output.
 //!
 //! Difference from the paper: TopoCut inserts planes one at a time into the
 //! half-face structure and infers most cycle orders topologically. Here all
@@ -121,10 +122,11 @@ pub struct CutStats {
     /// Vertices whose rounded coordinates were nudged to keep the exact order
     /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
     pub moved_vertices: usize,
-    /// Cut-vertices moved to keep the exact side of every supporting plane
-    /// of a face of their cells (TopoCut Sec. 6.1, the orders of Eq. (13)).
+    /// Cut-vertices moved to keep the exact side of the supporting plane of
+    /// every face of their cells near them (TopoCut Sec. 6.1, the orders of
+    /// Eq. (13); "near" as in [`embed::embed`]).
     pub sidedness_moved: usize,
-    /// (cut-vertex, supporting plane) pairs of a cell whose plainly rounded
+    /// Near (cut-vertex, supporting plane) pairs of a cell whose plainly rounded
     /// position (after the line-order moves) was on the wrong side or on the
     /// plane: what the sidedness moves repair.
     pub sidedness_violations_rounded: usize,
