@@ -209,3 +209,53 @@ impl VertexGrid {
         true
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use septa_exact::{plane_point_sign, Sign};
+
+    /// A small deterministic generator (xorshift) of doubles in [-1, 1).
+    fn gen(state: &mut u64) -> f64 {
+        *state ^= *state << 13;
+        *state ^= *state >> 7;
+        *state ^= *state << 17;
+        (*state >> 11) as f64 / (1u64 << 52) as f64 - 1.0
+    }
+
+    #[test]
+    fn box_sign_agrees_with_the_exact_side_at_every_corner() {
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let (mut decided, mut near) = (0, 0);
+        for i in 0..20000 {
+            let q = [gen(&mut s), gen(&mut s), gen(&mut s), gen(&mut s) * 0.1];
+            let fp = FloatPlane { n: [q[0], q[1], q[2]], d: q[3], dn: [0.0; 3], dd: 0.0 };
+            // a point on or next to the plane, and a box around it from 0
+            // to a few ulps wide: the hard cases of the filter
+            let mut c = [gen(&mut s), gen(&mut s), gen(&mut s)];
+            let k = (0..3).max_by(|&a, &b| q[a].abs().total_cmp(&q[b].abs())).unwrap();
+            c[k] = -(q[3] + (0..3).filter(|&j| j != k).map(|j| q[j] * c[j]).sum::<f64>()) / q[k];
+            // half the points clearly off the plane (the filter must decide
+            // them), half within a few ulps (it must not get them wrong)
+            c[k] += if i % 2 == 0 { 1e-3 } else { (i % 7) as f64 * 1e-15 } * gen(&mut s);
+            let w = [(i % 5) as f64 * 1e-16; 3];
+            if let Some(sg) = fp.box_sign(&c, &w) {
+                decided += 1;
+                near += i % 2;
+                for m in 0..8 {
+                    let p = [0, 1, 2].map(|j| if m >> j & 1 == 1 { c[j] + w[j] } else { c[j] - w[j] });
+                    let want = if sg > 0 { Sign::Positive } else { Sign::Negative };
+                    // corners are rounded, so only check those that are
+                    // exactly the box's corners
+                    if (0..3).all(|j| (p[j] - c[j]).abs() == w[j]) {
+                        assert_eq!(plane_point_sign(&q, &p), want, "plane {q:?} box {c:?} +- {w:?}");
+                    }
+                }
+            }
+        }
+        // the filter decides the clear cases
+        assert!(decided > 9000, "filter decided only {decided}");
+        // and some of those within a few ulps of the plane (at its edge)
+        assert!(near > 100, "filter decided only {near} near points");
+    }
+}
