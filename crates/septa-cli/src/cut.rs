@@ -115,6 +115,10 @@ pub fn run(a: Args) -> CliResult {
         "exact_fallbacks": out.stats.exact_fallbacks,
         "ordered_edges": out.stats.ordered_edges,
         "moved_vertices": out.stats.moved_vertices,
+        "sidedness_moved": out.stats.sidedness_moved,
+        "sidedness_violations_rounded": out.stats.sidedness_violations_rounded,
+        "sidedness_violations": out.stats.sidedness_violations,
+        "line_order_violations": out.stats.line_order_violations,
         "dropped_planes": out.stats.dropped_planes.len(),
         "seconds": seconds,
     });

@@ -20,9 +20,16 @@
 //! 5. [`cells`]: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
 //!    an edge with two faces is joined topologically; others by exact
 //!    face-cycle order ([`CutStats::ordered_edges`]).
-//! 6. [`output`], [`triangulate`]: floating-point embedding that keeps the
-//!    order along every line (moved vertices counted) [Sec. 6.1], volumes,
-//!    triangulation of faces for output.
+//! 6. [`embed`], [`side_filter`], [`output`], [`triangulate`]: the
+//!    floating-point embedding [Sec. 6.1]: rounded cut-vertices moved by
+//!    ulps until the exact order along every mesh edge and plane-plane line
+//!    holds and every vertex of a cell lies strictly on its exact side of
+//!    the supporting plane of each face of the cell near it (the
+//!    vertex-face orders of Eq. (13)), both checked by exact predicates on
+//!    the doubles; moves and remaining violations counted
+//!    ([`CutStats::moved_vertices`], [`CutStats::sidedness_moved`],
+//!    [`CutStats::sidedness_violations`]); volumes, triangulation of faces
+//!    for output.
 //!
 //! Difference from the paper: TopoCut inserts planes one at a time into the
 //! half-face structure and infers most cycle orders topologically. Here all
@@ -45,6 +52,7 @@
 pub mod bench;
 pub mod cells;
 pub mod clip;
+pub mod embed;
 mod error;
 pub mod geom;
 pub mod holes;
@@ -54,6 +62,7 @@ pub mod nodes;
 pub mod output;
 pub mod plane_graph;
 pub mod selfx;
+pub mod side_filter;
 pub mod triangulate;
 mod validate;
 pub mod voids;
@@ -113,6 +122,19 @@ pub struct CutStats {
     /// Vertices whose rounded coordinates were nudged to keep the exact order
     /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
     pub moved_vertices: usize,
+    /// Cut-vertices moved to keep the exact side of the supporting plane of
+    /// every face of their cells near them (TopoCut Sec. 6.1, the orders of
+    /// Eq. (13); "near" as in [`embed::embed`]).
+    pub sidedness_moved: usize,
+    /// Near (cut-vertex, supporting plane) pairs of a cell whose plainly rounded
+    /// position (after the line-order moves) was on the wrong side or on the
+    /// plane: what the sidedness moves repair.
+    pub sidedness_violations_rounded: usize,
+    /// Such pairs still wrong after the moves, decided exactly (expected 0).
+    pub sidedness_violations: usize,
+    /// Consecutive vertices of a mesh edge or plane-plane line still out of
+    /// exact order in the embedding, decided exactly (expected 0).
+    pub line_order_violations: usize,
     /// Void shells attached to their enclosing cell.
     pub voids_attached: usize,
     /// Void shells whose enclosing cell was not unique by plane sides
@@ -359,46 +381,55 @@ fn cut_impl(
             }
         }
     }
-    out.vertices = out.vertex_defs.iter().map(|&d| c.approx(d)).collect();
-    // floating-point embedding: keep the exact order along every line
-    let mut moved: Vec<u32> = Vec::new();
-    let to_out = |n: &u32| used[cid(*n) as usize];
-    for chain in chains.iter() {
-        let l: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
-        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
-    }
-    for (_, pts) in &plines {
-        let l: Vec<u32> = pts.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
-        output::enforce_line_order(&mut out.vertices, &l, &mut moved);
-    }
-    moved.sort_unstable();
-    moved.dedup();
-    stats.moved_vertices = moved.len();
-    out.num_cells = cells.count;
-    out.cell_volumes = vec![0.0; cells.count];
+    let (rounded, boxes): (Vec<[f64; 3]>, Vec<_>) = out.vertex_defs.par_iter().map(|&d| embed::round(&c, d)).unzip();
+    out.vertices = rounded;
     let nf = nface as usize;
     out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
     for f in faces.iter() {
-        let verts: Vec<u32> = f.verts.iter().map(|&v| used[v as usize]).collect();
         let i = f.face as usize;
-        let cneg = cells.cell_of[2 * i + 1];
-        let cpos = cells.cell_of[2 * i];
-        let vol = output::loop_volume(&out.vertices, &verts);
-        if cneg != u32::MAX {
-            out.cell_volumes[cneg as usize] += vol;
-        }
-        if cpos != u32::MAX {
-            out.cell_volumes[cpos as usize] -= vol;
-        }
         let cf = &mut out.faces[i];
         cf.support = f.support;
-        cf.cells = [cneg, cpos];
-        cf.loops.push(verts);
+        cf.cells = [cells.cell_of[2 * i + 1], cells.cell_of[2 * i]];
+        cf.loops.push(f.verts.iter().map(|&v| used[v as usize]).collect());
     }
     out.num_cells = cells.count;
+    out.cell_volumes = vec![0.0; cells.count];
     let (attached, unresolved) = voids::attach_voids(&c, &mut out);
     stats.voids_attached = attached;
     stats.voids_unresolved = unresolved;
+    lap("faces", &mut stats);
+    // floating-point embedding (Sec. 6.1): line orders and vertex-face
+    // sidedness over the final cells (voids attached)
+    let to_out = |n: &u32| used[cid(*n) as usize];
+    let mut lines: Vec<embed::Line> = Vec::with_capacity(chains.len() + plines.len());
+    for (e, chain) in chains.iter().enumerate() {
+        let verts: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        lines.push(embed::Line { dir: LineDir::Mesh(e as u32), verts });
+    }
+    for ((p, q), pts) in &plines {
+        let verts: Vec<u32> = pts.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
+        lines.push(embed::Line { dir: LineDir::PlanePlane(*p, *q), verts });
+    }
+    let es = embed::embed(&c, &mut out, &boxes, &lines);
+    stats.moved_vertices = es.line_moved;
+    stats.sidedness_moved = es.sidedness_moved;
+    stats.sidedness_violations_rounded = es.sidedness_violations_rounded;
+    stats.sidedness_violations = es.sidedness_violations;
+    stats.line_order_violations = es.line_order_violations;
+    lap("embed", &mut stats);
+    // volumes by the divergence theorem: loops count + for cells[0] and -
+    // for cells[1] (volume.rs relies on this orientation)
+    for f in &out.faces {
+        for l in &f.loops {
+            let vol = output::loop_volume(&out.vertices, l);
+            if f.cells[0] != u32::MAX {
+                out.cell_volumes[f.cells[0] as usize] += vol;
+            }
+            if f.cells[1] != u32::MAX {
+                out.cell_volumes[f.cells[1] as usize] -= vol;
+            }
+        }
+    }
     out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.planes = planes.clone();
