@@ -99,30 +99,9 @@ def test_toml_scenes(tmp_path):
     import septa
     from septa import distributed as sd
 
-    toml = """mode = "ia"
-surfaces = [[0, 2]]
-[grid]
-resolution = 12
-bounds = [[-1, -1, -1], [1, 1, 1]]
-[[functions]]
-name = "small"
-type = "sphere"
-center = [0.25, 0.15, 0.5]
-radius = 0.3
-[[functions]]
-name = "large"
-type = "sphere"
-center = [0, 0, 0]
-radius = 0.6
-[[regions]]
-when = "small"
-region = 1
-[[regions]]
-when = "large"
-region = 2
-[[regions]]
-region = 0
-"""
+    from conftest import ROOT
+
+    toml = (ROOT / "tests" / "fixtures" / "two-spheres.toml").read_text()
     import tomllib
 
     (tmp_path / "s.toml").write_text(toml)
@@ -134,5 +113,5 @@ region = 0
     d = sd.arrangement(tmp_path / "s.json", client=None, block=4)
     assert c.summary()["cells"] == d.summary()["cells"] == 4
     (tmp_path / "bad.toml").write_text(toml.replace("radius = 0.6", "radius = -0.6"))
-    with pytest.raises(septa.InputError, match=r"bad.toml:15:10: functions\[1\].radius"):
+    with pytest.raises(septa.InputError, match=r"bad.toml:20:10: functions\[1\].radius"):
         septa.region_surfaces(str(tmp_path / "bad.toml"))

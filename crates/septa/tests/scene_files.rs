@@ -369,37 +369,8 @@ fn mi_difference_bounds_never_skip_an_interface() {
 #[test]
 fn toml_scenes_load_like_json_and_name_lines() {
     // The same scene in both forms: the same functions, grid and rule.
-    let toml = r#"
-mode = "ia"
-surfaces = [[0, 2]]
-
-[grid]
-resolution = 12
-bounds = [[-1, -1, -1], [1, 1, 1]]
-
-[[functions]]
-name = "small"
-type = "sphere"
-center = [0.25, 0.15, 0.5]
-radius = 0.3
-
-[[functions]]
-name = "large"
-type = "sphere"
-center = [0, 0, 0]
-radius = 0.6
-
-[[regions]]
-when = "small"
-region = 1
-
-[[regions]]
-when = "large"
-region = 2
-
-[[regions]]
-region = 0
-"#;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fixtures/two-spheres.toml");
+    let toml = &std::fs::read_to_string(&path).unwrap();
     let json = r#"{"mode": "ia", "surfaces": [[0, 2]], "grid": {"resolution": 12, "bounds": [[-1,-1,-1],[1,1,1]]},
       "functions": [{"name": "small", "type": "sphere", "center": [0.25,0.15,0.5], "radius": 0.3},
                     {"name": "large", "type": "sphere", "center": [0,0,0], "radius": 0.6}],
@@ -418,18 +389,13 @@ region = 0
     // Errors name the TOML line and the field.
     let bad = toml.replace("radius = 0.6", "radius = -0.6");
     let e = Scene::from_toml(&bad, "bad.toml", None).unwrap_err();
-    assert_eq!((e.file.as_str(), e.line, e.path.to_string().as_str()), ("bad.toml", 19, "functions[1].radius"), "{e}");
+    assert_eq!((e.file.as_str(), e.line, e.path.to_string().as_str()), ("bad.toml", 20, "functions[1].radius"), "{e}");
     let bad = toml.replace("type = \"sphere\"\ncenter = [0, 0, 0]", "type = \"blob\"\ncenter = [0, 0, 0]");
     let e = Scene::from_toml(&bad, "bad.toml", None).unwrap_err();
-    assert_eq!((e.line, e.path.to_string().as_str()), (17, "functions[1].type"), "{e}");
+    assert_eq!((e.line, e.path.to_string().as_str()), (18, "functions[1].type"), "{e}");
     let e = Scene::from_toml("mode = \"ia\"\n[grid\nresolution = 4\n", "bad.toml", None).unwrap_err();
     assert_eq!(e.line, 2, "{e}");
     // A file ending in .toml is read as TOML.
-    let dir = std::env::temp_dir().join(format!("septa-toml-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join("s.toml");
-    std::fs::write(&path, toml).unwrap();
     let c = Scene::load(path.to_str().unwrap()).unwrap();
     assert_eq!(format!("{:?}", c.functions), format!("{:?}", a.functions));
-    let _ = std::fs::remove_dir_all(&dir);
 }
