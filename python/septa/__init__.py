@@ -16,7 +16,7 @@ trimesh and pyvista, and open in the browser viewer with :func:`septa.view`.
 from ._septa import InputError, __version__
 from . import grid, shapes
 from .network import Network, load
-from .jobs import arrangement, material_interface, region_surfaces, cut_mesh
+from .jobs import arrangement, material_interface, region_surfaces, label_surfaces, cut_mesh
 from .viewer import view
 from . import continuation, distributed, stream
 
@@ -30,6 +30,7 @@ __all__ = [
     "arrangement",
     "material_interface",
     "region_surfaces",
+    "label_surfaces",
     "cut_mesh",
     "view",
     "distributed",

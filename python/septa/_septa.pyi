@@ -21,8 +21,11 @@ def network(
     threads: int | None = None,
 ) -> dict: ...
 
-def regions(scene: str, normals: bool = False) -> str:
+def regions(scene: str, normals: bool = False, clean: float | None = None) -> str:
     """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as ``network.json`` text."""
+
+def labels(volume: np.ndarray, sigma: float = 0.0) -> str:
+    """Surfaces between the labels of an int64 ``(nx, ny, nz)`` volume as ``network.json`` text."""
 
 def cut(
     vertices: npt.NDArray[np.float64],

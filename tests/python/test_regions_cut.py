@@ -159,3 +159,55 @@ def test_region_clean_up_keeps_topology_and_reports(tmp_path):
     assert np.array_equal(net.normals["vertex"][net.indices_normal], net.indices)
     with pytest.raises(septa.InputError, match="clean"):
         septa.region_surfaces("builtin:saucer-square", clean=-1.0)
+
+
+def _two_boxes():
+    v = np.zeros((10, 9, 8), dtype=np.int16)
+    v[2:5, 2:7, 2:6] = 3
+    v[5:8, 2:7, 2:6] = 7
+    return v
+
+
+def test_label_surfaces_numpy_and_files_match_the_command_line(tmp_path):
+    """septa.label_surfaces on a numpy volume equals `septa labels` on the
+    same .npy; .nrrd (pynrrd) and .nii (nibabel) files give the same
+    surfaces, placed by their spacing and origin."""
+    from conftest import ROOT
+
+    v = _two_boxes()
+    net = septa.label_surfaces(v)
+    assert sorted(s["regions"] for s in net.surfaces) == [[0, 3], [0, 7], [3, 7]]
+    # Two boxes meeting on a face: each pair's surface is one disk or one sphere-like piece.
+    assert all(s["boundary_loops"] <= 1 for s in net.surfaces)
+    np.save(tmp_path / "v.npy", v.astype(np.int64))
+    exe = ROOT / "target" / "release" / "septa"
+    if exe.exists():
+        out = subprocess.run([str(exe), "labels", str(tmp_path / "v.npy"), "--json"], capture_output=True, text=True,
+                             check=True)
+        cli = json.loads(out.stdout)
+        assert [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in cli["surfaces"]] == \
+            [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in net.surfaces]
+    from_npy = septa.label_surfaces(tmp_path / "v.npy")
+    assert from_npy.points.tobytes() == net.points.tobytes() and np.array_equal(from_npy.indices, net.indices)
+    # Spacing and origin place the points; the combinatorics do not move.
+    placed = septa.label_surfaces(v, spacing=(0.5, 2.0, 1.0), origin=(10.0, 0.0, -1.0))
+    assert np.array_equal(placed.indices, net.indices)
+    assert np.allclose(placed.points, net.points * [0.5, 2.0, 1.0] + [10.0, 0.0, -1.0])
+    nrrd = pytest.importorskip("nrrd")
+    nrrd.write(str(tmp_path / "v.nrrd"), v, {"space directions": np.diag([0.5, 2.0, 1.0]), "space origin": [10.0, 0, -1.0],
+                                             "space": "left-posterior-superior"})
+    a = septa.label_surfaces(tmp_path / "v.nrrd")
+    assert np.array_equal(a.indices, net.indices) and np.allclose(a.points, placed.points)
+    nib = pytest.importorskip("nibabel")
+    affine = np.diag([0.5, 2.0, 1.0, 1.0])
+    affine[:3, 3] = [10.0, 0.0, -1.0]
+    nib.save(nib.Nifti1Image(v, affine), str(tmp_path / "v.nii.gz"))
+    b = septa.label_surfaces(tmp_path / "v.nii.gz")
+    assert np.array_equal(b.indices, net.indices) and np.allclose(b.points, placed.points)
+    # Bad input: clear errors.
+    with pytest.raises(septa.InputError, match="integer"):
+        septa.label_surfaces(v.astype(np.float64))
+    with pytest.raises(septa.InputError, match="expected a .npy"):
+        septa.label_surfaces(tmp_path / "v.txt")
+    with pytest.raises(septa.InputError, match="at least 2 voxels"):
+        septa.label_surfaces(np.zeros((1, 4, 4), dtype=np.int64))

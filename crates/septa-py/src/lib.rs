@@ -57,6 +57,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
+    m.add_function(wrap_pyfunction!(regions::labels, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation_seeds_py, m)?)?;

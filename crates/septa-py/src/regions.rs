@@ -33,3 +33,25 @@ pub fn regions(py: Python<'_>, scene: &str, normals: bool, clean: Option<f64>) -
     });
     result.map_err(InputError::new_err)
 }
+
+/// labels(volume, sigma=0.0)
+/// --
+///
+/// Exact surfaces between the labels of a segmented volume (`septa labels`):
+/// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
+/// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
+/// functions in voxels. Returns the region-surfaces `network.json` document
+/// as JSON text; the GIL is released while it is computed.
+#[pyfunction]
+#[pyo3(signature = (volume, sigma = 0.0))]
+pub fn labels(py: Python<'_>, volume: numpy::PyReadonlyArray3<'_, i64>, sigma: f64) -> PyResult<String> {
+    use numpy::PyUntypedArrayMethods;
+    let shape = volume.shape();
+    let shape = [shape[0], shape[1], shape[2]];
+    let data: Vec<i64> = volume.as_array().iter().copied().collect();
+    let result: Result<String, String> = py.detach(|| {
+        let r = septa::regions::label_surfaces(&data, shape, sigma).map_err(|e| e.to_string())?;
+        Ok(septa::io::regions_out::document(&r).to_string())
+    });
+    result.map_err(InputError::new_err)
+}
