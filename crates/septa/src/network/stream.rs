@@ -15,6 +15,8 @@
 //! shells, cells), assembled from per-block summaries while the polygons
 //! stream (`summary.rs`, `assembly.rs`): each polygon carries its patch
 //! piece, which the returned [`NetworkSummary`] maps to its patch and cells.
+//! Blocks computed elsewhere (on a Dask cluster, shipped as bytes) go
+//! through the same in-order half, [`StreamFeeder`] (`feeder.rs`).
 //!
 //! Vertices: a block numbers its own vertices. A vertex on a block's
 //! boundary (flagged `shared`) repeats in every block that touches it
@@ -23,8 +25,7 @@
 //! in polygon order). Its position, computed in floating point per tet, may
 //! differ in the last bits between blocks; the in-memory merge keeps the
 //! first block's, and so does the PLY sink. A vertex inside a block is in
-//! that block only. Polygons
-//! never repeat: each lies in one tet of one block. Orientation: as in the
+//! that block only. Polygons never repeat: each lies in one tet of one block. Orientation: as in the
 //! block (counter-clockwise seen from the positive side), before the
 //! in-memory path's canonical renumbering.
 //!
