@@ -383,6 +383,7 @@ impl Assembler {
         }
         super::label_free_cells(&mut cells, self.mode, row0);
         let (chains, corners) = compact_chains(&mut self.chain_edges);
+        self.wedges.sort_unstable();
         let chain_patches = self.chain_patches(&chains, &piece_patch);
         Ok(NetworkSummary {
             mode: self.mode,
@@ -406,9 +407,8 @@ impl Assembler {
     /// Cyclic patch orders of the chains from the per-tet wedges.
     fn chain_patches(&self, chains: &[Vec<u32>], piece_patch: &[u32]) -> Vec<Vec<u32>> {
         let mut by_edge: FxHashMap<[u32; 2], Vec<(u32, u32)>> = FxHashMap::default();
-        let mut wedges = self.wedges.clone();
-        wedges.sort_unstable();
-        for &(e, x, y) in &wedges {
+        // Sorted by the caller, so each edge's walk starts the same way every run.
+        for &(e, x, y) in &self.wedges {
             by_edge.entry(e).or_default().push((x, y));
         }
         let patch_of = |side: u32| piece_patch[self.wedge_piece[&(side / 2)] as usize];

@@ -214,14 +214,14 @@ impl StreamFeeder {
         let mut stats = self.stats;
         stats.vertices = self.numbering.count();
         stats.peak_shared_keys = self.numbering.peak();
-        let Some(asm) = self.assembler else { return Ok((stats, None)) };
+        let Some(mut asm) = self.assembler else { return Ok((stats, None)) };
         stats.peak_open = asm.peak_open;
         let (grid, functions, options) = (&self.grid, &self.functions[..], &self.options);
         let g = Grid::Box(grid.clone());
         let pv = super::sparse::PointValues { grid, functions };
         let ctx = super::sparse::ctx(&g, functions.len(), options, &pv);
         let row0: Vec<f64> = functions.iter().map(|f| f.eval(grid.vertex(0))).collect();
-        let block_pieces = asm.block_pieces.clone();
+        let block_pieces = std::mem::take(&mut asm.block_pieces);
         let mut reruns = 0;
         let summary = asm.finish(
             stats.vertices as usize,

@@ -173,6 +173,10 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
         }
     }
     let mut extra: FxHashMap<u32, u32> = FxHashMap::default();
+    // A class of t-nodes meeting no polygon side in the block is kept as an
+    // extra node. On clean blocks (the only ones streamed) it does not
+    // arise: a tet-face piece at a network edge not on a tet edge always
+    // faces a network face of the same tet; kept for safety, not tested.
     for (key, t) in &out.open_t {
         let r = shells.find(2 * pieces as u32 + t);
         let node = if r < 2 * pieces as u32 {
