@@ -8,6 +8,9 @@ ROOT=$PWD
 export CARGO_TERM_COLOR=never
 step() { printf '\n=== %s ===\n' "$*"; }
 
+step "Layers: no import cycle in the library (scripts/check_layers.py)"
+python3 scripts/check_layers.py > /dev/null || python3 scripts/check_layers.py
+
 step "Rust: cargo test --workspace --release (all 57 TopoCut reference cases)"
 SEPTA_FULL=1 cargo test --workspace --release
 

@@ -2,7 +2,7 @@
 //! folder (default `./septa-demo/`), then prints a table of counts and
 //! timings and how to open each result in the viewer.
 //!
-//! Jobs are added to [`jobs`] as the library grows them (issue 4): a CAD-like
+//! Jobs are added to [`jobs`] as the library grows them: a CAD-like
 //! IA, an Apollonius MI, a Bloomenthal non-manifold shape, a planar cut of a
 //! bundled mesh. Each writes the standard output folder (`network.json`, ...)
 //! under the demo folder and returns its counts and seconds.

@@ -49,7 +49,7 @@ pub struct RegionOptions {
     /// Compute per-vertex normals (one vertex copy per region pair) from
     /// the analytic gradients. Default value: `false`.
     pub normals: bool,
-    /// Sparse evaluation (issue 6): sample only blocks that the functions'
+    /// Sparse evaluation (docs/sparse.md): sample only blocks that the functions'
     /// bounds do not prove empty; the output is identical, because the
     /// bounds enclose the rounded samples (docs/sparse.md). Default value:
     /// `true`; `false` samples every grid vertex.

@@ -25,7 +25,7 @@ pub(crate) struct Ctx<'a> {
     /// Join regions across tet faces (cell grouping); off when ray shooting
     /// is sure to apply.
     pub grouping: bool,
-    /// Sparse evaluation (issue 6): values come from here, not `values`.
+    /// Sparse evaluation (docs/sparse.md): values come from here, not `values`.
     pub sparse: Option<&'a dyn Values>,
 }
 

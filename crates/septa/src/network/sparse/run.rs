@@ -1,4 +1,4 @@
-//! Sparse evaluation (issue 6): work and memory follow the surface.
+//! Sparse evaluation (docs/sparse.md): work and memory follow the surface.
 //!
 //! Blocks of a box grid are first classified by the functions' guaranteed
 //! bounds over the block's box, before anything is sampled (IA: a block is
