@@ -2,7 +2,12 @@
 //! every label triple) writes the same files, byte for byte, as the path
 //! that lists every triple as a curve of interest (issue 17).
 
+mod common;
+
 use std::path::PathBuf;
+
+use septa::grid::{BoxGrid, Grid, Split};
+use septa::network::{compute, Mode, NetworkOptions};
 
 use septa::io::regions_out;
 use septa::regions::{label_surfaces, label_surfaces_listing_triples, RegionSurfaces};
@@ -73,4 +78,63 @@ fn fast_label_path_writes_the_same_bytes_as_listing_every_triple() {
     curves += same("blocks", &blocks, [n, n, n], 0.0);
     curves += same("blocks-smoothed", &blocks, [n, n, n], 0.7);
     assert!(curves > 0, "the volumes must have curves for the comparison to mean anything");
+}
+
+/// Label indicators are the case where materials absent from a tet tie at
+/// 0 and no single material dominates them: the network leaves them out of
+/// a tet's active functions when the average of the corner winners is
+/// proven above them (complex/dominated.rs), so 2- and 3-label tets reach
+/// the templates and tables. The network must equal, byte for byte, the
+/// one with every such function active and the incremental construction.
+#[test]
+fn dropping_absent_labels_changes_no_byte_of_the_network() {
+    let n = 7;
+    let mut rng = Rng(0xD1B5_4A32_D192_ED03);
+    // Few labels per neighbourhood (blocks with random borders), many
+    // labels mixed everywhere, and blocks ahead of a tied smooth field.
+    let blocks: Vec<i64> = (0..n * n * n)
+        .map(|v| {
+            let (i, j, k) = (v / (n * n), v / n % n, v % n);
+            ((i + rng.next(2) as usize) / 3 + 3 * ((j + k + rng.next(2) as usize) / 4)) as i64
+        })
+        .collect();
+    let mixed: Vec<i64> = (0..n * n * n).map(|_| rng.next(9) as i64).collect();
+    let mut cases = Vec::new();
+    for (name, labels) in [("blocks", blocks), ("mixed", mixed)] {
+        let mut ids = labels.clone();
+        ids.sort_unstable();
+        ids.dedup();
+        let k = ids.len();
+        let mut values = vec![0.0; labels.len() * k];
+        for (v, l) in labels.iter().enumerate() {
+            values[v * k + ids.binary_search(l).unwrap()] = 1.0;
+        }
+        cases.push((name, k, values));
+    }
+    // A function below the maximum at every grid vertex that still wins
+    // inside tets: with x = i/5, x and 1 - x are >= 0.6 at every grid
+    // vertex but cross at 0.5 < 0.55 between i = 2 and 3. The winners'
+    // average (0.5) is below it there, so it must stay active.
+    let tent: Vec<f64> = (0..n * n * n)
+        .flat_map(|v| {
+            let x = (v / (n * n)) as f64 / 5.0;
+            [x, 1.0 - x, 0.55]
+        })
+        .collect();
+    cases.push(("tent", 3, tent));
+    for (name, k, values) in cases {
+        let m = (n - 1) as f64;
+        let grid = Grid::Box(BoxGrid::new([n - 1; 3], [[0.0; 3], [m; 3]], Split::Five).unwrap());
+        let mut texts = Vec::new();
+        for (lookup, average) in [(true, true), (true, false), (false, false)] {
+            let mut o = NetworkOptions::new(Mode::Mi);
+            o.lookup = lookup;
+            o.mi_average_domination = average;
+            let net = compute(&grid, &values, k, &o).unwrap();
+            assert!(!net.face_label.is_empty(), "{name}: empty network");
+            texts.push(common::network_json(&net, &format!("labels-{name}-{lookup}-{average}")));
+        }
+        assert!(texts[0] == texts[1], "{name}: dropping dominated labels changed the network");
+        assert!(texts[0] == texts[2], "{name}: the fast paths differ from the incremental network");
+    }
 }
