@@ -77,6 +77,25 @@ fn fast_label_path_writes_the_same_bytes_as_listing_every_triple() {
     let blocks: Vec<i64> = (0..n * n * n).map(|v| ((v / (n * n)) * 2 / n + 2 * ((v / n % n) * 2 / n)) as i64).collect();
     curves += same("blocks", &blocks, [n, n, n], 0.0);
     curves += same("blocks-smoothed", &blocks, [n, n, n], 0.7);
+    // Larger than a block (16 cubes): blocks of one label are skipped by
+    // the fast path's bounds; two balls and a slab cross block borders.
+    let shape = [36, 20, 18];
+    let big: Vec<i64> = (0..shape.iter().product::<usize>())
+        .map(|v| {
+            let (i, j, k) = ((v / (shape[1] * shape[2])) as f64, (v / shape[2] % shape[1]) as f64, (v % shape[2]) as f64);
+            let ball = |c: [f64; 3], r: f64| (i - c[0]).powi(2) + (j - c[1]).powi(2) + (k - c[2]).powi(2) < r * r;
+            if ball([14.0, 9.0, 8.0], 6.5) {
+                4
+            } else if ball([19.0, 11.0, 9.0], 5.0) {
+                9
+            } else if i > 30.0 {
+                2
+            } else {
+                0
+            }
+        })
+        .collect();
+    curves += same("big", &big, shape, 0.0);
     assert!(curves > 0, "the volumes must have curves for the comparison to mean anything");
 }
 
