@@ -2,6 +2,7 @@
 use clap::{Parser, Subcommand};
 
 mod bench;
+mod bench_ceiling;
 mod bench_grid;
 mod bench_stream;
 mod cut;

@@ -80,6 +80,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
             o.lookup = options.lookup;
             o
         },
+        average_domination: options.mi_average_domination,
         volumes: options.volumes,
         grouping: !ray,
         sparse: None,

@@ -124,6 +124,15 @@ pub struct NetworkOptions {
     /// Set it to stop the run: blocks not yet started are skipped and the
     /// run returns [`NetworkError::Cancelled`] (never a panic). Default value: none.
     pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// MI: a function is inactive in a tet also when the average of the
+    /// functions maximal at some corner is proven above it at all four
+    /// corners (complex/dominated.rs), not only when one function is.
+    /// Label indicators need it: the materials absent from a tet tie at 0
+    /// and no single material dominates them. The output is the same either
+    /// way (a function that never wins changes no complex); `false` only
+    /// for the test that shows it. Default value: `true`.
+    #[doc(hidden)]
+    pub mi_average_domination: bool,
 }
 
 impl NetworkOptions {
@@ -163,6 +172,7 @@ impl NetworkOptions {
             raytrace: true,
             progress: None,
             cancel: None,
+            mi_average_domination: true,
         }
     }
 }

@@ -27,6 +27,9 @@ pub(crate) struct Ctx<'a> {
     pub grouping: bool,
     /// Sparse evaluation (docs/sparse.md): values come from here, not `values`.
     pub sparse: Option<&'a dyn Values>,
+    /// MI: also drop functions below the average of the corner winners
+    /// ([`crate::network::NetworkOptions::mi_average_domination`]).
+    pub average_domination: bool,
 }
 
 impl Ctx<'_> {

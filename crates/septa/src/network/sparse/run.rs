@@ -110,6 +110,7 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
             o.lookup = options.lookup;
             o
         },
+        average_domination: options.mi_average_domination,
         volumes: false,
         grouping: false,
         sparse: Some(values),
