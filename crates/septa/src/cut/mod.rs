@@ -65,6 +65,7 @@ pub mod selfx;
 pub mod side_filter;
 pub mod triangulate;
 mod validate;
+pub mod verify;
 pub mod voids;
 mod volume;
 
@@ -142,6 +143,11 @@ pub struct CutStats {
     pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
+    /// Cut-faces written as triangles because their rounded vertices are
+    /// not exactly coplanar (TopoCut Sec. 8, Limitations: relax planarity).
+    pub faces_split_nonplanar: usize,
+    /// Cut-faces written as triangles because they have holes.
+    pub faces_split_holes: usize,
 }
 
 /// One cut-face.
@@ -187,6 +193,10 @@ pub struct CutCellMesh {
     /// homogeneous coordinates; `volume.rs`): what [`CutCellMesh::validate`]
     /// checks, since a legitimate cell can be too small for `cell_volumes`.
     pub cell_volume_signs: Vec<Sign>,
+    /// Per cut-face: written as triangles (no new vertices) instead of one
+    /// polygon, because it has holes or its rounded vertices are not exactly
+    /// coplanar ([`CutCellMesh::cell_polygons`]).
+    pub face_split: Vec<bool>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
 }
@@ -431,6 +441,15 @@ fn cut_impl(
         }
     }
     out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
+    // planarity on the written doubles, exactly: a face whose rounded
+    // vertices leave its plane is written as triangles
+    out.face_split = out
+        .faces
+        .par_iter()
+        .map(|f| f.loops.len() > 1 || verify::polygon_planar(&out.vertices, &f.loops[0]) != Some(true))
+        .collect();
+    stats.faces_split_holes = out.faces.iter().filter(|f| f.loops.len() > 1).count();
+    stats.faces_split_nonplanar = out.face_split.iter().filter(|&&s| s).count() - stats.faces_split_holes;
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.planes = planes.clone();
     out.tri_normals = triangles

@@ -8,29 +8,11 @@ use std::fmt::Write as _;
 
 pub use super::atomic::write_atomic;
 
-/// Boundary polygons of each cell, oriented outwards. A face with holes is
-/// written as its triangles (no new vertices), so every polygon is simple.
+/// Boundary polygons of each cell, oriented outwards, each as a face of
+/// one loop ([`CutCellMesh::cell_polygons`]: faces with holes or with
+/// rounded vertices off their plane are written as their triangles).
 pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
-    let mut cells: Vec<Vec<Vec<Vec<u32>>>> = vec![Vec::new(); m.num_cells];
-    for f in &m.faces {
-        let polys: Vec<Vec<u32>> = if f.loops.len() == 1 {
-            f.loops.clone()
-        } else {
-            crate::cut::triangulate::triangulate(&m.vertices, &f.loops, m.support_normal(f))
-                .iter()
-                .map(|t| t.to_vec())
-                .collect()
-        };
-        // the face normal points away from cells[0] (negative side): outward for it
-        if f.cells[0] != u32::MAX {
-            cells[f.cells[0] as usize].push(polys.clone());
-        }
-        if f.cells[1] != u32::MAX {
-            let rev: Vec<Vec<u32>> = polys.iter().map(|l| l.iter().rev().copied().collect()).collect();
-            cells[f.cells[1] as usize].push(rev);
-        }
-    }
-    cells
+    m.cell_polygons().into_iter().map(|c| c.into_iter().map(|p| vec![p]).collect()).collect()
 }
 
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell.
