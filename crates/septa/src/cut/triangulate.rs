@@ -84,11 +84,23 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
             s
         }
     };
+    // sine of the corner angle at v (floating point): among the exact ears
+    // the first well-shaped one is cut, else the best. A rounded chain of
+    // exactly collinear cut-vertices (along a plane-plane or mesh line) makes
+    // ears of almost zero angle that would lie in a neighbouring face.
+    let quality = |u: u32, v: u32, w: u32| {
+        let (pu, pv, pw) = (x[u as usize], x[v as usize], x[w as usize]);
+        let a: [f64; 3] = std::array::from_fn(|i| pu[i] - pv[i]);
+        let b: [f64; 3] = std::array::from_fn(|i| pw[i] - pv[i]);
+        let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        let n = |p: [f64; 3]| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        n(c) / (n(a) * n(b)).max(f64::MIN_POSITIVE)
+    };
     let mut idx: Vec<u32> = poly.to_vec();
     let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
     while idx.len() > 3 {
         let n = idx.len();
-        let mut cut = None;
+        let mut cut: Option<(usize, f64)> = None;
         let mut fallback = None;
         for a in 0..n {
             let (u, v, w) = (idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]);
@@ -105,10 +117,16 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
                     && o2(w, u, q) != Sign::Negative
             });
             if !blocked {
-                cut = Some(a);
-                break;
+                let qa = quality(u, v, w);
+                if cut.is_none_or(|c| qa > c.1) {
+                    cut = Some((a, qa));
+                }
+                if qa > 1e-3 {
+                    break;
+                }
             }
         }
+        let cut = cut.map(|c| c.0);
         let a = cut.or(fallback).unwrap_or(0);
         out.push([idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]]);
         idx.remove(a);
