@@ -426,6 +426,10 @@ fn cut_impl(
     stats.sidedness_violations_rounded = es.sidedness_violations_rounded;
     stats.sidedness_violations = es.sidedness_violations;
     stats.line_order_violations = es.line_order_violations;
+    // the moves above may leave an axis plane by an ulp: back onto it
+    for (x, &d) in out.vertices.iter_mut().zip(&out.vertex_defs) {
+        embed::snap_axis_planes(&c, d, x);
+    }
     lap("embed", &mut stats);
     // volumes by the divergence theorem: loops count + for cells[0] and -
     // for cells[1] (volume.rs relies on this orientation)
