@@ -106,7 +106,7 @@ pub fn run(a: Args) -> CliResult {
         &mesh.vertices,
         &mesh.triangles,
         &planes,
-        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check },
+        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: false },
     )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
@@ -128,7 +128,16 @@ pub fn run(a: Args) -> CliResult {
         });
         cut_out::write_atomic(&out_dir.join("vertices_exact.json"), serde_json::to_string(&j)?.as_bytes())?;
     }
-    let verify = if a.verify { Some(out.verify()) } else { None };
+    // --verify: the exact check of the file as written (read back), else of
+    // the polygons in memory
+    let verify = if !a.verify {
+        None
+    } else if a.no_mesh_output {
+        Some(out.verify())
+    } else {
+        let (points, cells) = septa::io::cut_vtu::read_polyhedra(&out_dir.join("cells.vtu"))?;
+        Some(septa::cut::verify::verify_cells(&points, &cells))
+    };
     let write_s = t2.elapsed().as_secs_f64();
     let c = out.counts;
     let mut seconds = serde_json::Map::new();
@@ -175,7 +184,8 @@ pub fn run(a: Args) -> CliResult {
         "dropped_planes": out.stats.dropped_planes.len(),
         "faces_split_nonplanar": out.stats.faces_split_nonplanar,
         "faces_split_holes": out.stats.faces_split_holes,
-        "verify": verify,
+        "embedding": out.stats.embedding,
+        "verify_written_file": verify,
         "seconds": seconds,
     });
     cut_out::write_atomic(&out_dir.join("cut.json"), serde_json::to_string_pretty(&j)?.as_bytes())?;

@@ -12,10 +12,13 @@ use septa::io::{mesh::read_mesh, planes::read_planes};
 const SMALL: &[&str] = &["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"];
 
 fn report_line(name: &str, out: &septa::cut::CutCellMesh, r: &septa::cut::verify::VerifyReport) -> String {
+    let e = out.stats.embedding.as_ref().unwrap();
     format!(
-        "{name:22} split nonplanar {:5} holes {:3} faces {:6} tris {:7} violations {} {:?}",
+        "{name:22} split nonplanar {:5} holes {:3} before {:4} fanned {:4} faces {:6} tris {:7} violations {} {:?}",
         out.stats.faces_split_nonplanar,
         out.stats.faces_split_holes,
+        e.violations_before,
+        e.faces_fanned,
         r.faces,
         r.triangles,
         r.violations(),

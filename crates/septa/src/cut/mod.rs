@@ -61,6 +61,7 @@ pub mod lines;
 pub mod nodes;
 pub mod output;
 pub mod plane_graph;
+pub mod repair;
 pub mod selfx;
 pub mod side_filter;
 pub mod triangulate;
@@ -89,6 +90,9 @@ pub struct CutOptions {
     /// Skip the exact self-intersection test of the input (for inputs known
     /// to be clean; the reference implementation assumes it).
     pub skip_self_intersection_check: bool,
+    /// Skip the exact check and repair of the written embedding
+    /// ([`repair`]; default: run it, [`CutStats::embedding`] holds the report).
+    pub skip_certify: bool,
 }
 
 /// Counts of the cut-cell mesh.
@@ -148,6 +152,9 @@ pub struct CutStats {
     pub faces_split_nonplanar: usize,
     /// Cut-faces written as triangles because they have holes.
     pub faces_split_holes: usize,
+    /// The exact check of the written embedding and what its repair changed
+    /// (`None` with [`CutOptions::skip_certify`]).
+    pub embedding: Option<repair::RepairStats>,
 }
 
 /// One cut-face.
@@ -197,6 +204,10 @@ pub struct CutCellMesh {
     /// polygon, because it has holes or its rounded vertices are not exactly
     /// coplanar ([`CutCellMesh::cell_polygons`]).
     pub face_split: Vec<bool>,
+    /// Per cut-face: the triangles it is written as when split (vertex ids;
+    /// ids from `vertex_defs.len()` on are face centres added by [`repair`],
+    /// not cut-vertices), empty otherwise.
+    pub face_triangles: Vec<Vec<[u32; 3]>>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
 }
@@ -472,6 +483,24 @@ fn cut_impl(
         cut_cells: out.num_cells,
     };
     lap("output", &mut stats);
+    out.face_triangles = out
+        .faces
+        .par_iter()
+        .zip(&out.face_split)
+        .map(
+            |(f, &s)| {
+                if s {
+                    triangulate::triangulate(&out.vertices, &f.loops, out.support_normal(f))
+                } else {
+                    Vec::new()
+                }
+            },
+        )
+        .collect();
+    if !opts.skip_certify {
+        stats.embedding = Some(repair::repair(&mut out));
+    }
+    lap("certify", &mut stats);
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
     out.stats = stats;
     Ok(out)

@@ -33,6 +33,8 @@ impl super::CutCellMesh {
             let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
             let polys: Vec<Vec<u32>> = if !split {
                 vec![f.loops[0].clone()]
+            } else if let Some(t) = self.face_triangles.get(i).filter(|t| !t.is_empty()) {
+                t.iter().map(|t| t.to_vec()).collect()
             } else {
                 super::triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f))
                     .iter()

@@ -59,6 +59,11 @@ pub struct VerifyReport {
     pub nonpositive_cells: usize,
     /// The first offending elements, in words.
     pub examples: Vec<String>,
+    /// The polygons (vertex loops, as written in some cell) that are
+    /// non-planar, degenerate, or hold an offending triangle: what a repair
+    /// would re-triangulate.
+    #[serde(skip)]
+    pub offending_polygons: Vec<Vec<u32>>,
 }
 
 impl VerifyReport {
@@ -152,6 +157,8 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
     // distinct faces, triangulated once; each cell refers to them with a direction
     let mut face_of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
     let mut face_tris: Vec<Vec<[u32; 3]>> = Vec::new();
+    let mut face_keys: Vec<Vec<u32>> = Vec::new();
+    let mut bad_faces: Vec<u32> = Vec::new();
     let mut cell_faces: Vec<Vec<(u32, bool)>> = Vec::with_capacity(cells.len());
     for (ci, cell) in cells.iter().enumerate() {
         let mut refs = Vec::with_capacity(cell.len());
@@ -169,6 +176,7 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
                         None => None,
                         Some(planar) => {
                             if !planar {
+                                bad_faces.push(id);
                                 r.nonplanar_faces += 1;
                                 r.note(|| format!("face {fi} of cell {ci} is not planar"));
                             }
@@ -180,10 +188,12 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
                         }
                     };
                     let tris = tris.unwrap_or_else(|| {
+                        bad_faces.push(id);
                         r.degenerate_faces += 1;
                         r.note(|| format!("face {fi} of cell {ci} is degenerate ({} vertices)", poly.len()));
                         Vec::new()
                     });
+                    face_keys.push(key.clone());
                     face_of.insert(key, id);
                     face_tris.push(tris);
                     id
@@ -241,19 +251,23 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
     }
     // every triangle once; degenerate ones reported and kept out of the pair test
     let mut all: Vec<[u32; 3]> = Vec::new();
+    let mut tri_face: Vec<u32> = Vec::new();
     for (f, tris) in face_tris.iter().enumerate() {
         for t in tris {
             if collinear(x, t[0], t[1], t[2]) {
+                bad_faces.push(f as u32);
                 r.degenerate_triangles += 1;
                 r.note(|| format!("face {f} has a triangle with collinear corners {t:?}"));
             } else {
                 all.push(*t);
+                tri_face.push(f as u32);
             }
         }
     }
     r.triangles = all.len() + r.degenerate_triangles;
     let pairs = intersecting_pairs(x, &all, false);
     r.intersecting_pairs = pairs.len();
+    bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
     for &(a, b) in pairs.iter().take(3) {
         let (ta, tb) = (all[a as usize], all[b as usize]);
         r.note(|| format!("triangles {ta:?} and {tb:?} intersect"));
@@ -271,5 +285,8 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
             r.note(|| format!("cell {ci} has no positive volume"));
         }
     }
+    bad_faces.sort_unstable();
+    bad_faces.dedup();
+    r.offending_polygons = bad_faces.iter().map(|&f| face_keys[f as usize].clone()).collect();
     r
 }
