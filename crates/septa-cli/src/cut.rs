@@ -39,6 +39,10 @@ pub struct Args {
     /// Skip the exact self-intersection test of the input mesh.
     #[arg(long)]
     pub no_self_check: bool,
+    /// Skip the exact check and repair of the written embedding (faster;
+    /// cells.vtu then carries no guarantee beyond the exact combinatorics).
+    #[arg(long)]
+    pub no_certify: bool,
     /// Exploded view factor for cells.obj.
     #[arg(long, default_value_t = 0.0)]
     pub explode: f64,
@@ -106,7 +110,7 @@ pub fn run(a: Args) -> CliResult {
         &mesh.vertices,
         &mesh.triangles,
         &planes,
-        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: false },
+        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify },
     )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {

@@ -160,6 +160,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
         explode: 0.0,
         verify: false,
         exact_vertices: false,
+        no_certify: false,
     })?;
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("cut.json"))?)?;
     Ok(JobRow {
