@@ -120,9 +120,7 @@ pub type Polyhedra = (Vec<[f64; 3]>, Vec<Vec<Vec<u32>>>);
 pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
     let err = |m: String| format!("{}: {m}", path.display());
     let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
-    if text.contains("compressor=") {
-        return Err(err("compressed .vtu is not supported".into()));
-    }
+    let compressed = text.contains("compressor=");
     let header64 = !text.contains("header_type=\"UInt32\"");
     // (opening tag, content) of every DataArray, in file order
     let mut arrays: Vec<(&str, &str)> = Vec::new();
@@ -130,7 +128,13 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
     while let Some(i) = rest.find("<DataArray") {
         let tag_end = rest[i..].find('>').ok_or_else(|| err("unterminated DataArray tag".into()))? + i;
         let close = rest[tag_end..].find("</DataArray>").ok_or_else(|| err("DataArray without end".into()))? + tag_end;
-        arrays.push((&rest[i..tag_end], &rest[tag_end + 1..close]));
+        let mut body = &rest[tag_end + 1..close];
+        // VTK writes <InformationKey> elements (range metadata) next to the
+        // values, after them (or before): keep the text outside the elements
+        if let (Some(a), Some(b)) = (body.find('<'), body.rfind('>')) {
+            body = if body[..a].trim().is_empty() { &body[b + 1..] } else { &body[..a] };
+        }
+        arrays.push((&rest[i..tag_end], body));
         rest = &rest[close..];
     }
     let attr = |tag: &str, key: &str| -> Option<String> {
@@ -145,6 +149,9 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
                 .split_ascii_whitespace()
                 .map(|t| t.parse::<f64>().map_err(|_| err(format!("'{t}' is not a number in {tag}>"))))
                 .collect();
+        }
+        if compressed {
+            return Err(err("compressed binary .vtu is not supported (write it uncompressed or ASCII)".into()));
         }
         let bytes = base64_decode(body).ok_or_else(|| err(format!("bad base64 in {tag}>")))?;
         let h = if header64 { 8 } else { 4 };
@@ -189,30 +196,62 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
             .ok_or_else(|| err(format!("no '{n}' array (not a polyhedral .vtu)")))?;
         values(*a)
     };
-    let (faces, types) = (named("faces")?, named("types")?);
-    let mut cells = Vec::with_capacity(types.len());
-    let mut i = 0usize;
+    let types = named("types")?;
     let np = points.len();
-    let mut next = |what: &str| -> Result<usize, String> {
-        let v = *faces.get(i).ok_or_else(|| err(format!("faces stream ends inside {what}")))?;
-        i += 1;
-        Ok(v as usize)
+    let check_point = |c: usize, v: f64| -> Result<u32, String> {
+        if v < 0.0 || v as usize >= np {
+            return Err(err(format!("cell {c} refers to point {v} of {np}")));
+        }
+        Ok(v as u32)
     };
     for (c, &t) in types.iter().enumerate() {
         if t != 42.0 {
             return Err(err(format!("cell {c} has VTK type {t}, not a polyhedron (42)")));
         }
-        let nf = next("a cell")?;
+    }
+    let mut cells = Vec::with_capacity(types.len());
+    if arrays.iter().all(|(t, _)| attr(t, "Name").as_deref() != Some("faces")) {
+        // VTK >= 9.4 layout: face_connectivity / face_offsets (end of each
+        // face), polyhedron_to_faces / polyhedron_offsets (end of each cell)
+        let (fc, fo) = (named("face_connectivity")?, named("face_offsets")?);
+        let (pf, po) = (named("polyhedron_to_faces")?, named("polyhedron_offsets")?);
+        let mut start = 0usize;
+        for (c, &end) in po.iter().enumerate() {
+            let mut polys = Vec::new();
+            for &f in pf.get(start..end as usize).ok_or_else(|| err(format!("cell {c}: bad polyhedron_offsets")))? {
+                let f = f as usize;
+                let a = if f == 0 {
+                    0
+                } else {
+                    *fo.get(f - 1).ok_or_else(|| err(format!("cell {c}: face {f} missing")))? as usize
+                };
+                let b = *fo.get(f).ok_or_else(|| err(format!("cell {c}: face {f} missing")))? as usize;
+                let ids = fc.get(a..b).ok_or_else(|| err(format!("cell {c}: face {f} out of range")))?;
+                polys.push(ids.iter().map(|&v| check_point(c, v)).collect::<Result<Vec<u32>, String>>()?);
+            }
+            cells.push(polys);
+            start = end as usize;
+        }
+        if cells.len() != types.len() {
+            return Err(err(format!("{} polyhedra for {} cells", cells.len(), types.len())));
+        }
+        return Ok((points, cells));
+    }
+    let faces = named("faces")?;
+    let mut i = 0usize;
+    let mut next = |what: &str| -> Result<f64, String> {
+        let v = *faces.get(i).ok_or_else(|| err(format!("faces stream ends inside {what}")))?;
+        i += 1;
+        Ok(v)
+    };
+    for c in 0..types.len() {
+        let nf = next("a cell")? as usize;
         let mut polys = Vec::with_capacity(nf);
         for _ in 0..nf {
-            let nv = next("a face")?;
+            let nv = next("a face")? as usize;
             let mut p = Vec::with_capacity(nv);
             for _ in 0..nv {
-                let v = next("a face")?;
-                if v >= np {
-                    return Err(err(format!("cell {c} refers to point {v} of {np}")));
-                }
-                p.push(v as u32);
+                p.push(check_point(c, next("a face")?)?);
             }
             polys.push(p);
         }
