@@ -14,6 +14,7 @@ import os
 import numpy as np
 
 from . import _septa
+from . import _inputs
 from .grid import Grid
 from .network import Network
 
@@ -32,7 +33,7 @@ def _grid_inputs(grid_or_vertices, tets, values):
     if v.ndim != 2 or v.shape[1] != 3:
         raise _septa.InputError(f"vertices: expected shape (#V, 3), got {v.shape}")
     _septa.check_values(v, "vertices")
-    t = np.ascontiguousarray(tets, dtype=np.int64)
+    t = _inputs.integer_array(tets, "tets")
     if t.ndim != 2:
         raise _septa.InputError(f"tets: expected shape (#T, 4), got {t.shape}")
     _septa.check_tets(t, len(v))
@@ -54,7 +55,8 @@ def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells):
     g = grid_or_vertices
     if isinstance(g, Grid) and g.resolution is not None and (tets is None or values is None or tets is g.tets):
         box = (tuple(g.resolution), g.bounds.tolist(), g.split)
-    d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"), threads=threads)
+    d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"),
+                       threads=_inputs.threads(threads))
     return Network._from_core(d)
 
 
@@ -259,11 +261,11 @@ def cut_mesh(vertices, triangles, planes, *, threads=None):
     """
     v = np.ascontiguousarray(vertices, dtype=np.float64)
     _septa.check_values(v.reshape(-1, 3), "vertices")
-    t = np.ascontiguousarray(triangles, dtype=np.int64)
+    t = _inputs.integer_array(triangles, "triangles")
     if t.ndim != 2 or t.shape[1] != 3 or (len(t) and (t.min() < 0 or t.max() >= len(v))):
         raise _septa.InputError("triangles: expected (#T, 3) indices into vertices")
     p = np.ascontiguousarray(planes, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 4:
         raise _septa.InputError(f"planes: expected shape (#P, 4), got {p.shape}")
     _septa.check_values(p, "planes")
-    return CutCells(json.loads(_septa.cut(v, t, p, threads=threads or 0)))
+    return CutCells(json.loads(_septa.cut(v, t, p, threads=_inputs.threads(threads) or 0)))

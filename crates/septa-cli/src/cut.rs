@@ -13,10 +13,10 @@ pub struct Args {
     /// Closed, outward-oriented triangle mesh (.obj, .off, .ply, .stl).
     pub mesh: PathBuf,
     /// N axis-aligned planes per axis over the bounding box (TopoCut's An).
-    #[arg(long, conflicts_with_all = ["random", "planes"])]
+    #[arg(long, conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
     pub grid: Option<usize>,
     /// N random planes through the bounding-box diagonal (TopoCut's Rn).
-    #[arg(long, conflicts_with = "planes")]
+    #[arg(long, conflicts_with = "planes", value_parser = crate::args::planes)]
     pub random: Option<usize>,
     /// Seed of --random.
     #[arg(long, default_value_t = 0)]
@@ -28,7 +28,7 @@ pub struct Args {
     #[arg(short = 'o', long = "out")]
     pub out: PathBuf,
     /// Worker threads (0: all cores).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = crate::args::threads_or_all)]
     pub threads: usize,
     /// Print one JSON object with counts, checks and timings.
     #[arg(long)]
@@ -40,7 +40,7 @@ pub struct Args {
     #[arg(long)]
     pub no_self_check: bool,
     /// Exploded view factor for cells.obj.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = crate::args::finite_nonneg)]
     pub explode: f64,
 }
 

@@ -15,7 +15,7 @@ pub struct Args {
     #[arg(short = 'o', long)]
     output: Option<PathBuf>,
     /// Gaussian smoothing of each label's indicator, in voxels (0: none).
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = crate::args::sigma)]
     sigma: f64,
     /// Print one JSON object with counts, surfaces and curves.
     #[arg(long)]

@@ -1,6 +1,7 @@
 //! The `septa` command line: one file per subcommand.
 use clap::{Parser, Subcommand};
 
+mod args;
 mod bench;
 mod bench_grid;
 mod bench_stream;

@@ -35,19 +35,19 @@ pub struct Args {
     #[arg(short, long, default_value = "septa-out")]
     output: PathBuf,
     /// Box grid resolution (cubes per axis) for a function JSON input.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::grid)]
     grid: Option<usize>,
     /// Tet mesh (Gmsh .msh 2.2/4.1, or the reference's tet-mesh .json) for a function JSON input.
     #[arg(long)]
     mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
-    #[arg(long, num_args = 6, allow_negative_numbers = true)]
+    #[arg(long, num_args = 6, allow_negative_numbers = true, value_parser = crate::args::finite)]
     bounds: Option<Vec<f64>>,
     /// Tets per cube of a built-in grid (5 or 6).
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u8).range(5..=6))]
     split: u8,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::threads)]
     threads: Option<usize>,
     /// Do not use look-up tables (incremental construction in every tet).
     #[arg(long)]
@@ -65,7 +65,7 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Block edge in cubes.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = crate::args::block)]
     block: usize,
     /// Sample every grid vertex (the dense path). By default, analytic
     /// functions on a box grid (a function JSON, reference config or scene)
@@ -309,6 +309,10 @@ fn split(args: &Args) -> Result<Split, String> {
     }
 }
 
+/// The way out of a dense job too large for memory.
+const DENSE_WAY_OUT: &str =
+    "drop --dense (the default sparse path samples only blocks near the surfaces; --stream OUT.ply also bounds the output's memory) or use a coarser --grid";
+
 /// Reads the grid and values.
 fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Error>> {
     let ext = args.input.extension().and_then(|e| e.to_str()).unwrap_or("");
@@ -336,6 +340,7 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
     if json.get("functions").is_some() {
         // A scene (JSON or TOML) on the dense path: its functions sampled at every vertex.
         let (g, funcs) = load_sparse(args)?;
+        septa::grid::memory::check_dense(g.num_vertices(), funcs.len(), DENSE_WAY_OUT)?;
         let grid = Grid::Box(g);
         let values = septa::scene::sample_grid(&funcs, &grid.vertices());
         return Ok((grid, values, funcs.len()));
@@ -348,16 +353,8 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
             .ok_or_else(|| format!("{}: config has no \"funcFile\"", args.input.display()))?;
         let funcs = functions::read_functions(&dir.join(file))?;
         let mesh = cfg.get("tetMeshFile").and_then(|v| v.as_str()).map(|m| dir.join(m));
-        let res = cfg.get("gridResolution").and_then(|v| v.as_u64()).map(|r| r as usize);
-        let bounds = cfg.get("gridBbox").and_then(|b| {
-            let b: Vec<f64> = b
-                .as_array()?
-                .iter()
-                .flat_map(|p| p.as_array().cloned().unwrap_or_default())
-                .filter_map(|x| x.as_f64())
-                .collect();
-            (b.len() == 6).then_some(b)
-        });
+        let (res, bbox) = functions::config_grid(cfg, &args.input)?;
+        let bounds = bbox.map(|[lo, hi]| vec![lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]]);
         (funcs, mesh.or(args.mesh.clone()), res.or(args.grid), bounds.or(args.bounds.clone()))
     } else {
         let funcs = functions::parse_functions(&text, &args.input.display().to_string())?;
@@ -374,6 +371,7 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
     let n = grid_res.ok_or("a function JSON input needs --grid N (and optionally --bounds) or --mesh FILE")?;
     let b = bounds.unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
     let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
+    septa::grid::memory::check_dense(g.num_vertices(), funcs.len(), DENSE_WAY_OUT)?;
     let grid = Grid::Box(g);
     let values = functions::sample_grid(&funcs, &grid);
     Ok((grid, values, funcs.len()))

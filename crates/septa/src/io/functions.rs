@@ -67,6 +67,41 @@ pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
     Ok((vertices, tets))
 }
 
+/// The box grid of a reference config: `gridResolution` (a whole number
+/// >= 1) and `gridBbox` (`[[x0, y0, z0], [x1, y1, z1]]`, finite), each
+/// `None` when absent. A key that is present but malformed is an error
+/// naming it (issue 14: a 2-number corner was ignored and the default box
+/// used).
+pub fn config_grid(
+    cfg: &serde_json::Map<String, serde_json::Value>,
+    path: &Path,
+) -> Result<(Option<usize>, Option<[[f64; 3]; 2]>), RefError> {
+    let bad = |message: String| RefError::Format { path: path.display().to_string(), message };
+    let res = match cfg.get("gridResolution") {
+        None => None,
+        Some(r) => match r.as_u64() {
+            Some(n) if n >= 1 => Some(n as usize),
+            _ => return Err(bad(format!("\"gridResolution\": expected a whole number >= 1, not {r}"))),
+        },
+    };
+    let bbox = match cfg.get("gridBbox") {
+        None => None,
+        Some(b) => {
+            let corners = b.as_array().filter(|a| a.len() == 2).ok_or_else(|| {
+                bad(format!("\"gridBbox\": expected [[x0, y0, z0], [x1, y1, z1]], not {b}"))
+            })?;
+            let mut out = [[0.0; 3]; 2];
+            for (i, c) in corners.iter().enumerate() {
+                out[i] = vec3(c).filter(|p| p.iter().all(|x| x.is_finite())).ok_or_else(|| {
+                    bad(format!("\"gridBbox\" corner {i}: expected 3 finite numbers [x, y, z], not {c}"))
+                })?;
+            }
+            Some(out)
+        }
+    };
+    Ok((res, bbox))
+}
+
 /// A primitive of the reference's function JSON that this reader evaluates.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Primitive {
