@@ -71,10 +71,11 @@ pub fn run(a: Args) -> CliResult {
     }
     let check = out.validate();
     let t2 = Instant::now();
-    std::fs::create_dir_all(&a.out)?;
+    // One set: lock, stale temporaries removed, manifest last (io::outdir).
+    let mut dir = septa::io::OutputDir::create(&a.out, "cut")?;
     if !a.no_mesh_output {
-        cut_out::write_atomic(&a.out.join("cells.vtu"), cut_out::vtu(&out).as_bytes())?;
-        cut_out::write_atomic(&a.out.join("cells.obj"), cut_out::obj(&out, a.explode).as_bytes())?;
+        dir.write("cells.vtu", cut_out::vtu(&out).as_bytes())?;
+        dir.write("cells.obj", cut_out::obj(&out, a.explode).as_bytes())?;
     }
     let write_s = t2.elapsed().as_secs_f64();
     let c = out.counts;
@@ -122,7 +123,8 @@ pub fn run(a: Args) -> CliResult {
         "dropped_planes": out.stats.dropped_planes.len(),
         "seconds": seconds,
     });
-    cut_out::write_atomic(&a.out.join("cut.json"), serde_json::to_string_pretty(&j)?.as_bytes())?;
+    dir.write("cut.json", serde_json::to_string_pretty(&j)?.as_bytes())?;
+    dir.finish()?;
     if a.json {
         println!("{j}");
     } else {

@@ -15,6 +15,7 @@ pub fn write_atomic_with(
     let dir = path.parent().unwrap_or(Path::new("."));
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    pending().push(tmp.clone());
     let result = (|| {
         let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
         write(&mut w)?;
@@ -24,7 +25,22 @@ pub fn write_atomic_with(
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
+    pending().retain(|p| p != &tmp);
     result
+}
+
+/// Temporary files being written now (by any thread), for [`remove_pending_temps`].
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Removes the temporary files of writes in progress and returns how many:
+/// called by a Ctrl-C handler before exiting, so an interrupted run leaves
+/// no hidden partial files (issue 14).
+pub fn remove_pending_temps() -> usize {
+    let list = std::mem::take(&mut *pending());
+    list.iter().filter(|p| std::fs::remove_file(p).is_ok()).count()
 }
 
 /// Writes `bytes` to `path` atomically (see [`write_atomic_with`]).
