@@ -27,7 +27,7 @@ def integer_array(a, name: str) -> np.ndarray:
         bad = ~np.isfinite(arr) | (arr != np.round(arr)) if arr.size else np.zeros(arr.shape, bool)
         if bad.any():
             at = _first_bad(bad)
-            raise _septa.InputError(f"{name}: element {at} is {arr[at]!r}, not a whole number")
+            raise _septa.InputError(f"{name}: element {at} is {arr[at].item()!r}, not a whole number")
         if arr.size and (np.abs(arr).max() >= 2.0**63):
             raise _septa.InputError(f"{name}: values beyond the int64 range")
     elif arr.dtype.kind == "u" and arr.dtype.itemsize == 8 and arr.size and arr.max() >= 2**63:
