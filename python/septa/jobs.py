@@ -14,6 +14,7 @@ import os
 import numpy as np
 
 from . import _septa
+from . import _inputs
 from .grid import Grid
 from .network import Network
 
@@ -32,7 +33,7 @@ def _grid_inputs(grid_or_vertices, tets, values):
     if v.ndim != 2 or v.shape[1] != 3:
         raise _septa.InputError(f"vertices: expected shape (#V, 3), got {v.shape}")
     _septa.check_values(v, "vertices")
-    t = np.ascontiguousarray(tets, dtype=np.int64)
+    t = _inputs.integer_array(tets, "tets")
     if t.ndim != 2:
         raise _septa.InputError(f"tets: expected shape (#T, 4), got {t.shape}")
     _septa.check_tets(t, len(v))
@@ -54,7 +55,8 @@ def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells):
     g = grid_or_vertices
     if isinstance(g, Grid) and g.resolution is not None and (tets is None or values is None or tets is g.tets):
         box = (tuple(g.resolution), g.bounds.tolist(), g.split)
-    d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"), threads=threads)
+    d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"),
+                       threads=_inputs.threads(threads))
     return Network._from_core(d)
 
 
@@ -143,8 +145,12 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     ``nibabel``). One indicator function per label, optionally smoothed by a
     Gaussian of ``sigma`` voxels, then the exact material interface; regions
     are the labels, every pair of labels is a surface and every triple a curve.
-    Points are ``origin + index * spacing`` (a file's own spacing and origin
-    are used when it has them and none are given). Returns a
+    Points are ``origin + index * spacing``, or for a file without explicit
+    ``spacing``/``origin`` its full voxel-to-world map (NIfTI affine, NRRD
+    space directions and origin: rotations, shears and flips included, as
+    ``nibabel.affines.apply_affine``); a mirroring map reverses each polygon
+    so it stays counter-clockwise seen from the lesser region. Bool and
+    whole-number float volumes are accepted. Returns a
     :class:`septa.Network` with ``surfaces`` and ``curves`` as
     :func:`region_surfaces`.
 
@@ -157,49 +163,72 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     [[0, 1], [0, 2], [1, 2]]
     """
     spacing_given = tuple(spacing) != (1.0, 1.0, 1.0) or tuple(origin) != (0.0, 0.0, 0.0)
-    if isinstance(volume, (str, os.PathLike)):
-        volume, file_spacing, file_origin = _read_volume(os.fspath(volume))
-        if not spacing_given:
-            spacing, origin = file_spacing, file_origin
-    a = np.asarray(volume)
-    if a.ndim != 3 or not np.issubdtype(a.dtype, np.integer):
-        raise _septa.InputError(f"volume: expected a 3-axis integer array, got {a.ndim} axes of {a.dtype}")
     sp = np.asarray(spacing, dtype=np.float64).reshape(3)
     og = np.asarray(origin, dtype=np.float64).reshape(3)
     if not (np.isfinite(sp).all() and (sp > 0).all() and np.isfinite(og).all()):
         raise _septa.InputError(f"spacing must be 3 positive numbers and origin 3 numbers, got {spacing}, {origin}")
-    data = json.loads(_septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma)))
-    # Placing the grid in space moves no combinatorics: points only.
-    data["points"] = (np.asarray(data["points"], dtype=np.float64).reshape(-1, 3) * sp + og).tolist()
+    affine = np.eye(4)
+    affine[:3, :3] = np.diag(sp)
+    affine[:3, 3] = og
+    name = "volume"
+    if isinstance(volume, (str, os.PathLike)):
+        name = os.fspath(volume)
+        volume, file_affine = _read_volume(name)
+        if not spacing_given:
+            affine = file_affine
+    a = np.asarray(volume)
+    if a.ndim != 3:
+        raise _septa.InputError(f"{name}: expected a 3-axis label array, got {a.ndim} axes of {a.dtype}")
+    # bool and whole-number float volumes are labels too; 2.5 is an error naming its voxel.
+    a = _inputs.integer_array(a, name)
+    m = np.asarray(affine, dtype=np.float64)[:3]
+    if not np.isfinite(m).all() or np.linalg.matrix_rank(m[:, :3]) < 3:
+        raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
+    data = json.loads(_septa.labels(a, float(sigma)))
+    # Placing the grid in space moves no combinatorics: points only. The
+    # full affine (direction cosines, shears, flips) maps voxel indices to
+    # world points, as nibabel's apply_affine and NRRD's space directions do.
+    pts = np.asarray(data["points"], dtype=np.float64).reshape(-1, 3)
+    data["points"] = (pts @ m[:, :3].T + m[:, 3]).tolist()
+    if np.linalg.det(m[:, :3]) < 0:
+        # A mirror turns counter-clockwise loops clockwise: reverse each
+        # polygon so it stays counter-clockwise seen from the lesser region.
+        data["faces"] = [f[::-1] for f in data["faces"]]
     return _region_network(data)
 
 
 def _read_volume(path: str):
-    """(labels, spacing, origin) of a .npy, .nrrd or .nii(.gz) file."""
+    """(labels, 4x4 voxel-to-world affine) of a .npy, .nrrd or .nii(.gz) file."""
     low = path.lower()
     try:
         if low.endswith(".npy"):
-            return np.load(path, allow_pickle=False), (1.0, 1.0, 1.0), (0.0, 0.0, 0.0)
+            return np.load(path, allow_pickle=False), np.eye(4)
         if low.endswith(".nrrd"):
             try:
                 import nrrd
             except ImportError as e:
                 raise ImportError("reading .nrrd needs pynrrd: pip install pynrrd") from e
             data, header = nrrd.read(path)
+            affine = np.eye(4)
             directions = header.get("space directions")
-            spacing = (1.0, 1.0, 1.0) if directions is None else tuple(float(np.linalg.norm(d)) for d in directions)
-            origin = tuple(float(x) for x in header.get("space origin", (0.0, 0.0, 0.0)))
-            return data, spacing, origin
+            if directions is not None:
+                # One row per axis: the world step of one voxel along it.
+                d = np.asarray(directions, dtype=np.float64)
+                if d.shape != (3, 3):
+                    raise _septa.InputError(f"{path}: space directions of shape {d.shape}, expected 3 rows of 3")
+                affine[:3, :3] = d.T
+            affine[:3, 3] = np.asarray(header.get("space origin", (0.0, 0.0, 0.0)), dtype=np.float64)
+            return data, affine
         if low.endswith(".nii") or low.endswith(".nii.gz"):
             try:
                 import nibabel
             except ImportError as e:
                 raise ImportError("reading .nii needs nibabel: pip install nibabel") from e
             img = nibabel.load(path)
-            zooms = tuple(float(z) for z in img.header.get_zooms()[:3])
-            origin = tuple(float(x) for x in img.affine[:3, 3])
-            return np.asanyarray(img.dataobj), zooms, origin
-    except OSError as e:
+            return np.asanyarray(img.dataobj), np.asarray(img.affine, dtype=np.float64)
+    except (OSError, ValueError) as e:
+        if isinstance(e, _septa.InputError):
+            raise
         raise _septa.InputError(f"{path}: cannot read ({e})") from e
     raise _septa.InputError(f"{path}: expected a .npy, .nrrd or .nii/.nii.gz label volume")
 
@@ -259,11 +288,11 @@ def cut_mesh(vertices, triangles, planes, *, threads=None):
     """
     v = np.ascontiguousarray(vertices, dtype=np.float64)
     _septa.check_values(v.reshape(-1, 3), "vertices")
-    t = np.ascontiguousarray(triangles, dtype=np.int64)
+    t = _inputs.integer_array(triangles, "triangles")
     if t.ndim != 2 or t.shape[1] != 3 or (len(t) and (t.min() < 0 or t.max() >= len(v))):
         raise _septa.InputError("triangles: expected (#T, 3) indices into vertices")
     p = np.ascontiguousarray(planes, dtype=np.float64)
     if p.ndim != 2 or p.shape[1] != 4:
         raise _septa.InputError(f"planes: expected shape (#P, 4), got {p.shape}")
     _septa.check_values(p, "planes")
-    return CutCells(json.loads(_septa.cut(v, t, p, threads=threads or 0)))
+    return CutCells(json.loads(_septa.cut(v, t, p, threads=_inputs.threads(threads) or 0)))

@@ -243,11 +243,16 @@ def load(path) -> Network:
     """
     p = Path(path)
     if p.is_dir():
+        # A folder written by septa holds manifest.json once complete (io/outdir.rs).
+        if (p / ".septa.lock").exists() and not (p / "manifest.json").exists():
+            raise InputError(f"{p}: incomplete result: a run was interrupted or is still writing (no manifest.json)")
         p = p / "network.json"
     try:
-        text = p.read_text()
+        text = p.read_bytes().decode("utf-8")
     except OSError as e:
         raise InputError(f"{p}: cannot read ({e.strerror})") from e
+    except UnicodeDecodeError as e:
+        raise InputError(f"{p}: not a septa network (not UTF-8 text at byte {e.start})") from e
     try:
         data = json.loads(text)
     except json.JSONDecodeError as e:

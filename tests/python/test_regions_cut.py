@@ -203,8 +203,8 @@ def test_label_surfaces_numpy_and_files_match_the_command_line(tmp_path):
     b = septa.label_surfaces(tmp_path / "v.nii.gz")
     assert np.array_equal(b.indices, net.indices) and np.allclose(b.points, placed.points)
     # Bad input: clear errors.
-    with pytest.raises(septa.InputError, match="integer"):
-        septa.label_surfaces(v.astype(np.float64))
+    with pytest.raises(septa.InputError, match="not a whole number"):
+        septa.label_surfaces(v.astype(np.float64) + 0.5)
     with pytest.raises(septa.InputError, match="expected a .npy"):
         septa.label_surfaces(tmp_path / "v.txt")
     with pytest.raises(septa.InputError, match="at least 2 voxels"):

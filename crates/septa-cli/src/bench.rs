@@ -15,10 +15,10 @@ pub struct Args {
     /// summaries while streaming, against the in-memory run).
     what: String,
     /// Grid: cubes per axis.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = crate::args::grid)]
     resolution: usize,
     /// Grid: threads for Septa (the baselines are single-threaded).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = crate::args::threads)]
     threads: usize,
     /// `ia` or `mi`.
     #[arg(long, default_value = "ia")]

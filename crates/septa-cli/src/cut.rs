@@ -13,10 +13,10 @@ pub struct Args {
     /// Closed, outward-oriented triangle mesh (.obj, .off, .ply, .stl).
     pub mesh: PathBuf,
     /// N axis-aligned planes per axis over the bounding box (TopoCut's An).
-    #[arg(long, conflicts_with_all = ["random", "planes"])]
+    #[arg(long, conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
     pub grid: Option<usize>,
     /// N random planes through the bounding-box diagonal (TopoCut's Rn).
-    #[arg(long, conflicts_with = "planes")]
+    #[arg(long, conflicts_with = "planes", value_parser = crate::args::planes)]
     pub random: Option<usize>,
     /// Seed of --random.
     #[arg(long, default_value_t = 0)]
@@ -28,7 +28,7 @@ pub struct Args {
     #[arg(short = 'o', long = "out")]
     pub out: Option<PathBuf>,
     /// Worker threads (0: all cores).
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = crate::args::threads_or_all)]
     pub threads: usize,
     /// Print one JSON object with counts, checks and timings.
     #[arg(long)]
@@ -44,7 +44,7 @@ pub struct Args {
     #[arg(long)]
     pub no_certify: bool,
     /// Exploded view factor for cells.obj.
-    #[arg(long, default_value_t = 0.0)]
+    #[arg(long, default_value_t = 0.0, value_parser = crate::args::finite_nonneg)]
     pub explode: f64,
     /// Prove the written embedding exactly (closed, consistently oriented,
     /// planar-faced, non-self-intersecting cells of positive volume on the
@@ -118,10 +118,11 @@ pub fn run(a: Args) -> CliResult {
     }
     let check = out.validate();
     let t2 = Instant::now();
-    std::fs::create_dir_all(&out_dir)?;
+    // One set: lock, stale temporaries removed, manifest last (io::outdir).
+    let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     if !a.no_mesh_output {
-        cut_out::write_atomic(&out_dir.join("cells.vtu"), cut_out::vtu(&out).as_bytes())?;
-        cut_out::write_atomic(&out_dir.join("cells.obj"), cut_out::obj(&out, a.explode).as_bytes())?;
+        dir.write("cells.vtu", cut_out::vtu(&out).as_bytes())?;
+        dir.write("cells.obj", cut_out::obj(&out, a.explode).as_bytes())?;
     }
     if a.exact_vertices {
         let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
@@ -130,7 +131,7 @@ pub fn run(a: Args) -> CliResult {
             "defs": defs,
             "planes": out.planes,
         });
-        cut_out::write_atomic(&out_dir.join("vertices_exact.json"), serde_json::to_string(&j)?.as_bytes())?;
+        dir.write("vertices_exact.json", serde_json::to_string(&j)?.as_bytes())?;
     }
     // --verify: the exact check of the file as written (read back), else of
     // the polygons in memory
@@ -192,7 +193,8 @@ pub fn run(a: Args) -> CliResult {
         "verify_written_file": verify,
         "seconds": seconds,
     });
-    cut_out::write_atomic(&out_dir.join("cut.json"), serde_json::to_string_pretty(&j)?.as_bytes())?;
+    dir.write("cut.json", serde_json::to_string_pretty(&j)?.as_bytes())?;
+    dir.finish()?;
     if a.json {
         println!("{j}");
     } else {

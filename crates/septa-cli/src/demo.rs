@@ -17,7 +17,7 @@ pub struct Args {
     #[arg(long, short, default_value = "septa-demo")]
     pub out: PathBuf,
     /// Grid resolution (cubes per side) of the grid scenes.
-    #[arg(long, default_value_t = 64)]
+    #[arg(long, default_value_t = 64, value_parser = crate::args::grid)]
     pub grid: usize,
 }
 

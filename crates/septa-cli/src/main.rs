@@ -1,6 +1,7 @@
 //! The `septa` command line: one file per subcommand.
 use clap::{Parser, Subcommand};
 
+mod args;
 mod bench;
 mod bench_ceiling;
 mod bench_grid;
@@ -45,6 +46,23 @@ enum Command {
 }
 
 fn main() {
+    // `septa ... --json | head`: a closed pipe ends the process quietly, as
+    // for any Unix filter, instead of a panic in println! (issue 14).
+    #[cfg(unix)]
+    // SAFETY: restoring the default action of SIGPIPE before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+    // Ctrl-C: remove the partial files of writes in progress and say so; the
+    // output folder keeps no manifest.json, so readers see it as incomplete.
+    let _ = ctrlc::set_handler(|| {
+        let n = septa::io::remove_pending_temps();
+        eprintln!(
+            "\ninterrupted: stopped{}; the output folder is incomplete (no manifest.json) until the job is run again",
+            if n > 0 { format!(" and removed {n} partial file(s)") } else { String::new() }
+        );
+        std::process::exit(130);
+    });
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Stress(a) => stress::run(a),

@@ -36,19 +36,19 @@ pub struct Args {
     #[arg(short, long, default_value = "septa-out")]
     output: PathBuf,
     /// Box grid resolution (cubes per axis) for a function JSON input.
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::grid)]
     grid: Option<usize>,
     /// Tet mesh (Gmsh .msh 2.2/4.1, or the reference's tet-mesh .json) for a function JSON input.
     #[arg(long)]
     mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
-    #[arg(long, num_args = 6, allow_negative_numbers = true)]
+    #[arg(long, num_args = 6, allow_negative_numbers = true, value_parser = crate::args::finite)]
     bounds: Option<Vec<f64>>,
     /// Tets per cube of a box grid (5 or 6; default: the file's, else 5).
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u8).range(5..=6))]
     split: Option<u8>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = crate::args::threads)]
     threads: Option<usize>,
     /// Do not use look-up tables (incremental construction in every tet).
     #[arg(long)]
@@ -66,7 +66,7 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Block edge in cubes.
-    #[arg(long, default_value_t = 16)]
+    #[arg(long, default_value_t = 16, value_parser = crate::args::block)]
     block: usize,
     /// Sample every grid vertex (the dense path). By default, analytic
     /// functions on a box grid (a function JSON, reference config or scene)

@@ -24,7 +24,7 @@ pub struct Args {
     /// Clean up small and thin triangles (Bloomenthal 4.5.3.1): collapse
     /// edges shorter than FACTOR times the smallest cube edge wherever that
     /// keeps every surface's topology, curve and corner; output triangles.
-    #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2")]
+    #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2", value_parser = crate::args::finite_nonneg)]
     clean: Option<f64>,
     /// Print one JSON object with counts, surfaces and curves.
     #[arg(long)]

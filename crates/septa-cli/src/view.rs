@@ -72,25 +72,68 @@ pub fn write_viewer(outdir: &Path, title: &str) -> Result<PathBuf, Box<dyn std::
 /// The network to show: `network.json`, or for a cut (no network.json) the
 /// cut-cells of `cells.obj`, each OBJ group becoming one cell.
 fn load_network(outdir: &Path) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    // Only the current set counts: an interrupted run is refused, and after
+    // `cut` then `ia` into one folder the manifest names the ia files only.
+    let listed = septa::io::outdir::check_complete(outdir)?;
+    let current = |name: &str| listed.as_ref().is_none_or(|l| l.iter().any(|n| n == name));
     let net_path = outdir.join("network.json");
-    if let Ok(text) = std::fs::read_to_string(&net_path) {
-        let value = parse_json(&net_path, &text)?;
-        for key in ["points", "faces"] {
-            if value.get(key).and_then(|v| v.as_array()).is_none() {
-                return Err(format!("{}: missing array field \"{key}\"", net_path.display()).into());
-            }
+    if current("network.json") {
+        if let Some(bytes) = read_if_exists(&net_path)? {
+            let text = String::from_utf8(bytes)
+                .map_err(|e| format!("{}: not a septa network (not UTF-8 text: byte {})", net_path.display(), e.utf8_error().valid_up_to()))?;
+            let value = parse_json(&net_path, &text)?;
+            check_network(&net_path, &value)?;
+            return Ok(value);
         }
-        return Ok(value);
     }
     let obj_path = outdir.join("cells.obj");
-    if let Ok(text) = std::fs::read_to_string(&obj_path) {
-        return Ok(obj_cells_to_network(&obj_path, &text)?);
+    if current("cells.obj") {
+        if let Some(bytes) = read_if_exists(&obj_path)? {
+            let text = String::from_utf8(bytes).map_err(|_| format!("{}: not an OBJ text file", obj_path.display()))?;
+            return Ok(obj_cells_to_network(&obj_path, &text)?);
+        }
     }
     Err(format!(
         "{} has neither network.json nor cells.obj: give the output folder of `septa ia|mi|regions|cut`",
         outdir.display()
     )
     .into())
+}
+
+/// The file's bytes, `None` when it does not exist, an error naming it otherwise.
+fn read_if_exists(path: &Path) -> Result<Option<Vec<u8>>, String> {
+    match std::fs::read(path) {
+        Ok(b) => Ok(Some(b)),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
+        Err(e) => Err(format!("{}: cannot read: {e}", path.display())),
+    }
+}
+
+/// The network contract the viewer relies on: `points` rows of 3 finite
+/// numbers, `faces` lists of at least 3 indices into `points` (issue 14: a
+/// face index -1 or 99999999 produced a viewer that fails in the browser).
+fn check_network(path: &Path, v: &serde_json::Value) -> Result<(), String> {
+    let bad = |what: String| format!("{}: {what}", path.display());
+    let points = v.get("points").and_then(|p| p.as_array()).ok_or_else(|| bad("missing array field \"points\"".into()))?;
+    for (i, p) in points.iter().enumerate() {
+        let ok = p.as_array().is_some_and(|c| c.len() == 3 && c.iter().all(|x| x.as_f64().is_some_and(f64::is_finite)));
+        if !ok {
+            return Err(bad(format!("point {i} is not 3 finite numbers: {p}")));
+        }
+    }
+    let faces = v.get("faces").and_then(|f| f.as_array()).ok_or_else(|| bad("missing array field \"faces\"".into()))?;
+    for (i, f) in faces.iter().enumerate() {
+        let ids = f.as_array().ok_or_else(|| bad(format!("face {i} is not a list of point indices")))?;
+        if ids.len() < 3 {
+            return Err(bad(format!("face {i} has {} point indices, at least 3 are needed", ids.len())));
+        }
+        for x in ids {
+            if !x.as_u64().is_some_and(|j| (j as usize) < points.len()) {
+                return Err(bad(format!("face {i} refers to point {x}, but there are {} points", points.len())));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn parse_json(path: &Path, text: &str) -> Result<serde_json::Value, String> {

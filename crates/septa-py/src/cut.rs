@@ -32,6 +32,9 @@ pub fn cut<'py>(
     if planes.shape()[1] != 4 {
         return Err(shape_err("planes", 4, planes.shape()));
     }
+    if threads > 1024 {
+        return Err(InputError::new_err(format!("threads: {threads} is out of range 0..=1024")));
+    }
     let contiguous = |what: &str| InputError::new_err(format!("{what}: array must be C-contiguous"));
     let v = vertices.as_slice().map_err(|_| contiguous("vertices"))?;
     let t = triangles.as_slice().map_err(|_| contiguous("triangles"))?;

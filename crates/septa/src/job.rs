@@ -300,10 +300,19 @@ impl Job {
     pub fn run(&self, options: &NetworkOptions, dense: bool) -> Result<(Network, Option<SparseStats>), NetworkError> {
         match self.box_formulas() {
             Some((g, f)) if !dense => compute_sparse(g, f, options).map(|(n, s)| (n, Some(s))),
-            _ => compute(&self.grid, &self.values(), self.k(), options).map(|n| (n, None)),
+            _ => {
+                if let Some((g, f)) = self.box_formulas() {
+                    // Estimated before sampling every vertex (issue 14: `--grid 1000 --dense`).
+                    crate::grid::memory::check_dense(g.num_vertices(), f.len(), DENSE_WAY_OUT)?;
+                }
+                compute(&self.grid, &self.values(), self.k(), options).map(|n| (n, None))
+            }
         }
     }
 }
+
+/// The way out of a dense job too large for memory.
+const DENSE_WAY_OUT: &str = "drop --dense (the default sparse path samples only blocks near the surfaces; --stream OUT.ply also bounds the output's memory) or use a coarser --grid";
 
 /// The `"grid"` object of a job JSON.
 fn grid_of(v: &Value) -> Result<BoxGrid, JobError> {

@@ -25,7 +25,9 @@ fn outputs_round_trip() {
         write_all(&net, &dir, &[("read", 0.0)]).unwrap();
         let names: Vec<String> =
             std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-        assert_eq!(names.len(), 4, "{names:?}");
+        // The four results, the manifest written last and the folder's lock (io/outdir.rs).
+        assert_eq!(names.len(), 6, "{names:?}");
+        assert!(names.iter().any(|n| n == "manifest.json") && names.iter().any(|n| n == ".septa.lock"), "{names:?}");
         // JSON
         let j: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("network.json")).unwrap()).unwrap();

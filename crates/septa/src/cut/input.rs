@@ -120,11 +120,16 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             return Err(CutError::NonManifoldVertex { vertex: v });
         }
     }
-    // positive volume (outward orientation)
+    // positive volume (outward orientation), computed on coordinates scaled
+    // by a power of two (exact) so that the largest is about 1: a closed
+    // cube scaled by 1e-200 has a volume of 1e-600, which underflows to 0
+    // and was rejected as inward (issue 14).
+    let big = tris.iter().flatten().fold(0.0f64, |m, &i| verts[i as usize].iter().fold(m, |m, x| m.max(x.abs())));
+    let pow2 = if big > 0.0 && big.is_finite() { 2f64.powi(-(big.log2().ceil() as i32).clamp(-1000, 1000)) } else { 1.0 };
     let mut vol = 0.0;
     let mut scale = 0.0f64;
     for tri in tris {
-        let [a, b, c] = tri.map(|i| verts[i as usize]);
+        let [a, b, c] = tri.map(|i| verts[i as usize].map(|x| x * pow2));
         let cr = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
         vol += (cr[0] * c[0] + cr[1] * c[1] + cr[2] * c[2]) / 6.0;
         scale = scale.max(a.iter().chain(b.iter()).fold(0.0f64, |m, x| m.max(x.abs())));

@@ -109,9 +109,10 @@ impl BoxGrid {
                 ));
             }
         }
-        let n = (res[0] + 1)
-            .checked_mul(res[1] + 1)
-            .and_then(|x| x.checked_mul(res[2] + 1))
+        // Checked: `--grid 18446744073709551615` must not wrap to a small grid.
+        let n = (res[0].checked_add(1))
+            .and_then(|x| x.checked_mul(res[1].checked_add(1)?))
+            .and_then(|x| x.checked_mul(res[2].checked_add(1)?))
             .filter(|&x| x < u32::MAX as usize);
         if n.is_none() {
             return Err(format!("grid {res:?} has too many vertices for 32-bit ids"));

@@ -41,6 +41,14 @@ pub enum MeshError {
         /// Tets sharing it.
         tets: Vec<usize>,
     },
+    /// No tets (or no vertices): nothing to compute on.
+    #[error("the mesh has {vertices} vertices and {tets} tets: at least one tet is needed")]
+    Empty {
+        /// Number of vertices.
+        vertices: usize,
+        /// Number of tets.
+        tets: usize,
+    },
     /// More vertices than 32-bit ids allow.
     #[error("{count} vertices: at most 2^32 - 1 are supported")]
     TooLarge {
@@ -71,6 +79,10 @@ impl TetMesh {
     /// opposite sides of it. Inverted tets are re-oriented by swapping their
     /// last two vertices.
     pub fn new(vertices: Vec<[f64; 3]>, tets: &[[i64; 4]]) -> Result<TetMesh, MeshError> {
+        if tets.is_empty() || vertices.is_empty() {
+            // Issue 14: an .npz of 0 vertices and 0 tets panicked in the network.
+            return Err(MeshError::Empty { vertices: vertices.len(), tets: tets.len() });
+        }
         if vertices.len() >= u32::MAX as usize {
             return Err(MeshError::TooLarge { count: vertices.len() });
         }

@@ -7,6 +7,7 @@
 //! any order because every key is global).
 
 mod boxgrid;
+pub mod memory;
 mod mesh;
 
 pub use boxgrid::{grid_coordinate, BoxGrid, Split};

@@ -15,14 +15,17 @@ pub fn write_atomic_with(
     let dir = path.parent().unwrap_or(Path::new("."));
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    pending().push(tmp.clone());
     // Removes the temporary file on every way out but a successful rename,
-    // a panic inside `write` included (tests/io_atomic_failure.rs).
+    // a panic inside `write` included (tests/io_atomic_failure.rs), and
+    // takes it off the list a Ctrl-C handler cleans.
     struct Cleanup<'a>(&'a Path, bool);
     impl Drop for Cleanup<'_> {
         fn drop(&mut self) {
             if !self.1 {
                 let _ = std::fs::remove_file(self.0);
             }
+            pending().retain(|p| p != self.0);
         }
     }
     let mut cleanup = Cleanup(&tmp, false);
@@ -36,6 +39,20 @@ pub fn write_atomic_with(
     // The error names the file it could not write (a full disk or a size
     // limit says nothing about which output failed).
     result.map_err(|e| std::io::Error::new(e.kind(), format!("writing {}: {e}", path.display())))
+}
+
+/// Temporary files being written now (by any thread), for [`remove_pending_temps`].
+fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    static PENDING: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    PENDING.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Removes the temporary files of writes in progress and returns how many:
+/// called by a Ctrl-C handler before exiting, so an interrupted run leaves
+/// no hidden partial files (issue 14).
+pub fn remove_pending_temps() -> usize {
+    let list = std::mem::take(&mut *pending());
+    list.iter().filter(|p| std::fs::remove_file(p).is_ok()).count()
 }
 
 /// Writes `bytes` to `path` atomically (see [`write_atomic_with`]).

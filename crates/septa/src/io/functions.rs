@@ -64,3 +64,4 @@ pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
     }
     Ok((vertices, tets))
 }
+

@@ -34,13 +34,18 @@ impl ReadError {
 pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let bytes = std::fs::read(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
-    match ext.as_str() {
+    let mesh = match ext.as_str() {
         "obj" => super::mesh_obj::parse_obj(path, &bytes),
         "off" => super::mesh_off::parse_off(path, &bytes),
         "stl" => super::mesh_stl::parse_stl(path, &bytes),
         "ply" => super::mesh_ply::parse_ply(path, &bytes),
         _ => Err(ReadError::new(path, 0, format!("unknown mesh extension '{ext}' (use .obj, .off, .ply or .stl)"))),
+    }?;
+    if mesh.triangles.is_empty() {
+        // Said here, where the file is known (an all-zero STL read as 0 triangles).
+        return Err(ReadError::new(path, 0, format!("no triangles ({} vertices)", mesh.vertices.len())));
     }
+    Ok(mesh)
 }
 
 /// Parses one finite double, naming the file and line on failure.

@@ -3,57 +3,69 @@
 use super::mesh::{parse_f64, push_fan, ReadError, TriMesh};
 use std::path::Path;
 
-/// Parses OFF text.
+/// Parses OFF text: `OFF` and its variants with per-vertex colours, normals
+/// or texture coordinates (`COFF`, `NOFF`, `CNOFF`, `STOFF`, ...: the first
+/// three numbers of a vertex line are its position) and per-face colours (a
+/// face line is `n i1 .. in` followed by optional colour numbers, ignored).
+/// Issue 14: COFF face colours were read as indices ("face index 255").
 pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
-    // Tokens with their line numbers, comments stripped.
-    let mut toks: Vec<(usize, &str)> = Vec::new();
-    for (i, raw) in text.lines().enumerate() {
-        let body = raw.split('#').next().unwrap_or("");
-        toks.extend(body.split_whitespace().map(|t| (i + 1, t)));
+    // Non-empty lines with their numbers, comments stripped.
+    let mut lines = text.lines().enumerate().filter_map(|(i, raw)| {
+        let body = raw.split('#').next().unwrap_or("").trim();
+        (!body.is_empty()).then_some((i + 1, body))
+    });
+    let (l, first) = lines.next().ok_or_else(|| ReadError::new(path, 0, "empty file: missing OFF header"))?;
+    let mut head = first.split_whitespace();
+    let kw = head.next().unwrap_or("");
+    if !kw.ends_with("OFF") || kw.starts_with('4') || kw.contains("n") {
+        return Err(ReadError::new(path, l, format!("missing OFF header (found '{kw}'; 3D [ST][C][N]OFF expected)")));
     }
-    let mut pos = 0usize;
-    let mut next = |what: &str| -> Result<(usize, &str), ReadError> {
-        let t = toks.get(pos).copied().ok_or_else(|| ReadError::new(path, 0, format!("file ends before {what}")))?;
-        pos += 1;
-        Ok(t)
+    // The counts follow on the header line or on the next line.
+    let rest: Vec<&str> = head.collect();
+    let (l, counts) = if rest.is_empty() {
+        let (l, line) = lines.next().ok_or_else(|| ReadError::new(path, 0, "file ends before the counts"))?;
+        (l, line.split_whitespace().collect::<Vec<_>>())
+    } else {
+        (l, rest)
     };
-    let (l, head) = next("header")?;
-    if !head.ends_with("OFF") {
-        return Err(ReadError::new(path, l, "missing OFF header"));
-    }
-    let mut count = |what: &str| -> Result<usize, ReadError> {
-        let (l, t) = next(what)?;
+    let count = |k: usize, what: &str| -> Result<usize, ReadError> {
+        let t = counts.get(k).ok_or_else(|| ReadError::new(path, l, format!("missing {what}")))?;
         t.parse().map_err(|_| ReadError::new(path, l, format!("{what} '{t}' is not a count")))
     };
-    let nv = count("vertex count")?;
-    let nf = count("face count")?;
-    let _ne = count("edge count")?;
+    let nv = count(0, "vertex count")?;
+    let nf = count(1, "face count")?;
     let mut mesh = TriMesh::default();
-    for _ in 0..nv {
+    for v in 0..nv {
+        let (l, line) =
+            lines.next().ok_or_else(|| ReadError::new(path, 0, format!("file ends before vertex {v} of {nv}")))?;
+        let mut t = line.split_whitespace();
         let mut c = [0.0; 3];
         for (k, ck) in c.iter_mut().enumerate() {
-            let (l, t) = next("vertex coordinate")?;
-            *ck = parse_f64(path, l, Some(t), ["x", "y", "z"][k])?;
+            *ck = parse_f64(path, l, t.next(), ["x", "y", "z"][k])?;
         }
         mesh.vertices.push(c);
     }
     let mut poly = Vec::new();
-    for _ in 0..nf {
-        let (l, t) = next("face")?;
-        let n: usize = t.parse().map_err(|_| ReadError::new(path, l, format!("face size '{t}' is not a count")))?;
+    for f in 0..nf {
+        let (l, line) =
+            lines.next().ok_or_else(|| ReadError::new(path, 0, format!("file ends before face {f} of {nf}")))?;
+        let mut t = line.split_whitespace();
+        let size = t.next().unwrap_or("");
+        let n: usize =
+            size.parse().map_err(|_| ReadError::new(path, l, format!("face {f}: size '{size}' is not a count")))?;
+        if n < 3 {
+            return Err(ReadError::new(path, l, format!("face {f} has {n} corners, at least 3 are needed")));
+        }
         poly.clear();
         for _ in 0..n {
-            let (l, t) = next("face index")?;
+            let tok = t.next().ok_or_else(|| ReadError::new(path, l, format!("face {f}: fewer than {n} indices")))?;
             let k: usize =
-                t.parse().map_err(|_| ReadError::new(path, l, format!("face index '{t}' is not an integer")))?;
+                tok.parse().map_err(|_| ReadError::new(path, l, format!("face {f}: index '{tok}' is not an integer")))?;
             if k >= nv {
-                return Err(ReadError::new(path, l, format!("face index {k} out of range (have {nv} vertices)")));
+                return Err(ReadError::new(path, l, format!("face {f}: index {k} out of range (have {nv} vertices)")));
             }
             poly.push(k as u32);
-        }
-        if n < 3 {
-            return Err(ReadError::new(path, l, "face with fewer than 3 corners"));
         }
         push_fan(&mut mesh.triangles, &poly);
     }

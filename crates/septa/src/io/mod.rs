@@ -12,9 +12,11 @@ pub mod mesh_stl;
 pub mod msh;
 pub mod network_out;
 pub mod npz;
+pub mod outdir;
 pub mod planes;
 pub mod ply_stream;
 pub mod regions_out;
 pub mod summary_out;
 
-pub use atomic::{write_atomic, write_atomic_with};
+pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};
+pub use outdir::OutputDir;

@@ -343,10 +343,13 @@ pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
 }
 
 /// Writes `network.json`, `network.ply`, `network.obj` and `network.vtu` into `dir` (created if needed).
+/// The folder is written as one set (`io::outdir`: lock, stale temporaries
+/// removed, `manifest.json` last); errors name the folder or file.
 pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
-    write_ply(net, &dir.join("network.ply"))?;
-    write_obj(net, &dir.join("network.obj"))?;
-    write_vtu(net, &dir.join("network.vtu"))?;
-    write_json(net, &dir.join("network.json"), extra_seconds)
+    let mut out = super::OutputDir::create(dir, "network")?;
+    out.write_path("network.ply", |p| write_ply(net, p))?;
+    out.write_path("network.obj", |p| write_obj(net, p))?;
+    out.write_path("network.vtu", |p| write_vtu(net, p))?;
+    out.write_path("network.json", |p| write_json(net, p, extra_seconds))?;
+    out.finish()
 }

@@ -86,116 +86,101 @@ pub fn read_npz(path: &Path) -> Result<BTreeMap<String, Array>, NpzError> {
     Ok(out)
 }
 
-/// Parses one `.npy` (format versions 1-3, little-endian, C order).
+/// Parses one `.npy` with the maintained `npyz` reader: format versions
+/// 1-3, either byte order, C or Fortran order (numpy writes Fortran order
+/// for transposed arrays; nibabel returns them), bool, signed and unsigned
+/// integers, f32/f64 and string scalars. The data is returned in C order
+/// (Fortran arrays are transposed here). Issue 14: the hand-written parser
+/// refused Fortran order, bool and big-endian arrays.
 pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
-    if b.len() < 10 || &b[..6] != b"\x93NUMPY" {
-        return Err("not a .npy array (bad magic)".into());
-    }
-    let (hlen, hstart) = match b[6] {
-        1 => (u16::from_le_bytes([b[8], b[9]]) as usize, 10),
-        2 | 3 if b.len() >= 12 => (u32::from_le_bytes([b[8], b[9], b[10], b[11]]) as usize, 12),
-        v => return Err(format!("unsupported .npy version {v}")),
+    use npyz::{DType, TypeChar};
+    let mut data: &[u8] = b;
+    let header = npyz::NpyHeader::from_reader(&mut data).map_err(|e| format!("not a readable .npy array: {e}"))?;
+    let file = npyz::NpyFile::with_header(header, data);
+    let shape: Vec<usize> = file
+        .shape()
+        .iter()
+        .map(|&d| usize::try_from(d).map_err(|_| format!("axis length {d} is too large")))
+        .collect::<Result<_, _>>()?;
+    let count = shape.iter().try_fold(1usize, |a, &d| a.checked_mul(d)).ok_or("the shape's element count overflows")?;
+    let fortran = file.order() == npyz::Order::Fortran;
+    let DType::Plain(ts) = file.dtype() else {
+        return Err(format!("structured dtype {} is not supported (expected numbers)", file.dtype().descr()));
     };
-    let header = b.get(hstart..hstart + hlen).ok_or("truncated header")?;
-    let header = std::str::from_utf8(header).map_err(|_| "header is not text")?;
-    let descr = dict_str(header, "descr").ok_or("no 'descr' in header")?;
-    if header.contains("'fortran_order': True") {
-        return Err("Fortran-ordered arrays are not supported".into());
+    let size = ts.size_field() as usize;
+    // Refuse before allocating: a header may claim more items than the file holds.
+    if !matches!(ts.type_char(), TypeChar::UnicodeStr | TypeChar::ByteStr)
+        && count.checked_mul(size).is_none_or(|need| data.len() < need)
+    {
+        return Err(format!("data truncated: {} bytes for {count} items of {size} bytes", data.len()));
     }
-    let shape = dict_shape(header).ok_or("no readable 'shape' in header")?;
-    let count: usize = shape.iter().product();
-    let data = &b[hstart + hlen..];
-    let need = |size: usize| -> Result<(), String> {
-        if data.len() < count * size {
-            Err(format!("data truncated: {} bytes for {count} items of {size}", data.len()))
-        } else {
-            Ok(())
-        }
-    };
-    let (order, kind, size) = split_descr(&descr)?;
-    if order == '>' && size > 1 {
-        return Err(format!("big-endian dtype {descr} is not supported"));
-    }
-    match (kind, size) {
-        ('f', 8) => {
-            need(8)?;
-            Ok(Array::F64(
-                shape,
-                data.chunks_exact(8).take(count).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect(),
-            ))
-        }
-        ('f', 4) => {
-            need(4)?;
-            Ok(Array::F64(
-                shape,
-                data.chunks_exact(4).take(count).map(|c| f32::from_le_bytes(c.try_into().unwrap()) as f64).collect(),
-            ))
-        }
-        ('i' | 'u', 1 | 2 | 4 | 8) => {
-            need(size)?;
-            let signed = kind == 'i';
-            let mut v = Vec::with_capacity(count);
-            for c in data.chunks_exact(size).take(count) {
-                let mut buf = [0u8; 8];
-                buf[..size].copy_from_slice(c);
-                let neg = signed && c[size - 1] & 0x80 != 0;
-                if neg {
-                    buf[size..].fill(0xff);
-                }
-                let x = i64::from_le_bytes(buf);
-                if kind == 'u' && size == 8 && x < 0 {
-                    return Err("unsigned value does not fit in i64".into());
-                }
-                v.push(x);
+    let io = |e: std::io::Error| format!("cannot read the data: {e}");
+    let descr = file.dtype().descr();
+    let arr = match (ts.type_char(), size) {
+        (TypeChar::Float, 8) => Array::F64(shape, file.into_vec::<f64>().map_err(io)?),
+        (TypeChar::Float, 4) => Array::F64(shape, file.into_vec::<f32>().map_err(io)?.into_iter().map(f64::from).collect()),
+        (TypeChar::Bool, 1) => Array::I64(shape, file.into_vec::<bool>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Int, 1) => Array::I64(shape, file.into_vec::<i8>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Int, 2) => Array::I64(shape, file.into_vec::<i16>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Int, 4) => Array::I64(shape, file.into_vec::<i32>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Int, 8) => Array::I64(shape, file.into_vec::<i64>().map_err(io)?),
+        (TypeChar::Uint, 1) => Array::I64(shape, file.into_vec::<u8>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Uint, 2) => Array::I64(shape, file.into_vec::<u16>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Uint, 4) => Array::I64(shape, file.into_vec::<u32>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Uint, 8) => {
+            let v = file.into_vec::<u64>().map_err(io)?;
+            let mut out = Vec::with_capacity(v.len());
+            for (i, x) in v.into_iter().enumerate() {
+                out.push(i64::try_from(x).map_err(|_| format!("item {i}: unsigned value {x} does not fit in i64"))?);
             }
-            Ok(Array::I64(shape, v))
+            Array::I64(shape, out)
         }
-        ('U', n) => {
-            // UTF-32 little-endian, `n` characters.
-            let mut s = String::new();
-            for c in data.chunks_exact(4).take(n) {
-                let u = u32::from_le_bytes(c.try_into().unwrap());
-                if u == 0 {
+        (TypeChar::UnicodeStr | TypeChar::ByteStr, _) if count == 1 => {
+            Array::Str(file.into_vec::<String>().map_err(io)?.pop().unwrap_or_default().trim_end_matches('\0').to_string())
+        }
+        _ => return Err(format!("unsupported dtype {descr}")),
+    };
+    Ok(if fortran { to_c_order(arr) } else { arr })
+}
+
+/// The same array with its data in C order (last axis fastest), from
+/// Fortran order (first axis fastest).
+fn to_c_order(a: Array) -> Array {
+    fn permute<T: Copy>(shape: &[usize], f: &[T]) -> Vec<T> {
+        if shape.len() < 2 {
+            return f.to_vec();
+        }
+        // Fortran strides: axis 0 has stride 1.
+        let mut stride = vec![1usize; shape.len()];
+        for a in 1..shape.len() {
+            stride[a] = stride[a - 1] * shape[a - 1];
+        }
+        let mut out = Vec::with_capacity(f.len());
+        let mut idx = vec![0usize; shape.len()];
+        for _ in 0..f.len() {
+            out.push(f[idx.iter().zip(&stride).map(|(i, s)| i * s).sum::<usize>()]);
+            // Next C-order multi-index: the last axis runs fastest.
+            for a in (0..shape.len()).rev() {
+                idx[a] += 1;
+                if idx[a] < shape[a] {
                     break;
                 }
-                s.push(char::from_u32(u).ok_or("bad character in string")?);
+                idx[a] = 0;
             }
-            Ok(Array::Str(s))
         }
-        ('S', n) => {
-            Ok(Array::Str(String::from_utf8_lossy(&data[..n.min(data.len())]).trim_end_matches('\0').to_string()))
-        }
-        _ => Err(format!("unsupported dtype {descr}")),
+        out
     }
-}
-
-fn split_descr(d: &str) -> Result<(char, char, usize), String> {
-    let mut it = d.chars();
-    let order = it.next().ok_or("empty dtype")?;
-    let kind = it.next().ok_or("short dtype")?;
-    let size = it.as_str().parse().map_err(|_| format!("bad dtype {d}"))?;
-    Ok((order, kind, size))
-}
-
-fn dict_str(h: &str, key: &str) -> Option<String> {
-    let i = h.find(&format!("'{key}'"))?;
-    let rest = &h[i + key.len() + 2..];
-    let a = rest.find('\'')?;
-    let b = rest[a + 1..].find('\'')?;
-    Some(rest[a + 1..a + 1 + b].to_string())
-}
-
-fn dict_shape(h: &str) -> Option<Vec<usize>> {
-    let i = h.find("'shape'")?;
-    let rest = &h[i..];
-    let a = rest.find('(')?;
-    let b = rest.find(')')?;
-    rest[a + 1..b]
-        .split(',')
-        .map(str::trim)
-        .filter(|s| !s.is_empty())
-        .map(|s| s.trim_end_matches('L').parse().ok())
-        .collect()
+    match a {
+        Array::F64(s, d) => {
+            let d = permute(&s, &d);
+            Array::F64(s, d)
+        }
+        Array::I64(s, d) => {
+            let d = permute(&s, &d);
+            Array::I64(s, d)
+        }
+        other => other,
+    }
 }
 
 /// A tet grid with function values, as stored in the test inputs.

@@ -15,7 +15,6 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
-use super::cut_out::write_atomic;
 use crate::regions::RegionSurfaces;
 
 /// The JSON summary: counts, surfaces and curves (what `--json` prints).
@@ -98,13 +97,14 @@ pub fn document(r: &RegionSurfaces) -> Value {
     doc
 }
 
-/// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
+/// Writes `network.json`, `surfaces.obj` and `manifest.json` into `dir` (created if needed).
 pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
-    std::fs::create_dir_all(dir)?;
+    // One set: lock, stale temporaries removed, manifest last (io::outdir).
+    let mut out = super::OutputDir::create(dir, "regions")?;
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
-    write_atomic(&dir.join("network.json"), document(r).to_string().as_bytes())?;
+    out.write("network.json", document(r).to_string().as_bytes())?;
     let mut obj = String::from("# Septa region surfaces: a group per surface, curves as polylines\n");
     for p in &net.points {
         writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();
@@ -130,5 +130,6 @@ pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
         let ids: Vec<String> = c.vertices.iter().map(|v| (v + 1).to_string()).collect();
         writeln!(obj, "l {}", ids.join(" ")).unwrap();
     }
-    write_atomic(&dir.join("surfaces.obj"), obj.as_bytes())
+    out.write("surfaces.obj", obj.as_bytes())?;
+    out.finish()
 }

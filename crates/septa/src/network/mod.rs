@@ -83,6 +83,10 @@ pub enum NetworkError {
     /// The run was cancelled through [`NetworkOptions::cancel`].
     #[error("cancelled")]
     Cancelled,
+    /// The job would need more memory than the machine has (estimated
+    /// before allocating; `grid::memory`).
+    #[error(transparent)]
+    Memory(#[from] crate::grid::memory::MemoryError),
     /// Block results handed to [`finish_sparse`] do not match its plan
     /// (missing, repeated, or from another job).
     #[error("block results: {0}")]

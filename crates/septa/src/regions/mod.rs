@@ -153,6 +153,12 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
         out.sparse = Some(stats);
         return Ok(out);
     }
+    crate::grid::memory::check_dense(
+        bgrid.num_vertices(),
+        scene.functions.len(),
+        "drop --dense (sparse evaluation samples only the blocks near the surfaces) or use a coarser grid",
+    )
+    .map_err(|e| RegionError::Grid(e.to_string()))?;
     let grid = Grid::Box(bgrid);
     let points = grid.vertices();
     let values = sample_grid(&scene.functions, &points);

@@ -395,6 +395,13 @@ fn dense_fallback(
     stats.skipped = 0;
     stats.sampled = stats.blocks;
     stats.sampled_vertices = grid.num_vertices();
+    // The dense path holds every vertex: refuse with the estimate rather
+    // than abort in the allocator (issue 14: regions at resolution 1600).
+    crate::grid::memory::check_dense(
+        grid.num_vertices(),
+        1,
+        "this job falls back to the dense path (a function vanishes at a grid vertex or cells need grouping); use a coarser grid or shift the grid bounds slightly",
+    )?;
     Ok((dense()?, stats))
 }
 

@@ -1,0 +1,238 @@
+//! An output folder written as one set: a reader never sees a mix of two
+//! runs, a half-written file, or a killed run's leftovers as a result
+//! (issue 14: a SIGKILL left ~80 MB of hidden temp files that no later run
+//! removed; two runs into one folder could end with files from both).
+//!
+//! - **Lock.** `DIR/.septa.lock` is locked (`flock`) for the whole write; a
+//!   second writer is refused with an error naming the folder. The kernel
+//!   drops the lock when the process dies, however it dies.
+//! - **Stale temporaries.** While holding the lock, no other writer can be
+//!   writing: every `.NAME.tmpPID` left by a killed run is removed.
+//! - **Manifest last.** The previous `manifest.json` and the files of its
+//!   set are removed first; each new file is written atomically; the new
+//!   `manifest.json` (job, files and sizes) is renamed in last. A folder
+//!   with a lock file but no manifest is an interrupted run
+//!   ([`check_complete`]); readers refuse it.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use super::atomic::write_atomic_with;
+
+/// Name of the lock file.
+pub const LOCK: &str = ".septa.lock";
+/// Name of the manifest, written last.
+pub const MANIFEST: &str = "manifest.json";
+
+/// Files Septa writes as results; removed when a new run starts in a folder
+/// so that the new set never mixes with an old one (also from runs older
+/// than manifests).
+const RESULT_FILES: [&str; 9] = [
+    "network.json",
+    "network.ply",
+    "network.obj",
+    "network.vtu",
+    "surfaces.obj",
+    "cells.vtu",
+    "cells.obj",
+    "cut.json",
+    "viewer/data.js",
+];
+
+/// An output folder being written; see the module documentation.
+#[derive(Debug)]
+pub struct OutputDir {
+    dir: PathBuf,
+    job: String,
+    files: Vec<(String, u64)>,
+    _lock: File,
+}
+
+fn ctx(path: &Path, what: &str, e: std::io::Error) -> std::io::Error {
+    std::io::Error::new(e.kind(), format!("{}: {what}: {e}", path.display()))
+}
+
+/// Whether `name` is a temporary file of [`write_atomic_with`]: `.X.tmpPID`.
+fn is_temp(name: &str) -> bool {
+    name.starts_with('.')
+        && name.rfind(".tmp").is_some_and(|i| {
+            let pid = &name[i + 4..];
+            !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit())
+        })
+}
+
+impl OutputDir {
+    /// Opens `dir` for the job `job` (e.g. `"ia"`): creates it, takes the
+    /// lock, removes stale temporaries, the old manifest and the old result
+    /// set. Errors name the folder and say what to do.
+    pub fn create(dir: &Path, job: &str) -> std::io::Result<OutputDir> {
+        if dir.exists() && !dir.is_dir() {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!("{}: exists and is not a folder; give -o a folder path", dir.display()),
+            ));
+        }
+        std::fs::create_dir_all(dir).map_err(|e| ctx(dir, "cannot create the output folder", e))?;
+        let lock_path = dir.join(LOCK);
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&lock_path)
+            .map_err(|e| ctx(dir, "cannot write into the output folder", e))?;
+        match lock.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::WouldBlock,
+                    format!(
+                        "{}: another septa run is writing into this folder (it holds {LOCK}); wait for it to finish or give another output folder",
+                        dir.display()
+                    ),
+                ))
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(ctx(&lock_path, "cannot lock", e)),
+        }
+        let _ = (&lock).write_all(format!("{}\n", std::process::id()).as_bytes());
+        let out = OutputDir { dir: dir.to_path_buf(), job: job.to_string(), files: Vec::new(), _lock: lock };
+        out.clean()?;
+        Ok(out)
+    }
+
+    /// Removes stale temporaries, the manifest, then the old result set.
+    fn clean(&self) -> std::io::Result<()> {
+        for sub in [self.dir.clone(), self.dir.join("viewer")] {
+            let Ok(entries) = std::fs::read_dir(&sub) else { continue };
+            for e in entries.flatten() {
+                if is_temp(&e.file_name().to_string_lossy()) {
+                    let _ = std::fs::remove_file(e.path());
+                }
+            }
+        }
+        let manifest = self.dir.join(MANIFEST);
+        let mut old: Vec<String> = RESULT_FILES.iter().map(|s| s.to_string()).collect();
+        if let Ok(text) = std::fs::read_to_string(&manifest) {
+            if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
+                for f in v["files"].as_array().into_iter().flatten() {
+                    if let Some(name) = f["name"].as_str().filter(|n| safe_name(n)) {
+                        old.push(name.to_string());
+                    }
+                }
+            }
+        }
+        // The manifest goes first: from here on the folder reads as incomplete.
+        match std::fs::remove_file(&manifest) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(ctx(&manifest, "cannot remove the old manifest", e))
+            }
+            _ => {}
+        }
+        for name in old {
+            let _ = std::fs::remove_file(self.dir.join(name));
+        }
+        Ok(())
+    }
+
+    /// The folder.
+    pub fn path(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Writes `name` (a plain file name in the folder) atomically and adds
+    /// it to the set. Errors name the file.
+    pub fn write_with(
+        &mut self,
+        name: &str,
+        write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+    ) -> std::io::Result<()> {
+        let path = self.dir.join(name);
+        write_atomic_with(&path, write).map_err(|e| ctx(&path, "cannot write", e))?;
+        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        self.files.push((name.to_string(), size));
+        Ok(())
+    }
+
+    /// Runs a path-based writer (which must write atomically, as every
+    /// `io` writer does) for `name` and adds the file to the set.
+    pub fn write_path(&mut self, name: &str, write: impl FnOnce(&Path) -> std::io::Result<()>) -> std::io::Result<()> {
+        let path = self.dir.join(name);
+        write(&path).map_err(|e| ctx(&path, "cannot write", e))?;
+        let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+        self.files.push((name.to_string(), size));
+        Ok(())
+    }
+
+    /// [`OutputDir::write_with`] for bytes.
+    pub fn write(&mut self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
+        self.write_with(name, |w| w.write_all(bytes))
+    }
+
+    /// Writes the manifest (last) and releases the lock.
+    pub fn finish(self) -> std::io::Result<()> {
+        let files: Vec<_> =
+            self.files.iter().map(|(n, s)| serde_json::json!({ "name": n, "bytes": s })).collect();
+        let doc = serde_json::json!({
+            "septa": env!("CARGO_PKG_VERSION"),
+            "job": self.job,
+            "files": files,
+        });
+        let path = self.dir.join(MANIFEST);
+        let text = serde_json::to_string_pretty(&doc).map_err(std::io::Error::other)?;
+        write_atomic_with(&path, |w| w.write_all(text.as_bytes())).map_err(|e| ctx(&path, "cannot write", e))
+    }
+}
+
+/// A manifest entry must stay inside the folder.
+fn safe_name(n: &str) -> bool {
+    !n.is_empty() && !n.starts_with('/') && !n.split(['/', '\\']).any(|c| c == "..")
+}
+
+/// Whether a folder holds a complete result set: `Ok(Some(files))` from its
+/// manifest (the files of the set); `Ok(None)` for a folder written before
+/// manifests existed (no lock file either); an error naming the folder when
+/// a run was interrupted (lock file, no manifest), is still writing, or the
+/// manifest is unreadable.
+pub fn check_complete(dir: &Path) -> Result<Option<Vec<String>>, String> {
+    let manifest = dir.join(MANIFEST);
+    match std::fs::read(&manifest) {
+        Ok(bytes) => {
+            let v: serde_json::Value = serde_json::from_slice(&bytes)
+                .map_err(|e| format!("{}: not a septa manifest: {e}", manifest.display()))?;
+            let files = v["files"]
+                .as_array()
+                .ok_or_else(|| format!("{}: no \"files\" list", manifest.display()))?
+                .iter()
+                .filter_map(|f| f["name"].as_str().map(str::to_string))
+                .collect();
+            Ok(Some(files))
+        }
+        Err(_) if dir.join(LOCK).exists() => {
+            let busy = File::open(dir.join(LOCK)).ok().is_some_and(|f| f.try_lock_shared().is_err());
+            if busy {
+                Err(format!("{}: a septa run is still writing into this folder", dir.display()))
+            } else {
+                Err(format!(
+                    "{}: incomplete result: a run was interrupted before writing {MANIFEST}; run the job again",
+                    dir.display()
+                ))
+            }
+        }
+        Err(_) => Ok(None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn temp_names() {
+        assert!(is_temp(".network.ply.tmp1234"));
+        assert!(!is_temp("network.ply"));
+        assert!(!is_temp(".network.tmp"));
+        assert!(!is_temp(".x.tmp12a"));
+        assert!(safe_name("network.json") && safe_name("viewer/data.js"));
+        assert!(!safe_name("../x") && !safe_name("/etc/passwd") && !safe_name("a/../../b"));
+    }
+}
