@@ -94,13 +94,14 @@ pub enum NetworkError {
     /// Continuation: a seed or the field's values are wrong (the message says which).
     #[error("continuation: {0}")]
     Continuation(String),
-    /// The per-tet construction failed.
-    #[error("tet {tet}: {message}")]
+    /// The per-tet construction failed (an internal error: inputs are
+    /// checked before; Python raises it as `RuntimeError`).
+    #[error("tet {tet}: {source}")]
     Tet {
         /// Tet id.
         tet: usize,
         /// What failed.
-        message: String,
+        source: crate::complex::BuildError,
     },
 }
 
@@ -181,6 +182,38 @@ impl NetworkOptions {
     }
 }
 
+/// How the cells of a network were identified (Du et al. Sec. 7.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CellMethod {
+    /// Topological ray shooting from each component (the default).
+    Raytrace,
+    /// Regions joined across every tet face (when ray shooting declines,
+    /// cell volumes are asked for, or ray shooting is turned off).
+    Grouping,
+}
+
+impl CellMethod {
+    /// `"raytrace"` or `"grouping"`, as written in `network.json`.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CellMethod::Raytrace => "raytrace",
+            CellMethod::Grouping => "grouping",
+        }
+    }
+}
+
+impl std::fmt::Display for CellMethod {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl PartialEq<&str> for CellMethod {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
 /// A patch: a maximal connected manifold piece of the network.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Patch {
@@ -243,8 +276,8 @@ pub struct Network {
     pub components: usize,
     /// Tets with a part of the network.
     pub active_tets: usize,
-    /// How cells were identified: "raytrace" or "grouping".
-    pub cells_method: &'static str,
+    /// How cells were identified.
+    pub cells_method: CellMethod,
     /// Seconds per stage.
     pub seconds: Vec<(&'static str, f64)>,
 }

@@ -31,7 +31,7 @@ use crate::network::block::{BlockOut, BlockValues, Ctx, PointValues, Values, Wor
 use crate::network::dense::{assemble, label_free_cells};
 use crate::network::field::{BoundedField, ByRef};
 use crate::network::topology::{canonicalize_merged, canonicalize_topology, merge, topology, Merged, Merger};
-use crate::network::{Network, NetworkError, NetworkOptions};
+use crate::network::{CellMethod, Network, NetworkError, NetworkOptions};
 
 /// What sparse evaluation did, for the JSON summary.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -425,7 +425,7 @@ fn finish_merged(
     let g = Grid::Box(grid.clone());
     let c = ctx(&g, k, options, pv);
     let mut topo = topology(&mut m, Some(&c));
-    if topo.cells_method != "raytrace" {
+    if topo.cells_method != CellMethod::Raytrace {
         return dense_fallback(grid, stats, dense);
     }
     canonicalize_topology(&mut topo);
