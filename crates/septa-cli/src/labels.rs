@@ -11,15 +11,11 @@ use septa::regions::label_surfaces;
 pub struct Args {
     /// A `.npy` array of integer labels with 3 axes (C order).
     volume: PathBuf,
-    /// Output folder.
-    #[arg(short = 'o', long)]
-    output: Option<PathBuf>,
+    #[command(flatten)]
+    out: crate::output::Output,
     /// Gaussian smoothing of each label's indicator, in voxels (0: none).
     #[arg(long, default_value_t = 0.0)]
     sigma: f64,
-    /// Print one JSON object with counts, surfaces and curves.
-    #[arg(long)]
-    json: bool,
 }
 
 /// Runs `septa labels`.
@@ -31,14 +27,12 @@ pub fn run(a: Args) -> CliResult {
         Array::I64(shape, _) => return Err(format!("{file}: labels must have 3 axes, not shape {shape:?}").into()),
         _ => return Err(format!("{file}: labels must be an integer array").into()),
     };
-    let r = label_surfaces(&labels, shape, a.sigma).map_err(|e| format!("{file}: {e}"))?;
-    if let Some(dir) = &a.output {
-        regions_out::write(&r, dir)?;
-    }
+    let r = a.out.install(|| label_surfaces(&labels, shape, a.sigma))?.map_err(|e| format!("{file}: {e}"))?;
+    regions_out::write_formats(&r, &a.out.output, &a.out.format.0)?;
     let summary = regions_out::summary(&r);
-    if a.json {
+    if a.out.json {
         println!("{summary}");
-    } else {
+    } else if a.out.talk() {
         println!("{file}: {} surfaces, {} curves, {} polygons", r.surfaces.len(), r.curves.len(), r.faces.len());
     }
     Ok(())

@@ -8,6 +8,7 @@ mod cut;
 mod demo;
 mod labels;
 mod network;
+mod output;
 mod progress;
 mod regions;
 mod stress;

@@ -1,6 +1,4 @@
 //! `septa regions`: surfaces and curves of interest of a scene's region rule.
-use std::path::PathBuf;
-
 use crate::CliResult;
 use septa::io::regions_out;
 use septa::regions::{region_surfaces, RegionOptions};
@@ -11,9 +9,8 @@ use septa::scene::{builtin, Scene};
 pub struct Args {
     /// A scene file (JSON) or `builtin:NAME` (see `--list`).
     scene: Option<String>,
-    /// Output folder.
-    #[arg(short = 'o', long)]
-    output: Option<PathBuf>,
+    #[command(flatten)]
+    out: crate::output::Output,
     /// Print the built-in scenes and exit.
     #[arg(long)]
     list: bool,
@@ -26,9 +23,6 @@ pub struct Args {
     /// keeps every surface's topology, curve and corner; output triangles.
     #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2")]
     clean: Option<f64>,
-    /// Print one JSON object with counts, surfaces and curves.
-    #[arg(long)]
-    json: bool,
     /// Sample every grid vertex. By default blocks the functions' bounds
     /// prove empty are skipped (identical output; memory follows the
     /// surface; docs/sparse.md).
@@ -56,17 +50,17 @@ pub fn run(a: Args) -> CliResult {
             return Err(format!("--clean: expected a factor >= 0, not {f}").into());
         }
     }
-    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean })?;
-    if let Some(dir) = &a.output {
-        regions_out::write(&r, dir)?;
-    }
+    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean };
+    let r = a.out.install(|| region_surfaces(&scene, &options))??;
+    let dir = &a.out.output;
+    regions_out::write_formats(&r, dir, &a.out.format.0)?;
     let mut summary = regions_out::summary(&r);
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
     }
-    if a.json {
+    if a.out.json {
         println!("{summary}");
-    } else {
+    } else if a.out.talk() {
         println!("{path}: {} polygons in {} surfaces, {} curves", r.faces.len(), r.surfaces.len(), r.curves.len());
         for s in &r.surfaces {
             println!(
@@ -83,9 +77,8 @@ pub fn run(a: Args) -> CliResult {
                 c.length
             );
         }
-        if let Some(dir) = &a.output {
-            println!("wrote {}", dir.display());
-        }
+        println!("wrote {}", dir.display());
     }
     Ok(())
 }
+

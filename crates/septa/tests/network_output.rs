@@ -25,7 +25,7 @@ fn outputs_round_trip() {
         write_all(&net, &dir, &[("read", 0.0)]).unwrap();
         let names: Vec<String> =
             std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-        assert_eq!(names.len(), 4, "{names:?}");
+        assert_eq!(names.len(), 5, "{names:?}"); // json npz ply obj vtu
         // JSON
         let j: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(dir.join("network.json")).unwrap()).unwrap();
@@ -54,7 +54,11 @@ fn outputs_round_trip() {
                 pos += 12;
                 assert_eq!(int(&ply, pos) as usize, f);
                 assert_eq!(int(&ply, pos + 4) as u32, net.face_patch[f]);
-                pos += 16 + 3;
+                let l = net.face_label[f];
+                assert_eq!([int(&ply, pos + 8), int(&ply, pos + 12)], [l[0] as i32, l[1] as i32], "labels_0/1");
+                let c = net.face_cells[f].map(|c| if c == u32::MAX { -1 } else { c as i32 });
+                assert_eq!([int(&ply, pos + 16), int(&ply, pos + 20)], c, "cells_0/1");
+                pos += 24 + 3;
             }
         }
         assert_eq!(pos, ply.len());

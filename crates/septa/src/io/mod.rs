@@ -14,6 +14,10 @@ pub mod npz;
 pub mod planes;
 pub mod ply_stream;
 pub mod regions_out;
+pub mod result;
+pub mod result_mesh;
+pub mod result_npz;
+pub mod result_vtk;
 pub mod summary_out;
 
 pub use atomic::{write_atomic, write_atomic_with};

@@ -16,9 +16,9 @@
 //! of the first block that used it), so a vertex is written when its id is
 //! the next one.
 //!
-//! Per face: `vertex_indices` (list uchar int), `label0`, `label1` (int:
+//! Per face: `vertex_indices` (list uchar int), `labels_0`, `labels_1` (int:
 //! IA the function, twice; MI the two materials), `block` (int, the block
-//! index), `patch`, `cell0`, `cell1` (int: the patch and the cells on the
+//! index), `patch`, `cells_0`, `cells_1` (int: the patch and the cells on the
 //! positive and negative side, from the topology given to
 //! [`PlyStreamSink::finish_with`]; -1 without one). The faces' temporary
 //! file holds each polygon's patch piece, mapped while it is appended. Readers
@@ -70,8 +70,8 @@ fn header(comment: &str, vertices: u64, faces: u64) -> String {
         "ply\nformat binary_little_endian 1.0\ncomment {comment}\n\
          element vertex {vertices:020}\nproperty double x\nproperty double y\nproperty double z\n\
          element face {faces:020}\nproperty list uchar int vertex_indices\n\
-         property int label0\nproperty int label1\nproperty int block\n\
-         property int patch\nproperty int cell0\nproperty int cell1\nend_header\n"
+         property int labels_0\nproperty int labels_1\nproperty int block\n\
+         property int patch\nproperty int cells_0\nproperty int cells_1\nend_header\n"
     )
 }
 

@@ -16,6 +16,7 @@ use std::path::Path;
 use serde_json::{json, Value};
 
 use super::cut_out::write_atomic;
+use super::result::{Format, ResultView};
 use crate::regions::RegionSurfaces;
 
 /// The JSON summary: counts, surfaces and curves (what `--json` prints).
@@ -98,9 +99,24 @@ pub fn document(r: &RegionSurfaces) -> Value {
     doc
 }
 
-/// Writes `network.json` and `surfaces.obj` into `dir` (created if needed).
+/// Writes `network.json`, `network.npz`, `network.ply`, `network.obj`,
+/// `network.vtu` ([`Format::DEFAULT`]) and `surfaces.obj` into `dir`.
 pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
+    write_formats(r, dir, Format::DEFAULT)
+}
+
+/// Writes `network.<ext>` for each of `formats` (the result vocabulary of
+/// `result.rs`: patches are the surfaces, chains the curves) and, with
+/// JSON, `surfaces.obj` (a group per surface named by its regions, normals
+/// as `vn`) into `dir` (created if needed).
+pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
+    let meta = json!({"counts": summary(r),
+        "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
+    super::result::write_view(&ResultView::of_regions(r), dir, "network", formats, &meta)?;
+    if !formats.contains(&Format::Json) {
+        return Ok(());
+    }
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
