@@ -131,7 +131,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     elif rule is not None or surfaces is not None or curves is not None:
         raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
-    return _region_network(json.loads(_septa.regions(text, normals=normals, clean=clean)))
+    return _region_network(_septa.regions(text, normals=normals, clean=clean))
 
 
 def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0)) -> Network:
@@ -168,9 +168,9 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     og = np.asarray(origin, dtype=np.float64).reshape(3)
     if not (np.isfinite(sp).all() and (sp > 0).all() and np.isfinite(og).all()):
         raise _septa.InputError(f"spacing must be 3 positive numbers and origin 3 numbers, got {spacing}, {origin}")
-    data = json.loads(_septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma)))
+    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma))
     # Placing the grid in space moves no combinatorics: points only.
-    data["points"] = (np.asarray(data["points"], dtype=np.float64).reshape(-1, 3) * sp + og).tolist()
+    data["points"] = data["points"] * sp + og
     return _region_network(data)
 
 
@@ -205,8 +205,20 @@ def _read_volume(path: str):
 
 
 def _region_network(data: dict) -> Network:
-    """A region-surfaces document as a :class:`Network` with ``surfaces``,
-    ``curves`` and, when computed, ``normals``."""
+    """Region surfaces as a :class:`Network` with ``surfaces``, ``curves``
+    and, when computed, ``normals``: from the core's arrays (with
+    ``"summary"``) or from a ``network.json`` document."""
+    if "summary" in data:
+        summary = json.loads(data["summary"])
+        data["counts"], data["seconds"] = summary, summary.get("seconds", {})
+        net = Network._from_core(data)
+        net.surfaces, net.curves = summary["surfaces"], summary["curves"]
+        net.normals = net.indices_normal = None
+        if "normal_vertex" in data:
+            net.normals = {"vertex": data["normal_vertex"], "regions": data["normal_regions"],
+                           "normal": data["normal_vectors"]}
+            net.indices_normal = data["indices_normal"]
+        return net
     net = Network(data)
     net.surfaces = data["counts"]["surfaces"]
     net.curves = data["counts"]["curves"]
