@@ -13,9 +13,9 @@
 use crate::CliResult;
 use septa::complex::Mode;
 use septa::grid::{BoxGrid, Split};
-use septa::network::sparse::compute_sparse;
-use septa::network::stream::{stream_sparse, stream_topology, StreamBlock, StreamSink};
+use septa::network::compute_sparse;
 use septa::network::NetworkOptions;
+use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamSink};
 use septa::scene::load_function_list;
 use std::time::Instant;
 

@@ -95,7 +95,7 @@ fn apollonius(dir: &Path, a: &Args) -> JobResult {
 /// The reference's 18 spheres (IA) streamed block by block: `stream.ply`
 /// (faces with patch and cells) and `stream.topology.json`, in bounded memory.
 fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
-    use septa::network::{stream::stream_topology, Mode, NetworkOptions};
+    use septa::network::{stream_topology, Mode, NetworkOptions};
     let spec = include_str!("../../../data/specs/ia18.json");
     let functions = septa::scene::load_function_list(spec, "data/specs/ia18.json", None)?;
     let n = 2 * a.grid;

@@ -152,7 +152,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     };
     let (net, tets, t_read, stats) = if let Some((g, funcs)) = sparse_input {
         let t_read = t0.elapsed().as_secs_f64();
-        let (net, stats) = pool.install(|| network::sparse::compute_sparse(&g, &funcs, &opts))?;
+        let (net, stats) = pool.install(|| network::compute_sparse(&g, &funcs, &opts))?;
         (net, g.num_tets(), t_read, Some(stats))
     } else {
         let (grid, values, k) = load(&args)?;
@@ -213,9 +213,9 @@ fn run_stream(
     let mut sink =
         septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
     let (stats, topology) = if args.polygons_only {
-        (pool.install(|| network::stream::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?, None)
+        (pool.install(|| network::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?, None)
     } else {
-        let (s, t) = pool.install(|| network::stream::stream_topology(&g, &funcs, opts, args.window, &mut sink))?;
+        let (s, t) = pool.install(|| network::stream_topology(&g, &funcs, opts, args.window, &mut sink))?;
         (s, Some(t))
     };
     let t_blocks = t0.elapsed().as_secs_f64() - t_read;
@@ -229,7 +229,7 @@ fn run_stream(
         let secs = [("read", t_read), ("blocks", t_blocks), ("ply", t_ply)];
         septa::io::summary_out::write_summary_json(t, &topo_path, &secs)?;
     }
-    let sparse = network::sparse::SparseStats {
+    let sparse = network::SparseStats {
         blocks: stats.blocks,
         skipped: stats.skipped,
         sampled: stats.sampled,
@@ -373,7 +373,7 @@ fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Erro
 }
 
 /// `"blocks"` of the JSON summary of a sparse run.
-pub fn sparse_json(s: &network::sparse::SparseStats) -> serde_json::Value {
+pub fn sparse_json(s: &network::SparseStats) -> serde_json::Value {
     serde_json::json!({
         "total": s.blocks,
         "skipped": s.skipped,

@@ -1,6 +1,6 @@
 //! `septa.continuation`: networks of a Python callable (a function without
 //! bounds) by continuation from seeds (Bloomenthal 4.5.1), with
-//! `septa::network::continuation`. The callable gets `(n, 3) float64`
+//! `septa::network::compute_continuation`. The callable gets `(n, 3) float64`
 //! points, one block (or the coarse scan's corners) per call, and returns
 //! `(n, k)` values; the GIL is taken per call and released otherwise, so
 //! the per-tet work of other blocks runs meanwhile.
@@ -10,10 +10,10 @@ use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 use pyo3::types::{PyDict, PyDictMethods};
 use septa::grid::{BoxGrid, Split};
-use septa::network::continuation::{
+use septa::network::BlockResult;
+use septa::network::{
     compute_continuation, continuation_block, continuation_seeds, finish_continuation, ContinuationStats, Field, Seeds,
 };
-use septa::network::BlockResult;
 use septa::network::{Network, NetworkOptions};
 
 /// A Python callable as a [`Field`].

@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
 use septa::io::ply_stream::{PlyStreamSink, PlyStreamStats};
-use septa::network::stream::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
+use septa::network::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
 use septa::network::{BlockResult, NetworkSummary, SparsePlan};
 
 use crate::InputError;
@@ -102,7 +102,7 @@ fn result_dict<'py>(
 /// unfinished (an error, Ctrl-C), it leaves no file.
 #[pyclass(module = "septa._septa")]
 pub struct StreamWriter {
-    state: Option<(StreamFeeder, PlyStreamSink)>,
+    state: Option<(StreamFeeder<'static>, PlyStreamSink)>,
     path: String,
 }
 
@@ -113,8 +113,8 @@ impl StreamWriter {
         let r = (|| -> Result<StreamWriter, String> {
             let j = crate::distributed::parse_job(job)?;
             let plan = SparsePlan { blocks: plan.0, kept: plan.1, dense: plan.2 };
-            let feeder =
-                StreamFeeder::new(&j.grid, &j.functions, &j.options, &plan, topology).map_err(|e| e.to_string())?;
+            let feeder = StreamFeeder::new(&j.grid, j.functions.clone(), &j.options, &plan, topology)
+                .map_err(|e| e.to_string())?;
             let sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
                 .map_err(|e| format!("{path}: {e}"))?
                 .triangulated(triangles);

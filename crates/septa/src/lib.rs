@@ -29,3 +29,4 @@ pub mod io;
 pub mod network;
 pub mod regions;
 pub mod scene;
+mod uf;

@@ -5,8 +5,9 @@
 mod common;
 
 use septa::grid::{BoxGrid, Grid};
-use septa::network::continuation::{compute_continuation, Field, Primitives, Seeds};
 use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};
+use septa::network::{compute_continuation, Field, Seeds};
+use septa::scene::Primitives;
 use septa::scene::{sample_grid, Primitive};
 
 use common::{cube_grid, spec};

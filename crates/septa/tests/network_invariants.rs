@@ -355,14 +355,31 @@ fn nested_spheres_off_grid_raytrace() {
     assert_eq!(cell_partition(&ray), cell_partition(&grouping));
 }
 
+/// Spheres in the pattern of Du et al. Sec. 8.3 (IA: unit spheres at the
+/// origin, on the axes and at cube corners), jittered by up to 1e-3 from a seed.
+fn paper_spheres(k: usize, seed: u64) -> Vec<septa::scene::Primitive> {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let centres = [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
+    (0..k)
+        .map(|i| {
+            let c: [f64; 3] = centres[i % 4];
+            let mut j = || rng.gen_range(-1e-3..1e-3);
+            septa::scene::Primitive::sphere([c[0] + j(), c[1] + j(), c[2] + j()], 0.5 + j())
+        })
+        .collect()
+}
+
 #[test]
-fn paper_pattern_from_bench_entry_point() {
+fn paper_pattern_with_other_jitter() {
     // The 4-sphere IA pattern with a different jitter has the reference's
     // combinatorics (ia4_R20: 32 patches, 24 chains, 8 corners, 16 cells).
-    let f = septa::network::bench::paper_spheres(Mode::Ia, 4, 7);
-    let run = septa::network::bench::run_on_box(&f, 20, [[-1.0; 3], [1.0; 3]], &NetworkOptions::new(Mode::Ia)).unwrap();
+    let f = paper_spheres(4, 7);
+    let grid = Grid::Box(BoxGrid::new([20; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap());
+    let values = septa::scene::sample_grid(&f, &grid.vertices());
+    let net = compute(&grid, &values, 4, &NetworkOptions::new(Mode::Ia)).unwrap();
     expect(
-        &run.network,
+        &net,
         &[("patches", 32), ("chains", 24), ("corners", 8), ("shells", 16), ("cells", 16), ("components", 1)],
         "paper 4",
     );

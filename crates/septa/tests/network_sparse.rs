@@ -6,8 +6,8 @@ mod common;
 use std::path::Path;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::network::sparse::{compute_sparse, SparseStats};
 use septa::network::{compute, Mode, Network, NetworkOptions};
+use septa::network::{compute_sparse, SparseStats};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{sample_grid, Primitive, Scene};
 

@@ -9,8 +9,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use septa::io::ply_stream::PlyStreamSink;
-use septa::network::sparse::compute_sparse;
-use septa::network::stream::{stream_sparse, stream_topology, StreamBlock, StreamError, StreamSink};
+use septa::network::compute_sparse;
+use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamError, StreamSink};
 use septa::network::{Mode, Network, NetworkError, NetworkOptions, VKey};
 use septa::scene::load_function_list;
 

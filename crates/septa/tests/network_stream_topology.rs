@@ -12,8 +12,8 @@ mod common;
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use septa::grid::{BoxGrid, Split};
-use septa::network::sparse::compute_sparse;
-use septa::network::stream::{stream_topology, StreamBlock, StreamSink};
+use septa::network::compute_sparse;
+use septa::network::{stream_topology, StreamBlock, StreamSink};
 use septa::network::{Mode, Network, NetworkOptions, NetworkSummary, VKey};
 use septa::scene::{Primitive, Scene};
 
@@ -267,7 +267,7 @@ fn streamed_topology_is_the_same_for_any_window_and_thread_count() {
 fn blocks_computed_elsewhere_stream_the_same() {
     // Blocks run one by one and shipped as bytes (as on a Dask cluster),
     // fed in plan order: the same faces, pieces and topology as the local stream.
-    use septa::network::stream::StreamFeeder;
+    use septa::network::StreamFeeder;
     use septa::network::{plan_sparse, run_block, BlockResult};
     let f = spec("mi18");
     let grid = cube_grid(24);
@@ -277,7 +277,7 @@ fn blocks_computed_elsewhere_stream_the_same() {
     let (ls, lsum) = stream_topology(&grid, &f, &o, 0, &mut local).unwrap();
     let plan = plan_sparse(&grid, &f, &o).unwrap();
     let bytes: Vec<Vec<u8>> = plan.kept.iter().map(|&i| run_block(&grid, &f, &o, i).unwrap().to_bytes()).collect();
-    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    let mut feeder = StreamFeeder::new(&grid, f.clone(), &o, &plan, true).unwrap();
     let mut remote = Collect::default();
     // One by one, then a batch summarised in parallel.
     let half = bytes.len() / 2;
@@ -300,15 +300,16 @@ fn blocks_computed_elsewhere_stream_the_same() {
     assert_eq!(format!("{:?}", lsum.cells), format!("{:?}", rsum.cells));
     assert_eq!((ls.faces, ls.vertices, ls.active_tets), (rs.faces, rs.vertices, rs.active_tets));
     // Misuse is an error naming the block, never a wrong stream.
-    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    let mut feeder = StreamFeeder::new(&grid, f.clone(), &o, &plan, true).unwrap();
     let e = feeder.feed(BlockResult::from_bytes(&bytes[1]).unwrap(), &mut Collect::default()).unwrap_err();
     assert!(e.to_string().contains("out of order"), "{e}");
     let mut other = o.clone();
     other.block = 6;
-    let mut feeder = StreamFeeder::new(&grid, &f, &other, &plan_sparse(&grid, &f, &other).unwrap(), true).unwrap();
+    let mut feeder =
+        StreamFeeder::new(&grid, f.clone(), &other, &plan_sparse(&grid, &f, &other).unwrap(), true).unwrap();
     let e = feeder.feed(BlockResult::from_bytes(&bytes[0]).unwrap(), &mut Collect::default()).unwrap_err();
     assert!(e.to_string().contains("another job"), "{e}");
-    let mut feeder = StreamFeeder::new(&grid, &f, &o, &plan, true).unwrap();
+    let mut feeder = StreamFeeder::new(&grid, f.clone(), &o, &plan, true).unwrap();
     feeder.feed(BlockResult::from_bytes(&bytes[0]).unwrap(), &mut Collect::default()).unwrap();
     let e = feeder.finish().unwrap_err();
     assert!(e.to_string().contains(&format!("1 of the plan's {} blocks", plan.kept.len())), "{e}");

@@ -299,7 +299,7 @@ fn open_meshes_get_no_bound_closed_ones_do() {
 #[test]
 fn every_primitive_sparse_equals_dense() {
     use septa::grid::{BoxGrid, Grid, Split};
-    use septa::network::sparse::compute_sparse;
+    use septa::network::compute_sparse;
     use septa::network::{compute, Mode, NetworkOptions};
     use septa::scene::sample_grid;
     let mut skipped = 0;

@@ -35,8 +35,8 @@ use std::path::{Path, PathBuf};
 use std::io::{BufReader, Read};
 
 use crate::grid::BoxGrid;
-use crate::network::stream::{StreamBlock, StreamSink};
 use crate::network::{Mode, NetworkSummary};
+use crate::network::{StreamBlock, StreamSink};
 
 /// Writes streamed blocks to one PLY (module doc).
 pub struct PlyStreamSink {
@@ -188,7 +188,7 @@ impl PlyStreamSink {
     }
 
     /// Finishes the file with each face's patch and cells from `topology`
-    /// (the summary of the same stream, [`stream_topology`](crate::network::stream::stream_topology)).
+    /// (the summary of the same stream, [`stream_topology`](crate::network::stream_topology)).
     pub fn finish_with(mut self, topology: Option<&NetworkSummary>) -> std::io::Result<PlyStreamStats> {
         let result = self.finish_inner(topology);
         if result.is_err() {

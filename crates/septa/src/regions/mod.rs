@@ -34,8 +34,8 @@ use std::time::Instant;
 
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split};
-use crate::network::sparse::{compute_sparse, SparseStats};
 use crate::network::{compute, Network, NetworkError, NetworkOptions};
+use crate::network::{compute_sparse, SparseStats};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
 pub use clean::{clean, CleanStats};

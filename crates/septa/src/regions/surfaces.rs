@@ -3,9 +3,9 @@
 
 use rustc_hash::FxHashMap;
 
-use crate::network::uf::UnionFind;
 use crate::network::Network;
 use crate::scene::{must_flip, Interest, RegionId};
+use crate::uf::UnionFind;
 
 /// A connected surface separating one region pair of interest.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -66,6 +66,7 @@
 pub mod builtin;
 mod composite;
 mod error;
+mod field;
 mod gradbound;
 mod interval;
 mod mesh;
@@ -84,6 +85,7 @@ mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
+pub use field::Primitives;
 pub use mesh::{read_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;

@@ -2,10 +2,11 @@
 //! the grid element it lies in and the functions defining it, so the same
 //! vertex met in different tets and blocks gets the same key exactly.
 
-use super::block::{Ctx, State};
-use super::VKey;
+use super::values::Ctx;
+use super::worker::State;
 use crate::complex::{Complex, Mode};
 use crate::grid::Grid;
+use crate::network::VKey;
 use smallvec::SmallVec;
 
 /// Global key of complex vertex `v` of tet `tet` built on the functions `active`.

@@ -1,79 +1,19 @@
-//! One block of the grid: per-tet complexes (Du et al. Sec. 4-6) turned into
-//! polygons with global plane-based keys, plus a summary of the block's
-//! 3D regions and shell connectivity that merges with other blocks exactly
-//! and in any order (issue 6).
-//!
-//! Memory per block is proportional to its tets while it is processed; what
-//! leaves the block is proportional to its active tets and to its surface.
+//! The per-tet worker of a block: active functions, the tet's complex
+//! (Du et al. Sec. 4-6), its polygons with global keys, region contacts,
+//! shell unions and wedges; fast paths (`simple`, `program`, `boxfast`)
+//! slot in before the general construction.
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-pub(crate) use super::active::{active_functions, ia_base_label};
-pub(crate) use super::keys::{key_of, position_on, vertex_id_by_key, vertex_key};
-use super::uf::UnionFind;
-use super::{NetworkError, VKey};
-use crate::complex::{Complex, Mode, Options, Plane, NONE};
+use super::active::{active_functions, ia_base_label};
+use super::keys::{vertex_id_by_key, vertex_key};
+use super::types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
+use super::values::Ctx;
+use crate::complex::{Complex, Mode, Plane, NONE};
 use crate::grid::{Block, Grid};
-
-/// A 3D region label: IA sign bits over all functions (bit `f` set iff
-/// `f > 0`), MI the material in word 0.
-pub(crate) type Label = SmallVec<[u64; 2]>;
-
-/// Sorted grid vertices of a tet face.
-pub(crate) type FaceKey = [u32; 3];
-
-/// A side of a network face, for shell assembly.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SRef {
-    /// Side `1` (negative) or `0` (positive) of a block polygon.
-    Side(u32, u8),
-    /// The side of a half-polygon (a network face on a tet face) facing its tet.
-    Half(u32),
-    /// A piece of a transparent tet face at one edge (a wedge passing through).
-    T(u32),
-}
-
-/// A network face lying on a tet face (a function vanishing on the whole
-/// face, or two materials tied on it), seen from one of its two tets.
-#[derive(Clone, Debug)]
-pub(crate) struct HalfPoly {
-    pub face: FaceKey,
-    /// Block vertex ids, counter-clockwise seen from inside the tet.
-    pub verts: SmallVec<[u32; 8]>,
-    /// Block region (after compression: block component).
-    pub cell: u32,
-    /// IA: the (smallest) function vanishing on the face.
-    pub zero: u16,
-}
-
-/// Key of a transparent tet-face piece at an edge, across blocks.
-pub(crate) type OpenT = (FaceKey, Label, VKey, VKey);
-
-/// What a block hands to the merge.
-#[derive(Debug, Default)]
-pub(crate) struct BlockOut {
-    pub keys: Vec<VKey>,
-    /// Per key: whether its grid element may be shared with another block
-    /// (lies on the block's boundary); the others need no global lookup.
-    pub shared: Vec<bool>,
-    pub points: Vec<[f64; 3]>,
-    pub poly_start: Vec<u32>,
-    pub poly_verts: Vec<u32>,
-    pub poly_label: Vec<[u16; 2]>,
-    pub poly_cells: Vec<[u32; 2]>,
-    pub halves: Vec<HalfPoly>,
-    pub comp_label: Vec<Label>,
-    pub comp_volume: Vec<f64>,
-    pub contacts: Vec<(FaceKey, Label, u32)>,
-    pub unions: Vec<(SRef, SRef)>,
-    /// Wedges at chain edges inside tets: (edge, face side, face side).
-    pub wedges: Vec<([u32; 2], SRef, SRef)>,
-    pub tnodes: u32,
-    pub open_t: Vec<(OpenT, u32)>,
-    pub active_tets: usize,
-    pub tets: usize,
-}
+use crate::network::{NetworkError, VKey};
+use crate::uf::UnionFind;
 
 /// Per-thread reusable state.
 #[derive(Default)]
@@ -87,9 +27,9 @@ pub(crate) struct Worker {
     pairs: Vec<(u32, u32)>,
     edge_net: Vec<u32>,
     /// IA: the active functions of the next tet as a bit mask, if known.
-    pub(crate) active_hint: Option<u64>,
+    pub(super) active_hint: Option<u64>,
     /// IA: the sign bits at corner 0 of the next tet (k <= 63), if known.
-    pub(crate) base_hint: Option<u64>,
+    pub(super) base_hint: Option<u64>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -116,48 +56,10 @@ pub(crate) struct State {
     pub block_box: Option<([usize; 3], [usize; 3])>,
 }
 
-/// Run-wide inputs.
-pub(crate) struct Ctx<'a> {
-    pub grid: &'a Grid,
-    pub values: &'a [f64],
-    pub k: usize,
-    pub mode: Mode,
-    pub options: Options,
-    pub volumes: bool,
-    /// Join regions across tet faces (cell grouping); off when ray shooting
-    /// is sure to apply.
-    pub grouping: bool,
-    /// Sparse evaluation (issue 6): values come from here, not `values`.
-    pub sparse: Option<&'a dyn super::sparse::Values>,
-}
-
-impl Ctx<'_> {
-    /// Value of function `f` at grid vertex `v`.
-    #[inline]
-    pub(crate) fn val(&self, v: u32, f: usize) -> f64 {
-        match self.sparse {
-            None => self.values[v as usize * self.k + f],
-            Some(s) => s.val(v, f),
-        }
-    }
-
-    /// The `k` values at grid vertex `v` (copied into `buf` when sparse).
-    #[inline]
-    pub(crate) fn row<'b>(&'b self, v: u32, buf: &'b mut Vec<f64>) -> &'b [f64] {
-        match self.sparse {
-            None => &self.values[v as usize * self.k..(v as usize + 1) * self.k],
-            Some(s) => {
-                buf.clear();
-                buf.extend((0..self.k).map(|f| s.val(v, f)));
-                buf
-            }
-        }
-    }
-}
-
 const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
 
-fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
+/// The sorted grid vertices of face `i` (opposite corner `i`) of `tet`.
+pub(super) fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
     let mut f = FACE_OF[i].map(|j| tet[j]);
     f.sort_unstable();
     f
@@ -177,7 +79,7 @@ impl Worker {
         };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
             if super::boxfast::applies(ctx) {
-                self.run_box(ctx, &mut st, g, *lo, *hi)?;
+                super::boxfast::run_box(self, ctx, &mut st, g, *lo, *hi)?;
                 st.out.tets = (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
                 return Ok(self.finish(st));
             }
@@ -525,15 +427,9 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
     id
 }
 
-pub(crate) fn contact_pub(st: &mut State, face: FaceKey, label: &Label, node: u32) {
-    contact(st, face, label, node)
-}
-
-pub(crate) fn face_key_pub(tet: &[u32; 4], i: usize) -> FaceKey {
-    face_key(tet, i)
-}
-
-fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
+/// Records that region `node` touches tet face `face` with `label`
+/// (cell grouping joins the two regions at a face).
+pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
     use std::collections::hash_map::Entry;
     if !st.grouping {
         return;

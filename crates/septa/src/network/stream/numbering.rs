@@ -12,9 +12,9 @@
 
 use rustc_hash::FxHashMap;
 
-use super::VKey;
 use crate::complex::NONE;
 use crate::grid::BoxGrid;
+use crate::network::VKey;
 
 /// The numbering state (module doc).
 pub(crate) struct VertexNumbering {

@@ -19,9 +19,9 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::block::{BlockOut, Label, OpenT, SRef};
-use super::uf::UnionFind;
 use crate::complex::NONE;
+use crate::network::block::{BlockOut, Label, OpenT, SRef};
+use crate::uf::UnionFind;
 
 /// A node of the shell union-find a block hands on for an open tet-face piece.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

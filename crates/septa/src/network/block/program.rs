@@ -16,7 +16,10 @@
 
 use smallvec::SmallVec;
 
-use super::block::{key_of, position_on, vertex_id_by_key, BlockOut, Ctx, Label, SRef, State};
+use super::keys::{key_of, position_on, vertex_id_by_key};
+use super::types::{BlockOut, Label, SRef};
+use super::values::Ctx;
+use super::worker::State;
 use crate::complex::{Complex, Mode};
 
 /// A complex vertex: tet element and local functions.

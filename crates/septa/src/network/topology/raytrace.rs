@@ -18,11 +18,11 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::block::{active_functions, vertex_key, Ctx};
-use super::uf::UnionFind;
-use super::VKey;
 use crate::complex::{Complex, Mode, NONE};
 use crate::grid::{BoxGrid, Grid};
+use crate::network::block::{active_functions, vertex_key, Ctx};
+use crate::network::VKey;
+use crate::uf::UnionFind;
 
 /// What ray shooting asks of the network: which component a vertex is in,
 /// and which shell a face side belongs to. Both questions name the tet

@@ -2,9 +2,10 @@
 //! chains, corners, components, shells, and cells by cell grouping.
 
 use super::merge::Merged;
-use super::uf::UnionFind;
-use super::{CellInfo, Patch};
 use crate::complex::NONE;
+use crate::network::block::Ctx;
+use crate::network::{CellInfo, Patch};
+use crate::uf::UnionFind;
 
 /// The topology stage's results.
 pub(crate) struct Topology {
@@ -21,7 +22,7 @@ pub(crate) struct Topology {
     pub chain_patches: Vec<Vec<u32>>,
 }
 
-pub(crate) fn topology(m: &mut Merged, ray: Option<&super::block::Ctx>) -> Topology {
+pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     let nf = m.face_label.len();
     let nv = m.points.len();
     // Edges: (a << 32 | b, face) sorted; a run of equal keys is one edge.

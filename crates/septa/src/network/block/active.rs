@@ -4,9 +4,10 @@
 
 use smallvec::SmallVec;
 
-use super::block::{Ctx, Label};
-use super::NetworkError;
+use super::types::Label;
+use super::values::Ctx;
 use crate::complex::Mode;
+use crate::network::NetworkError;
 
 /// The active functions of tet `t` (ascending): IA, those with a sign change
 /// or a zero at its vertices; MI, those not strictly dominated at all 4.

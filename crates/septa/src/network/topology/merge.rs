@@ -5,10 +5,10 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::block::{BlockOut, FaceKey, Label, OpenT, SRef};
-use super::uf::UnionFind;
-use super::VKey;
 use crate::complex::{Mode, NONE};
+use crate::network::block::{BlockOut, FaceKey, Label, OpenT, SRef};
+use crate::network::VKey;
+use crate::uf::UnionFind;
 
 /// Region labels stored flat, a fixed number of words each (one for MI
 /// and for IA up to 64 functions): a `Vec<Label>` costs 24 bytes a region,

@@ -3,8 +3,8 @@
 //! and, for topology, their summaries to the assembly (`assembly.rs`);
 //! [`StreamFeeder::finish`] shoots the rays (`rerun.rs`).
 //!
-//! [`stream_sparse`](super::stream::stream_sparse) and
-//! [`stream_topology`](super::stream::stream_topology) compute the blocks on
+//! [`stream_sparse`](crate::network::stream_sparse) and
+//! [`stream_topology`](crate::network::stream_topology) compute the blocks on
 //! this machine and feed them here; a caller whose blocks were computed
 //! elsewhere (on a Dask cluster, as bytes: [`BlockResult::from_bytes`])
 //! feeds them the same way, so the stream and its topology are the same
@@ -12,17 +12,19 @@
 
 use super::assembly::{Assembler, NetworkSummary};
 use super::numbering::VertexNumbering;
-use super::sparse::{block_at, cubes, JobKey, SparsePlan};
-use super::stream::{StreamBlock, StreamError, StreamSink, StreamStats};
-pub(crate) use super::summary::BlockSummary;
-use super::{BlockResult, NetworkError, NetworkOptions};
+use super::sink::{StreamBlock, StreamError, StreamSink, StreamStats};
+use super::summary::BlockSummary;
 use crate::grid::{BoxGrid, Grid};
-use crate::scene::Primitive;
+use crate::network::block::PointValues;
+use crate::network::field::BoundedField;
+use crate::network::sparse::{block_at, check_functions, ctx, cubes, BlockResult, JobKey, SparsePlan};
+use crate::network::topology::ray_cells;
+use crate::network::{NetworkError, NetworkOptions};
 
 /// Feeds block results to a sink in plan order (module doc).
-pub struct StreamFeeder {
+pub struct StreamFeeder<'a> {
     grid: BoxGrid,
-    functions: Vec<Primitive>,
+    functions: Box<dyn BoundedField + Send + 'a>,
     options: NetworkOptions,
     job: JobKey,
     kept: Vec<usize>,
@@ -47,25 +49,26 @@ fn unclean(index: usize) -> NetworkError {
     ))
 }
 
-impl StreamFeeder {
+impl<'a> StreamFeeder<'a> {
     /// A feeder for the blocks `plan.kept` of a sparse job
-    /// ([`plan_sparse`](super::plan_sparse) on the same grid, functions and
+    /// ([`plan_sparse`](crate::network::plan_sparse) on the same grid, functions and
     /// options); with `topology`, the assembly runs too.
-    pub fn new(
+    pub fn new<F: BoundedField + Send + 'a>(
         grid: &BoxGrid,
-        functions: &[Primitive],
+        functions: F,
         options: &NetworkOptions,
         plan: &SparsePlan,
         topology: bool,
-    ) -> Result<StreamFeeder, NetworkError> {
-        super::sparse::check_functions(functions.len())?;
+    ) -> Result<StreamFeeder<'a>, NetworkError> {
+        let k = functions.functions();
+        check_functions(k)?;
         if plan.dense {
             return Err(NetworkError::BlockResults(
                 "the plan asks for the dense path (volumes or cell grouping): nothing to stream".into(),
             ));
         }
         let numbering = VertexNumbering::new(grid);
-        let assembler = topology.then(|| Assembler::new(options.mode, functions.len(), numbering.plane()));
+        let assembler = topology.then(|| Assembler::new(options.mode, k, numbering.plane()));
         let stats = StreamStats {
             blocks: plan.blocks,
             sampled: plan.kept.len(),
@@ -74,9 +77,9 @@ impl StreamFeeder {
         };
         Ok(StreamFeeder {
             grid: grid.clone(),
-            functions: functions.to_vec(),
+            functions: Box::new(functions),
             options: options.clone(),
-            job: JobKey::of(grid, functions.len(), options),
+            job: JobKey::of(grid, k, options),
             kept: plan.kept.clone(),
             next: 0,
             numbering,
@@ -216,18 +219,18 @@ impl StreamFeeder {
         stats.peak_shared_keys = self.numbering.peak();
         let Some(mut asm) = self.assembler else { return Ok((stats, None)) };
         stats.peak_open = asm.peak_open;
-        let (grid, functions, options) = (&self.grid, &self.functions[..], &self.options);
+        let (grid, functions, options) = (&self.grid, &*self.functions as &dyn BoundedField, &self.options);
         let g = Grid::Box(grid.clone());
-        let pv = super::sparse::PointValues { grid, functions };
-        let ctx = super::sparse::ctx(&g, functions.len(), options, &pv);
-        let row0: Vec<f64> = functions.iter().map(|f| f.eval(grid.vertex(0))).collect();
+        let pv = PointValues { grid, functions };
+        let ctx = ctx(&g, functions.functions(), options, &pv);
+        let row0: Vec<f64> = (0..functions.functions()).map(|f| functions.value(f, grid.vertex(0))).collect();
         let block_pieces = std::mem::take(&mut asm.block_pieces);
         let mut reruns = 0;
         let summary = asm.finish(
             stats.vertices as usize,
             |a| {
                 let mut index = super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, a);
-                let r = super::raytrace::ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
+                let r = ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
                 reruns = index.reruns;
                 r
             },

@@ -39,42 +39,12 @@ use std::sync::Mutex;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::block::Worker;
-use super::sparse::{
-    block_at, check_functions, ctx, cubes, finish_with, BlockResult, BlockValues, JobKey, SparsePlan, SparseStats,
-    Values,
-};
-use super::{Network, NetworkError, NetworkOptions};
+use super::run::{block_at, check_functions, ctx, cubes, finish_with, BlockResult, JobKey, SparsePlan, SparseStats};
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid};
-use crate::scene::Primitive;
-
-/// `k` real functions evaluable at points, without any bound (a user's
-/// callable); continuation needs nothing else.
-pub trait Field: Sync {
-    /// Number of functions `k`.
-    fn functions(&self) -> usize;
-    /// Appends the values at `points` to `out`, row-major: `points.len() * k`
-    /// values, function `f` of point `i` at `i * k + f`. An `Err` (a
-    /// message) stops the run with [`NetworkError::Continuation`].
-    fn eval(&self, points: &[[f64; 3]], out: &mut Vec<f64>) -> Result<(), String>;
-}
-
-/// Scene primitives as a [`Field`] (their bounds unused).
-pub struct Primitives<'a>(pub &'a [Primitive]);
-
-impl Field for Primitives<'_> {
-    fn functions(&self) -> usize {
-        self.0.len()
-    }
-
-    fn eval(&self, points: &[[f64; 3]], out: &mut Vec<f64>) -> Result<(), String> {
-        for &p in points {
-            out.extend(self.0.iter().map(|f| f.eval(p)));
-        }
-        Ok(())
-    }
-}
+use crate::network::block::{BlockValues, Values, Worker};
+use crate::network::field::Field;
+use crate::network::{Network, NetworkError, NetworkOptions};
 
 /// Where continuation starts.
 #[derive(Clone, Debug)]
@@ -307,7 +277,7 @@ fn dense(grid: &BoxGrid, field: &dyn Field, options: &NetworkOptions) -> Result<
         let points: Vec<[f64; 3]> = chunk.iter().map(|&v| grid.vertex(v)).collect();
         values.extend(eval_checked(field, options.mode, &points, chunk)?.0);
     }
-    super::compute(&g, &values, field.functions(), options)
+    crate::network::compute(&g, &values, field.functions(), options)
 }
 
 /// Seed blocks of a continuation job (indices into `grid.blocks(options.block)`,
@@ -393,7 +363,7 @@ pub fn finish_continuation(
 
 /// Computes the IA or MI network of `field` on `grid` by continuation from
 /// `seeds` (see the module doc): the network of the components the seeds
-/// reach, equal to [`compute`](super::compute) when they reach them all.
+/// reach, equal to [`compute`](crate::network::compute) when they reach them all.
 /// It is [`continuation_seeds`], rounds of [`continuation_block`] over each
 /// frontier (in parallel on the current rayon pool) and
 /// [`finish_continuation`].

@@ -11,11 +11,12 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::assembly::Assembled;
-use super::block::{BlockOut, Worker};
-use super::raytrace::RayIndex;
-use super::{NetworkOptions, VKey};
 use crate::grid::{BoxGrid, Grid};
-use crate::scene::Primitive;
+use crate::network::block::{BlockOut, Worker};
+use crate::network::field::BoundedField;
+use crate::network::sparse::run_block_with;
+use crate::network::topology::{faces_at_vertices, RayIndex};
+use crate::network::{NetworkOptions, VKey};
 
 /// A block run again, indexed for lookups.
 struct Rerun {
@@ -33,7 +34,7 @@ struct Rerun {
 pub(crate) struct RerunIndex<'a> {
     pub grid: &'a BoxGrid,
     pub g: &'a Grid,
-    pub functions: &'a [Primitive],
+    pub functions: &'a dyn BoundedField,
     pub options: &'a NetworkOptions,
     /// (block index, its first piece), ascending: the streamed blocks.
     pub block_pieces: &'a [(usize, u32)],
@@ -51,7 +52,7 @@ impl<'a> RerunIndex<'a> {
     pub(crate) fn new(
         grid: &'a BoxGrid,
         g: &'a Grid,
-        functions: &'a [Primitive],
+        functions: &'a dyn BoundedField,
         options: &'a NetworkOptions,
         block_pieces: &'a [(usize, u32)],
         assembled: &'a Assembled,
@@ -87,14 +88,13 @@ impl<'a> RerunIndex<'a> {
         }
         let at = self.block_pieces.binary_search_by_key(&index, |x| x.0).ok()?;
         let base = self.block_pieces[at].1;
-        let r = super::sparse::run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index)
-            .ok()?;
+        let r = run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index).ok()?;
         self.reruns += 1;
         let out = r.out;
         let s = super::summary::summarize(&out).ok()?;
         let piece = s.poly_piece.iter().map(|&p| base + p).collect();
         let vmap = out.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
-        let (start, polys) = super::raytrace::faces_at_vertices(out.keys.len(), &out.poly_start, &out.poly_verts);
+        let (start, polys) = faces_at_vertices(out.keys.len(), &out.poly_start, &out.poly_verts);
         if self.cache.len() == KEEP {
             self.cache.remove(0);
         }

@@ -20,10 +20,10 @@
 
 use smallvec::SmallVec;
 
-use super::block::{BlockOut, FaceKey, HalfPoly, Label, SRef};
-use super::sparse::{BlockResult, JobKey};
-use super::VKey;
+use super::run::{BlockResult, JobKey};
 use crate::complex::Mode;
+use crate::network::block::{BlockOut, FaceKey, HalfPoly, Label, SRef};
+use crate::network::VKey;
 
 const MAGIC: &[u8; 8] = b"SEPTABLK";
 /// Version of the layout; bump it on any change.

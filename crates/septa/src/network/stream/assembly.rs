@@ -28,12 +28,14 @@
 
 use rustc_hash::FxHashMap;
 
-use super::block::{BlockOut, Label, OpenT};
 use super::numbering::max_x;
 use super::summary::{BlockSummary, ShellNode};
-use super::uf::UnionFind;
-use super::{CellInfo, Mode, NetworkError, Patch};
 use crate::complex::NONE;
+use crate::network::block::{BlockOut, Label, OpenT};
+use crate::network::dense::label_free_cells;
+use crate::network::topology::{chains, min_rotation, wedge_cycle};
+use crate::network::{named_counts, CellInfo, Mode, NetworkError, Patch};
+use crate::uf::UnionFind;
 
 /// The topology of a streamed network, without its polygons (they went to
 /// the stream's sink, each with its patch piece: [`NetworkSummary::piece_patch`]
@@ -74,9 +76,9 @@ pub struct NetworkSummary {
 }
 
 impl NetworkSummary {
-    /// The counts the reference reports, by name (as [`Network::counts`](super::Network::counts)).
+    /// The counts the reference reports, by name (as [`Network::counts`](crate::network::Network::counts)).
     pub fn counts(&self) -> Vec<(&'static str, usize)> {
-        super::named_counts([
+        named_counts([
             self.vertices,
             self.faces,
             self.edges,
@@ -381,7 +383,7 @@ impl Assembler {
                 }
             }
         }
-        super::label_free_cells(&mut cells, self.mode, row0);
+        label_free_cells(&mut cells, self.mode, row0);
         let (chains, corners) = compact_chains(&mut self.chain_edges);
         self.wedges.sort_unstable();
         let chain_patches = self.chain_patches(&chains, &piece_patch);
@@ -418,9 +420,9 @@ impl Assembler {
             .map(|c| {
                 let n = c.len().saturating_sub(1);
                 let cyc = (0..n)
-                    .find_map(|k| by_edge.get(&edge(c, k)).and_then(|p| super::topology::wedge_cycle(p, &patch_of)))
+                    .find_map(|k| by_edge.get(&edge(c, k)).and_then(|p| wedge_cycle(p, &patch_of)))
                     .unwrap_or_default();
-                super::canon::min_rotation(&cyc)
+                min_rotation(&cyc)
             })
             .collect()
     }
@@ -447,7 +449,7 @@ fn compact_chains(edges: &mut [[u32; 2]]) -> (Vec<Vec<u32>>, Vec<u32>) {
     verts.dedup();
     let local = |v: u32| verts.binary_search(&v).expect("a chain vertex") as u32;
     let compact: Vec<[u32; 2]> = edges.iter().map(|&[a, b]| [local(a), local(b)]).collect();
-    let (chains, corners) = super::topology::chains(verts.len(), &compact);
+    let (chains, corners) = chains(verts.len(), &compact);
     let back = |v: &u32| verts[*v as usize];
     (chains.iter().map(|c| c.iter().map(back).collect()).collect(), corners.iter().map(back).collect())
 }

@@ -30,11 +30,6 @@ impl UnionFind {
         self.parent.len()
     }
 
-    /// True when empty.
-    pub fn is_empty(&self) -> bool {
-        self.parent.is_empty()
-    }
-
     /// Root of `x`'s set (the smallest element of the set).
     pub fn find(&mut self, mut x: u32) -> u32 {
         while self.parent[x as usize] != x {

@@ -15,8 +15,8 @@
 
 use smallvec::SmallVec;
 
+use super::build::Topology;
 use super::merge::Merged;
-use super::topology::Topology;
 use crate::complex::NONE;
 
 /// Renumbers the vertices and faces of `m` canonically (see the module docs).
@@ -167,8 +167,8 @@ fn bucket_sort(
     order
 }
 
-fn empty_cell() -> super::CellInfo {
-    super::CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }
+fn empty_cell() -> crate::network::CellInfo {
+    crate::network::CellInfo { shells: Vec::new(), label: Default::default(), volume: 0.0 }
 }
 
 /// The lexicographically smallest rotation of `c` or of its reverse.

@@ -20,9 +20,12 @@ use std::sync::OnceLock;
 
 use smallvec::SmallVec;
 
-use super::block::{position_on, vertex_id_by_key, Ctx, Label, State};
-use super::VKey;
+use super::keys::{position_on, vertex_id_by_key};
+use super::types::Label;
+use super::values::Ctx;
+use super::worker::State;
 use crate::complex::{Complex, Mode, Options, Plane};
+use crate::network::VKey;
 
 /// One vertex of the template polygon: on the tet edge `simplex` (bit mask
 /// of its two corners), defined by local functions `funcs[..len]`.

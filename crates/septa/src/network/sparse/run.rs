@@ -17,22 +17,17 @@
 //! shooting rays (volumes asked for, a value exactly 0 in IA, a tie for the
 //! maximum in MI), the sparse path falls back to the dense one and says so.
 
-use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::block::{BlockOut, Ctx, Worker};
-use super::{merge, topology, Network, NetworkError, NetworkOptions};
 use crate::complex::{Mode, Options};
 use crate::grid::{Block, BoxGrid, Grid};
-use crate::scene::{block_may_be_active_ia, block_may_be_active_mi, sample_grid, Primitive};
-
-/// Function values at grid vertices, for the block worker and ray shooting.
-pub(crate) trait Values: Sync {
-    /// Value of function `f` at grid vertex `v`.
-    fn val(&self, v: u32, f: usize) -> f64;
-}
+use crate::network::block::{BlockOut, BlockValues, Ctx, PointValues, Values, Worker};
+use crate::network::dense::{assemble, label_free_cells};
+use crate::network::field::{BoundedField, ByRef};
+use crate::network::topology::{canonicalize_merged, canonicalize_topology, merge, topology, Merged, Merger};
+use crate::network::{Network, NetworkError, NetworkOptions};
 
 /// What sparse evaluation did, for the JSON summary.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -52,86 +47,24 @@ pub struct SparseStats {
     pub dense_fallback: bool,
 }
 
-/// The values of one block's vertices, `lo..=hi` in grid coordinates.
-pub(crate) struct BlockValues {
-    lo: [usize; 3],
-    vn: [usize; 3],
-    k: usize,
-    pub(crate) data: Vec<f64>,
-    /// Vertex id strides of i and j.
-    stride: [u32; 2],
-    /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
-    /// block worker reads the same few tet vertices over and over (MI reads
-    /// up to `4 k^2` values per tet) and the integer divisions that locate
-    /// a row dominated. Relaxed atomics are plain loads and stores here;
-    /// every entry is self-validating, so sharing could never give a wrong row.
-    cache: [AtomicU64; 16],
-}
-
-impl BlockValues {
-    pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
-        let b = grid.res[2] as u32 + 1;
-        let a = (grid.res[1] as u32 + 1) * b;
-        BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
-    }
-
-    #[inline]
-    fn local(&self, v: u32) -> usize {
-        let slot = &self.cache[(v.wrapping_mul(0x9E37_79B1) >> 28) as usize];
-        let e = slot.load(Ordering::Relaxed);
-        if e >> 32 == v as u64 {
-            return (e & 0xFFFF_FFFF) as usize;
-        }
-        let (i, r) = (v / self.stride[0], v % self.stride[0]);
-        let (j, l) = (r / self.stride[1], r % self.stride[1]);
-        let local = ((i as usize - self.lo[0]) * self.vn[1] + (j as usize - self.lo[1])) * self.vn[2]
-            + (l as usize - self.lo[2]);
-        slot.store((v as u64) << 32 | local as u64, Ordering::Relaxed);
-        local
-    }
-}
-
-impl Values for BlockValues {
-    #[inline]
-    fn val(&self, v: u32, f: usize) -> f64 {
-        self.data[self.local(v) * self.k + f]
-    }
-}
-
-/// Values computed on demand at any grid vertex (for the few vertices ray
-/// shooting looks at, possibly in skipped blocks).
-pub(crate) struct PointValues<'a> {
-    pub(crate) grid: &'a BoxGrid,
-    pub(crate) functions: &'a [Primitive],
-}
-
-impl Values for PointValues<'_> {
-    fn val(&self, v: u32, f: usize) -> f64 {
-        self.functions[f].eval(self.grid.vertex(v))
-    }
-}
-
 /// Whether a block may hold a part of the network, by the functions' bounds
 /// over its box (no sampling).
-fn may_be_active(grid: &BoxGrid, functions: &[Primitive], mode: Mode, lo: [usize; 3], hi: [usize; 3]) -> bool {
+fn may_be_active(grid: &BoxGrid, functions: &dyn BoundedField, mode: Mode, lo: [usize; 3], hi: [usize; 3]) -> bool {
     let a = grid.vertex(grid.vertex_index(lo));
     let b = grid.vertex(grid.vertex_index(hi));
-    match mode {
-        Mode::Ia => block_may_be_active_ia(functions, a, b),
-        Mode::Mi => block_may_be_active_mi(functions, a, b),
-    }
+    functions.may_be_active(mode, a, b)
 }
 
 /// Samples the vertices of cubes `lo..hi`; also says whether ray shooting's
 /// precondition holds there (IA no value 0, MI a unique strict maximum).
 fn sample_block(
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &dyn BoundedField,
     mode: Mode,
     lo: [usize; 3],
     hi: [usize; 3],
 ) -> Result<(BlockValues, bool), NetworkError> {
-    let k = functions.len();
+    let k = functions.functions();
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let mut data = Vec::with_capacity(vn[0] * vn[1] * vn[2] * k);
     let mut clean = true;
@@ -141,8 +74,8 @@ fn sample_block(
                 let v = grid.vertex_index([i, j, l]);
                 let p = grid.vertex(v);
                 let start = data.len();
-                for (f, func) in functions.iter().enumerate() {
-                    let x = func.eval(p);
+                for f in 0..k {
+                    let x = functions.value(f, p);
                     if !x.is_finite() {
                         return Err(NetworkError::NonFinite { vertex: v as usize, function: f, value: x });
                     }
@@ -180,10 +113,10 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
 }
 
 /// The dense path on the same functions (every vertex sampled).
-fn dense(grid: &BoxGrid, functions: &[Primitive], options: &NetworkOptions) -> Result<Network, NetworkError> {
+fn dense(grid: &BoxGrid, functions: &dyn BoundedField, options: &NetworkOptions) -> Result<Network, NetworkError> {
     let g = Grid::Box(grid.clone());
-    let values = sample_grid(functions, &g.vertices());
-    super::compute(&g, &values, functions.len(), options)
+    let values = functions.sample(&g.vertices());
+    crate::network::compute(&g, &values, functions.functions(), options)
 }
 
 /// The first step of a sparse job: which blocks may hold a part of the
@@ -320,12 +253,13 @@ pub(crate) fn block_at(grid: &BoxGrid, size: usize, index: usize) -> Option<Bloc
 
 /// Step 1 of a sparse job: classifies the blocks by the functions' bounds
 /// (in parallel) and lists those to sample.
-pub fn plan_sparse(
+pub fn plan_sparse<F: BoundedField + ?Sized>(
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &F,
     options: &NetworkOptions,
 ) -> Result<SparsePlan, NetworkError> {
-    check_functions(functions.len())?;
+    let functions: &dyn BoundedField = &ByRef(functions);
+    check_functions(functions.functions())?;
     let blocks = grid.blocks(options.block);
     if options.volumes || !options.raytrace {
         return Ok(SparsePlan { blocks: blocks.len(), kept: Vec::new(), dense: true });
@@ -345,11 +279,11 @@ pub(crate) fn run_block_with(
     w: &mut Worker,
     g: &Grid,
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &dyn BoundedField,
     options: &NetworkOptions,
     index: usize,
 ) -> Result<BlockResult, NetworkError> {
-    let k = functions.len();
+    let k = functions.functions();
     let b = block_at(grid, options.block, index).ok_or_else(|| {
         NetworkError::BlockResults(format!("block {index} does not exist (the grid has {} blocks)", {
             let n = grid.res.map(|r| r.div_ceil(options.block.max(1)));
@@ -367,13 +301,14 @@ pub(crate) fn run_block_with(
 /// Step 2 of a sparse job: samples block `index` (of `grid.blocks(options.block)`)
 /// and builds its part of the network. Independent of every other block,
 /// so it may run anywhere (another thread, process or machine).
-pub fn run_block(
+pub fn run_block<F: BoundedField + ?Sized>(
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &F,
     options: &NetworkOptions,
     index: usize,
 ) -> Result<BlockResult, NetworkError> {
-    check_functions(functions.len())?;
+    let functions: &dyn BoundedField = &ByRef(functions);
+    check_functions(functions.functions())?;
     let g = Grid::Box(grid.clone());
     run_block_with(&mut Worker::default(), &g, grid, functions, options, index)
 }
@@ -385,16 +320,17 @@ pub fn run_block(
 /// assembles the [`Network`]. Falls back to the dense path, here, when the
 /// plan says so, a block is not clean, or ray shooting does not apply.
 /// `results` must be exactly the plan's kept blocks of this job.
-pub fn finish_sparse(
+pub fn finish_sparse<F: BoundedField + ?Sized>(
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &F,
     options: &NetworkOptions,
     plan: &SparsePlan,
     results: Vec<BlockResult>,
 ) -> Result<(Network, SparseStats), NetworkError> {
-    check_functions(functions.len())?;
+    let functions: &dyn BoundedField = &ByRef(functions);
+    check_functions(functions.functions())?;
     let pv = PointValues { grid, functions };
-    finish_with(grid, functions.len(), options, plan, results, &pv, || dense(grid, functions, options))
+    finish_with(grid, functions.functions(), options, plan, results, &pv, || dense(grid, functions, options))
 }
 
 /// [`finish_sparse`] with values on demand from `pv` and the dense path
@@ -439,7 +375,7 @@ pub(crate) fn finish_with(
     }
     let outs: Vec<BlockOut> = results.into_iter().map(|r| r.out).collect();
     let t1 = Instant::now();
-    let m = merge::merge(options.mode, outs);
+    let m = merge(options.mode, outs);
     finish_merged(grid, k, options, m, stats, pv, [t1 - t0, t1.elapsed()], dense)
 }
 
@@ -463,7 +399,7 @@ fn finish_merged(
     grid: &BoxGrid,
     k: usize,
     options: &NetworkOptions,
-    mut m: merge::Merged,
+    mut m: Merged,
     stats: SparseStats,
     pv: &dyn Values,
     [tets, merged]: [std::time::Duration; 2],
@@ -471,35 +407,36 @@ fn finish_merged(
 ) -> Result<(Network, SparseStats), NetworkError> {
     let t_merged = Instant::now();
     // The same canonical order as the dense path (identical output).
-    super::canon::canonicalize_merged(&mut m);
+    canonicalize_merged(&mut m);
     let t2 = Instant::now();
     let g = Grid::Box(grid.clone());
     let c = ctx(&g, k, options, pv);
-    let mut topo = topology::topology(&mut m, Some(&c));
+    let mut topo = topology(&mut m, Some(&c));
     if topo.cells_method != "raytrace" {
         return dense_fallback(grid, stats, dense);
     }
-    super::canon::canonicalize_topology(&mut topo);
+    canonicalize_topology(&mut topo);
     let row: Vec<f64> = (0..k).map(|f| pv.val(0, f)).collect();
-    super::label_free_cells(&mut topo.cells, options.mode, &row);
+    label_free_cells(&mut topo.cells, options.mode, &row);
     let t3 = Instant::now();
-    let mut net = super::assemble(options.mode, k, m, topo, [tets, merged, t3 - t2]);
+    let mut net = assemble(options.mode, k, m, topo, [tets, merged, t3 - t2]);
     net.seconds.insert(2, ("canon", (t2 - t_merged).as_secs_f64()));
     Ok((net, stats))
 }
 
 /// Computes the IA or MI network of analytic functions on a box grid by
 /// sparse evaluation (see the module doc); the result equals
-/// [`compute`](super::compute) on the functions sampled at every vertex.
+/// [`compute`](crate::network::compute) on the functions sampled at every vertex.
 ///
 /// It is [`plan_sparse`], [`run_block`] on every kept block (in parallel
 /// on the current rayon pool) and [`finish_sparse`]: a distributed run of
 /// the same three steps is identical by construction.
-pub fn compute_sparse(
+pub fn compute_sparse<F: BoundedField + ?Sized>(
     grid: &BoxGrid,
-    functions: &[Primitive],
+    functions: &F,
     options: &NetworkOptions,
 ) -> Result<(Network, SparseStats), NetworkError> {
+    let functions: &dyn BoundedField = &ByRef(functions);
     let t0 = Instant::now();
     let plan = plan_sparse(grid, functions, options)?;
     if plan.dense {
@@ -513,7 +450,7 @@ pub fn compute_sparse(
     // each window completes, so only a window's block outputs are alive
     // next to the merged network (the same result as merging all at once).
     let window = 16 * rayon::current_num_threads().max(1);
-    let mut merger = merge::Merger::new(options.mode);
+    let mut merger = Merger::new(options.mode);
     let mut merge_time = std::time::Duration::ZERO;
     for chunk in plan.kept.chunks(window) {
         let results: Vec<BlockResult> = chunk
@@ -548,5 +485,7 @@ pub fn compute_sparse(
     merge_time += t.elapsed();
     let tets = t0.elapsed() - merge_time;
     let pv = PointValues { grid, functions };
-    finish_merged(grid, functions.len(), options, m, stats, &pv, [tets, merge_time], || dense(grid, functions, options))
+    finish_merged(grid, functions.functions(), options, m, stats, &pv, [tets, merge_time], || {
+        dense(grid, functions, options)
+    })
 }

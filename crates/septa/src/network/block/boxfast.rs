@@ -1,0 +1,224 @@
+//! The fast path for blocks of a box grid: a cube whose 8 corners carry the
+//! same region label (IA: the same strict sign of every function; MI: the
+//! same unique strict maximum) holds no part of the network in any of its
+//! tets, so it becomes one region node without per-tet work, joined to
+//! empty neighbour cubes by index and to the rest through face contacts.
+//!
+//! Why it is exact: IA, a linear function with one strict sign at the 4
+//! corners of a tet is nonzero in it; MI, a function strictly maximal at the
+//! 4 corners of a tet strictly dominates every other one there.
+
+use smallvec::SmallVec;
+
+use super::types::Label;
+use super::values::Ctx;
+use super::worker::{contact, face_key, State, Worker};
+use crate::complex::{Mode, NONE};
+use crate::grid::BoxGrid;
+use crate::network::NetworkError;
+
+/// Corner label of a vertex: IA sign bits (k <= 63), MI the strict argmax;
+/// `BAD` when a value is zero (IA) or the maximum is tied (MI).
+const BAD: u64 = u64::MAX;
+
+/// Whether the fast path applies.
+pub(crate) fn applies(ctx: &Ctx) -> bool {
+    ctx.mode == Mode::Mi || ctx.k <= 63
+}
+
+fn vertex_label(ctx: &Ctx, v: u32) -> u64 {
+    let k = ctx.k;
+    let mut buf = Vec::new();
+    let row = ctx.row(v, &mut buf);
+    match ctx.mode {
+        Mode::Ia => {
+            let mut bits = 0u64;
+            for (f, &x) in row.iter().enumerate() {
+                if x == 0.0 {
+                    return BAD;
+                }
+                if x > 0.0 {
+                    bits |= 1 << f;
+                }
+            }
+            bits
+        }
+        Mode::Mi => {
+            let mut best = 0;
+            let mut tied = false;
+            for f in 1..k {
+                if row[f] > row[best] {
+                    best = f;
+                    tied = false;
+                } else if row[f] == row[best] {
+                    tied = true;
+                }
+            }
+            if tied {
+                BAD
+            } else {
+                best as u64
+            }
+        }
+    }
+}
+
+/// Tet faces of a cube lying on each of its 6 faces (axis * 2 + side), as
+/// (local tet, tet face) pairs, for a cube with the parity of `cube`.
+fn cube_face_table(g: &BoxGrid, cube: [usize; 3]) -> [SmallVec<[(usize, usize); 2]>; 6] {
+    let per = g.split.tets_per_cube();
+    let c = g.cube_index(cube);
+    let mut out: [SmallVec<[(usize, usize); 2]>; 6] = Default::default();
+    for lt in 0..per {
+        let tet = g.tet(c * per + lt);
+        let ijk = tet.map(|v| g.vertex_ijk(v));
+        for skip in 0..4 {
+            for axis in 0..3 {
+                for side in 0..2 {
+                    let want = cube[axis] + side;
+                    if (0..4).filter(|&j| j != skip).all(|j| ijk[j][axis] == want) {
+                        out[axis * 2 + side].push((lt, skip));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Processes the cubes `lo..hi` of a box grid.
+pub(super) fn run_box(
+    w: &mut Worker,
+    ctx: &Ctx,
+    st: &mut State,
+    g: &BoxGrid,
+    lo: [usize; 3],
+    hi: [usize; 3],
+) -> Result<(), NetworkError> {
+    let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let vn = [n[0] + 1, n[1] + 1, n[2] + 1];
+    let mut vl = vec![0u64; vn[0] * vn[1] * vn[2]];
+    for i in 0..vn[0] {
+        for j in 0..vn[1] {
+            for k in 0..vn[2] {
+                let v = g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]);
+                vl[(i * vn[1] + j) * vn[2] + k] = vertex_label(ctx, v);
+            }
+        }
+    }
+    let per = g.split.tets_per_cube();
+    let cube_vol =
+        if ctx.volumes { (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product() } else { 0.0 };
+    let mut node = vec![NONE; n[0] * n[1] * n[2]];
+    let local = |i: usize, j: usize, k: usize| (i * n[1] + j) * n[2] + k;
+    for i in 0..n[0] {
+        for j in 0..n[1] {
+            for k in 0..n[2] {
+                let l0 = vl[(i * vn[1] + j) * vn[2] + k];
+                let mut same = l0 != BAD;
+                for d in 1..8 {
+                    let (a, b, c) = (d >> 2 & 1, d >> 1 & 1, d & 1);
+                    same &= vl[((i + a) * vn[1] + j + b) * vn[2] + k + c] == l0;
+                }
+                let cube = g.cube_index([lo[0] + i, lo[1] + j, lo[2] + k]);
+                if same && !st.grouping {
+                    // Without grouping an empty cube is nobody's region: skip it.
+                    continue;
+                }
+                if same {
+                    let id = st.uf.push();
+                    let l: Label = match ctx.mode {
+                        Mode::Ia => {
+                            let mut v: Label = SmallVec::from_elem(0, 1);
+                            v[0] = l0;
+                            v
+                        }
+                        Mode::Mi => SmallVec::from_elem(l0, 1),
+                    };
+                    st.node_label.push(l);
+                    st.node_volume.push(cube_vol);
+                    node[local(i, j, k)] = id;
+                } else {
+                    for (lt, t) in (cube * per..(cube + 1) * per).enumerate() {
+                        // IA: the active functions are the sign bits that differ
+                        // between the tet's corners, the label at corner 0 the
+                        // base of its cells' labels (when no value is zero).
+                        w.active_hint = None;
+                        w.base_hint = None;
+                        if ctx.mode == Mode::Ia {
+                            let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                            let corners = g.tet_corners(gc, lt).map(|p| {
+                                let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
+                                vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
+                            });
+                            let (mut or, mut and) = (0u64, u64::MAX);
+                            for l in corners {
+                                or |= l;
+                                and &= l;
+                            }
+                            if !corners.contains(&BAD) {
+                                w.active_hint = Some(or ^ and);
+                                w.base_hint = Some(corners[0]);
+                            }
+                        }
+                        w.process_tet(ctx, st, t)?;
+                    }
+                    w.active_hint = None;
+                    w.base_hint = None;
+                }
+            }
+        }
+    }
+    if !st.grouping {
+        return Ok(());
+    }
+    // Join empty cubes to empty neighbours by index, the rest by contacts.
+    let odd =
+        [[0, 0, 1], [0, 1, 0], [1, 0, 0]].into_iter().find(|c| (0..3).all(|a| c[a] < g.res[a])).unwrap_or([0, 0, 0]);
+    let tables = [cube_face_table(g, [0, 0, 0]), cube_face_table(g, odd)];
+    for i in 0..n[0] {
+        for j in 0..n[1] {
+            for k in 0..n[2] {
+                let id = node[local(i, j, k)];
+                if id == NONE {
+                    continue;
+                }
+                let ijk = [i, j, k];
+                let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                let parity = match g.split {
+                    crate::grid::Split::Five => (gc[0] + gc[1] + gc[2]) % 2,
+                    crate::grid::Split::Six => 0,
+                };
+                let cube = g.cube_index(gc);
+                for axis in 0..3 {
+                    for side in 0..2 {
+                        let mut nb = ijk;
+                        let inside = if side == 1 {
+                            nb[axis] += 1;
+                            nb[axis] < n[axis]
+                        } else if nb[axis] > 0 {
+                            nb[axis] -= 1;
+                            true
+                        } else {
+                            false
+                        };
+                        if inside {
+                            let other = node[local(nb[0], nb[1], nb[2])];
+                            if other != NONE {
+                                // Empty neighbours share 4 corners, hence their label.
+                                st.uf.union(id, other);
+                                continue;
+                            }
+                        }
+                        let l = st.node_label[id as usize].clone();
+                        for &(lt, f) in &tables[parity][axis * 2 + side] {
+                            let tet = g.tet(cube * per + lt);
+                            contact(st, face_key(&tet, f), &l, id);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,113 @@
+//! Where a block reads function values: the whole grid's array (dense),
+//! one block's samples (sparse), or values computed on demand at single
+//! grid vertices (ray shooting across skipped blocks).
+
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use crate::complex::{Mode, Options};
+use crate::grid::{BoxGrid, Grid};
+use crate::network::field::BoundedField;
+
+/// Function values at grid vertices, for the block worker and ray shooting.
+pub(crate) trait Values: Sync {
+    /// Value of function `f` at grid vertex `v`.
+    fn val(&self, v: u32, f: usize) -> f64;
+}
+
+/// Run-wide inputs.
+pub(crate) struct Ctx<'a> {
+    pub grid: &'a Grid,
+    pub values: &'a [f64],
+    pub k: usize,
+    pub mode: Mode,
+    pub options: Options,
+    pub volumes: bool,
+    /// Join regions across tet faces (cell grouping); off when ray shooting
+    /// is sure to apply.
+    pub grouping: bool,
+    /// Sparse evaluation (issue 6): values come from here, not `values`.
+    pub sparse: Option<&'a dyn Values>,
+}
+
+impl Ctx<'_> {
+    /// Value of function `f` at grid vertex `v`.
+    #[inline]
+    pub(crate) fn val(&self, v: u32, f: usize) -> f64 {
+        match self.sparse {
+            None => self.values[v as usize * self.k + f],
+            Some(s) => s.val(v, f),
+        }
+    }
+
+    /// The `k` values at grid vertex `v` (copied into `buf` when sparse).
+    #[inline]
+    pub(crate) fn row<'b>(&'b self, v: u32, buf: &'b mut Vec<f64>) -> &'b [f64] {
+        match self.sparse {
+            None => &self.values[v as usize * self.k..(v as usize + 1) * self.k],
+            Some(s) => {
+                buf.clear();
+                buf.extend((0..self.k).map(|f| s.val(v, f)));
+                buf
+            }
+        }
+    }
+}
+
+/// The values of one block's vertices, `lo..=hi` in grid coordinates.
+pub(crate) struct BlockValues {
+    lo: [usize; 3],
+    vn: [usize; 3],
+    k: usize,
+    pub(crate) data: Vec<f64>,
+    /// Vertex id strides of i and j.
+    stride: [u32; 2],
+    /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
+    /// block worker reads the same few tet vertices over and over (MI reads
+    /// up to `4 k^2` values per tet) and the integer divisions that locate
+    /// a row dominated. Relaxed atomics are plain loads and stores here;
+    /// every entry is self-validating, so sharing could never give a wrong row.
+    cache: [AtomicU64; 16],
+}
+
+impl BlockValues {
+    pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
+        let b = grid.res[2] as u32 + 1;
+        let a = (grid.res[1] as u32 + 1) * b;
+        BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
+    }
+
+    #[inline]
+    fn local(&self, v: u32) -> usize {
+        let slot = &self.cache[(v.wrapping_mul(0x9E37_79B1) >> 28) as usize];
+        let e = slot.load(Ordering::Relaxed);
+        if e >> 32 == v as u64 {
+            return (e & 0xFFFF_FFFF) as usize;
+        }
+        let (i, r) = (v / self.stride[0], v % self.stride[0]);
+        let (j, l) = (r / self.stride[1], r % self.stride[1]);
+        let local = ((i as usize - self.lo[0]) * self.vn[1] + (j as usize - self.lo[1])) * self.vn[2]
+            + (l as usize - self.lo[2]);
+        slot.store((v as u64) << 32 | local as u64, Ordering::Relaxed);
+        local
+    }
+}
+
+impl Values for BlockValues {
+    #[inline]
+    fn val(&self, v: u32, f: usize) -> f64 {
+        self.data[self.local(v) * self.k + f]
+    }
+}
+
+/// Values computed on demand at any grid vertex (for the few vertices ray
+/// shooting looks at, possibly in skipped blocks).
+pub(crate) struct PointValues<'a> {
+    pub(crate) grid: &'a BoxGrid,
+    pub(crate) functions: &'a dyn BoundedField,
+}
+
+impl Values for PointValues<'_> {
+    fn val(&self, v: u32, f: usize) -> f64 {
+        self.functions.value(f, self.grid.vertex(v))
+    }
+}

@@ -1,0 +1,64 @@
+//! What the network asks of functions given as formulas rather than as
+//! samples: values at points, and (for sparse evaluation) a proof that a box
+//! holds no part of the network. The network never names a primitive; the
+//! scene's primitives implement these traits (`scene/field.rs`), and so can
+//! any user type.
+
+use crate::complex::Mode;
+
+/// `k` functions with values at points and guaranteed bounds over boxes:
+/// what sparse evaluation, streaming and the distributed path need.
+///
+/// `value` must be a pure function of its arguments (blocks are re-run and
+/// rays look at single vertices: the same point must give the same bits).
+pub trait BoundedField: Sync {
+    /// Number of functions `k`.
+    fn functions(&self) -> usize;
+    /// Value of function `f` at `p`.
+    fn value(&self, f: usize, p: [f64; 3]) -> f64;
+    /// The `k` values at each of `points`, row-major (`points.len() * k`;
+    /// function `f` of point `i` at `i * k + f`). Equal to calling
+    /// [`BoundedField::value`] at every point; override to go faster.
+    fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        let k = self.functions();
+        let mut out = Vec::with_capacity(points.len() * k);
+        for &p in points {
+            out.extend((0..k).map(|f| self.value(f, p)));
+        }
+        out
+    }
+    /// Whether the box `[min, max]` may hold a part of the network: false
+    /// only if proven empty (IA: every function keeps one strict sign on
+    /// the box; MI: one function exceeds every other on it).
+    fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool;
+}
+
+/// `k` real functions evaluable at points, without any bound (a user's
+/// callable); continuation needs nothing else.
+pub trait Field: Sync {
+    /// Number of functions `k`.
+    fn functions(&self) -> usize;
+    /// Appends the values at `points` to `out`, row-major: `points.len() * k`
+    /// values, function `f` of point `i` at `i * k + f`. An `Err` (a
+    /// message) stops the run with [`super::NetworkError::Continuation`].
+    fn eval(&self, points: &[[f64; 3]], out: &mut Vec<f64>) -> Result<(), String>;
+}
+
+/// A sized handle on any [`BoundedField`], so that slices can be used as
+/// `&dyn BoundedField` inside the network.
+pub(crate) struct ByRef<'a, F: ?Sized>(pub &'a F);
+
+impl<F: BoundedField + ?Sized> BoundedField for ByRef<'_, F> {
+    fn functions(&self) -> usize {
+        self.0.functions()
+    }
+    fn value(&self, f: usize, p: [f64; 3]) -> f64 {
+        self.0.value(f, p)
+    }
+    fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        self.0.sample(points)
+    }
+    fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        self.0.may_be_active(mode, min, max)
+    }
+}

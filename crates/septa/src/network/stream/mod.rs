@@ -1,0 +1,48 @@
+//! Streaming: outputs written to disk block by block for networks larger
+//! than memory.
+//!
+//! [`stream_sparse`] classifies the blocks as sparse evaluation does
+//! ([`plan_sparse`]), runs the kept blocks a window at a time (in parallel
+//! on the current rayon pool) and hands every finished block, in block
+//! index order, to a [`StreamSink`], then drops it. While one window is
+//! handed to the sink the next one is computed, so at most two windows of
+//! block results are alive: memory is bounded by the window, not by the grid.
+//!
+//! What this mode gives: the polygons of the network (Du et al. Sec. 6),
+//! each with its label (IA `[f, f]`, MI `[a, b]`) and its vertices' global
+//! plane-based keys ([`VKey`], Sec. 5.1) and streamed ids; with
+//! [`stream_topology`] also the topology (Sec. 7: patches, chains, corners,
+//! shells, cells), assembled from per-block summaries while the polygons
+//! stream (`summary.rs`, `assembly.rs`): each polygon carries its patch
+//! piece, which the returned [`NetworkSummary`] maps to its patch and cells.
+//! Blocks computed elsewhere (on a Dask cluster, shipped as bytes) go
+//! through the same in-order half, [`StreamFeeder`] (`feeder.rs`).
+//!
+//! Vertices: a block numbers its own vertices. A vertex on a block's
+//! boundary (flagged `shared`) repeats in every block that touches it
+//! (up to 8); its key is the same in each, and so is its streamed id
+//! ([`StreamBlock::vertex_ids`], `numbering.rs`: given at its first coming,
+//! in polygon order). Its position, computed in floating point per tet, may
+//! differ in the last bits between blocks; the in-memory merge keeps the
+//! first block's, and so does the PLY sink. A vertex inside a block is in
+//! that block only. Polygons never repeat: each lies in one tet of one block. Orientation: as in the
+//! block (counter-clockwise seen from the positive side), before the
+//! in-memory path's canonical renumbering.
+//!
+//! Streaming needs ray shooting's precondition (IA: no value exactly 0;
+//! MI: a unique maximum at every vertex) on every sampled block: otherwise
+//! network faces may lie on tet faces and are paired only by the merge. A
+//! block without it stops the run with [`NetworkError::BlockResults`].
+
+mod assembly;
+mod feeder;
+mod numbering;
+mod rerun;
+mod run;
+mod sink;
+mod summary;
+
+pub use assembly::NetworkSummary;
+pub use feeder::StreamFeeder;
+pub use run::{stream_sparse, stream_topology};
+pub use sink::{StreamBlock, StreamError, StreamSink, StreamStats};

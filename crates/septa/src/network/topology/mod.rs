@@ -1,0 +1,15 @@
+//! From merged polygons to the network's topology (Du et al. Sec. 7):
+//! blocks merged by global keys (`merge`), a canonical numbering
+//! independent of thread count and function order (`canon`), patches,
+//! chains, corners, shells and cells (`build`), cells by topological ray
+//! shooting (`raytrace`, Sec. 7.1) or by grouping.
+
+mod build;
+mod canon;
+mod merge;
+mod raytrace;
+
+pub(crate) use build::{chains, topology, wedge_cycle, Topology};
+pub(crate) use canon::{canonicalize_merged, canonicalize_topology, min_rotation};
+pub(crate) use merge::{merge, Merged, Merger};
+pub(crate) use raytrace::{faces_at_vertices, ray_cells, RayIndex};

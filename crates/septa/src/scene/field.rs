@@ -1,0 +1,62 @@
+//! Scene primitives as the network's fields (`network::field`): values
+//! by [`Primitive::eval`], sampling in parallel by [`sample_grid`], empty
+//! boxes proven by the primitives' conservative bounds (`sample.rs`).
+
+use super::{block_may_be_active_ia, block_may_be_active_mi, sample_grid, Primitive};
+use crate::complex::Mode;
+use crate::network::{BoundedField, Field};
+
+impl BoundedField for [Primitive] {
+    fn functions(&self) -> usize {
+        self.len()
+    }
+
+    fn value(&self, f: usize, p: [f64; 3]) -> f64 {
+        self[f].eval(p)
+    }
+
+    fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        sample_grid(self, points)
+    }
+
+    fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        match mode {
+            Mode::Ia => block_may_be_active_ia(self, min, max),
+            Mode::Mi => block_may_be_active_mi(self, min, max),
+        }
+    }
+}
+
+impl BoundedField for Vec<Primitive> {
+    fn functions(&self) -> usize {
+        self.len()
+    }
+
+    fn value(&self, f: usize, p: [f64; 3]) -> f64 {
+        self[f].eval(p)
+    }
+
+    fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        sample_grid(self, points)
+    }
+
+    fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        self.as_slice().may_be_active(mode, min, max)
+    }
+}
+
+/// Scene primitives as a [`Field`] for continuation (their bounds unused).
+pub struct Primitives<'a>(pub &'a [Primitive]);
+
+impl Field for Primitives<'_> {
+    fn functions(&self) -> usize {
+        self.0.len()
+    }
+
+    fn eval(&self, points: &[[f64; 3]], out: &mut Vec<f64>) -> Result<(), String> {
+        for &p in points {
+            out.extend(self.0.iter().map(|f| f.eval(p)));
+        }
+        Ok(())
+    }
+}
