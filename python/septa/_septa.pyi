@@ -19,6 +19,7 @@ def network(
     lookup: bool = True,
     raytrace: bool = True,
     threads: int | None = None,
+    progress: object | None = None,
 ) -> dict: ...
 
 def regions(scene: str, normals: bool = False, clean: float | None = None) -> dict:

@@ -184,3 +184,29 @@ def test_repr_html_is_self_contained():
     html = net._repr_html_()
     assert html.startswith("<iframe srcdoc=") and "__SEPTA_DATA" in html
     assert "src=&quot;http" not in html and 'src="http' not in html
+
+
+def test_region_rule_with_shapes_primitives():
+    """septa.shapes primitives go into a region rule as they are (named by index)."""
+    from septa import shapes
+
+    net = septa.region_surfaces([shapes.sphere([0, 0, 0], 0.6), shapes.sphere([0, 0, 0.6], 0.3)],
+                                [{"when": "1", "region": 1}, {"when": "0", "region": 2}, {"region": 0}],
+                                surfaces=[[0, 2]], grid={"resolution": 17, "bounds": [[-1] * 3, [1] * 3]})
+    assert [(s["regions"], s["euler"], s["boundary_loops"]) for s in net.surfaces] == [([0, 2], 1, 1)]
+
+
+def test_progress_callback_and_logger(caplog):
+    import logging
+
+    from septa import shapes
+
+    g = septa.grid.box(40)
+    f = shapes.sample([shapes.sphere([0.5] * 3, 0.3), shapes.plane([0.5] * 3, [0, 0, 1])], g)
+    calls = []
+    with caplog.at_level(logging.INFO, logger="septa"):
+        net = septa.arrangement(g, f, progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1][0] == calls[-1][1] and all(d <= t for d, t in calls)  # ends at all blocks
+    assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
+    with pytest.raises(septa.InputError, match="progress"):
+        septa.arrangement(g, f, progress=3)

@@ -27,8 +27,12 @@ pub fn run(a: Args) -> CliResult {
         Array::I64(shape, _) => return Err(format!("{file}: labels must have 3 axes, not shape {shape:?}").into()),
         _ => return Err(format!("{file}: labels must be an integer array").into()),
     };
-    let r = a.out.install(|| label_surfaces(&labels, shape, a.sigma))?.map_err(|e| format!("{file}: {e}"))?;
-    regions_out::write_formats(&r, &a.out.output, &a.out.format.0)?;
+    let quiet = a.out.json || a.out.quiet;
+    let r = crate::progress::during(quiet, "label surfaces", || a.out.install(|| label_surfaces(&labels, shape, a.sigma)))?
+        .map_err(|e| format!("{file}: {e}"))?;
+    crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
+        regions_out::write_formats(&r, &a.out.output, &a.out.format.0)
+    })?;
     let summary = regions_out::summary(&r);
     if a.out.json {
         println!("{summary}");

@@ -24,7 +24,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Robustness test of the per-tet construction (paper Table 1).
+    /// Robustness test: random nearly degenerate tetrahedra, each checked for a valid exact result.
     Stress(stress::Args),
     /// Benchmarks.
     Bench(bench::Args),

@@ -19,7 +19,7 @@ pub enum Mode {
 /// How cells are identified.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub enum CellMethod {
-    /// Topological ray shooting (Sec. 7.1); falls back to grouping.
+    /// Shoot rays through the network (exact, fast); falls back to grouping.
     Raytrace,
     /// Cell grouping across tet faces.
     Grouping,
@@ -28,15 +28,17 @@ pub enum CellMethod {
 /// Arguments of `septa ia|mi`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Input: an `.npz` (arrays vertices, tets, values), or a function JSON
-    /// (the reference's format: sphere / plane / zero) sampled on `--grid`.
+    /// Input: a scene (.json or .toml, see docs/scenes.md) or `builtin:NAME`
+    /// (`septa regions --list`); a JSON list of functions (sphere, plane,
+    /// ...) sampled on `--grid`; or an `.npz` with arrays vertices, tets and
+    /// values (one column per function).
     input: PathBuf,
     #[command(flatten)]
     out: crate::output::Output,
     /// Box grid resolution (cubes per axis) for a function JSON input.
     #[arg(long)]
     grid: Option<usize>,
-    /// Tet mesh (Gmsh .msh 2.2/4.1, or the reference's tet-mesh .json) for a function JSON input.
+    /// Tet mesh (Gmsh .msh 2.2/4.1, or a JSON `[vertices, tets]`) for a function JSON input.
     #[arg(long)]
     mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
@@ -122,7 +124,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     opts.lookup = !args.no_lookup;
     opts.block = args.block;
     opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
-    let bar = crate::progress::bar(args.out.json, "blocks");
+    let bar = crate::progress::bar(args.out.json || args.out.quiet, "blocks");
     if let Some(bar) = &bar {
         let bar = bar.clone();
         opts.progress = Some(network::Progress(std::sync::Arc::new(move |done, total| {
@@ -165,7 +167,10 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let mut extra = vec![("read", t_read)];
     if !args.no_output {
         let t = Instant::now();
-        network_out::write_formats(&net, &args.out.output, &args.out.format.0, &extra)?;
+        let quiet = args.out.json || args.out.quiet;
+        crate::progress::during(quiet, &format!("writing {}", args.out.output.display()), || {
+            network_out::write_formats(&net, &args.out.output, &args.out.format.0, &extra)
+        })?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
     let cells_method = net.cells_method;

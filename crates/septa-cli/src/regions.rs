@@ -18,7 +18,7 @@ pub struct Args {
     /// region pair: `normals` in network.json, `vn` in surfaces.obj).
     #[arg(long)]
     normals: bool,
-    /// Clean up small and thin triangles (Bloomenthal 4.5.3.1): collapse
+    /// Clean up small and thin triangles: collapse
     /// edges shorter than FACTOR times the smallest cube edge wherever that
     /// keeps every surface's topology, curve and corner; output triangles.
     #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2")]
@@ -51,9 +51,12 @@ pub fn run(a: Args) -> CliResult {
         }
     }
     let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean };
-    let r = a.out.install(|| region_surfaces(&scene, &options))??;
+    let quiet = a.out.json || a.out.quiet;
+    let r = crate::progress::during(quiet, "region surfaces", || a.out.install(|| region_surfaces(&scene, &options)))??;
     let dir = &a.out.output;
-    regions_out::write_formats(&r, dir, &a.out.format.0)?;
+    crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
+        regions_out::write_formats(&r, dir, &a.out.format.0)
+    })?;
     let mut summary = regions_out::summary(&r);
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
