@@ -17,7 +17,7 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile "dask[distributed]" pynrrd nibabel
+.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile pyvista "dask[distributed]" pynrrd nibabel
 rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stale one
 # CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
 PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .
@@ -55,8 +55,12 @@ cp -r tests/fixtures/two-planes "$ART/two-planes"
 # Two labels (f0, f1) and four patches: see scripts/make_fixture.py.
 node viewer/test/browser.mjs "$ART/two-planes/viewer" "$ART" --label-colours 2 --patch-colours 4
 
-# And on a real result: the demo's Apollonius diagram (material interface).
+# And on real results: every demo job with a viewer. Its screenshots
+# (test-artifacts/<job>/viewer-page.png) are the user guide's pictures
+# (docs/images/<job>.png, docs/guide.md).
 "$ROOT/target/release/septa" demo --out "$ART/demo"
-node viewer/test/browser.mjs "$ART/demo/apollonius-18/viewer" "$ART/apollonius-18"
+for job in cad-part apollonius-18 sphere-plane-hole cut-torus; do
+  node viewer/test/browser.mjs "$ART/demo/$job/viewer" "$ART/$job"
+done
 
 step "all tests passed"
