@@ -24,10 +24,10 @@ pub struct Args {
     /// Plane file: `a b c d` per line (optionally TopoCut's `N 4` header).
     #[arg(long)]
     pub planes: Option<PathBuf>,
-    /// Output folder.
-    #[arg(short = 'o', long = "out")]
+    /// Output folder (cells.vtu, cells.obj, cut.json; created if needed).
+    #[arg(short = 'o', long = "output", visible_alias = "out", default_value = "septa-out")]
     pub out: PathBuf,
-    /// Worker threads (0: all cores).
+    /// Worker threads (default: all cores; 0 also means all cores).
     #[arg(long, default_value_t = 0)]
     pub threads: usize,
     /// Print one JSON object with counts, checks and timings.

@@ -14,7 +14,7 @@ use std::time::Instant;
 #[derive(clap::Args)]
 pub struct Args {
     /// Folder that receives one sub-folder per job.
-    #[arg(long, short, default_value = "septa-demo")]
+    #[arg(short = 'o', long = "output", visible_alias = "out", default_value = "septa-demo")]
     pub out: PathBuf,
     /// Grid resolution (cubes per side) of the grid scenes.
     #[arg(long, default_value_t = 64)]
