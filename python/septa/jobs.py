@@ -195,10 +195,13 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     og = np.asarray(origin, dtype=np.float64).reshape(3)
     if not (np.isfinite(sp).all() and (sp > 0).all() and np.isfinite(og).all()):
         raise _septa.InputError(f"spacing must be 3 positive numbers and origin 3 numbers, got {spacing}, {origin}")
+    t0 = time.perf_counter()
     data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma))
     # Placing the grid in space moves no combinatorics: points only.
     data["points"] = data["points"] * sp + og
-    return _region_network(data)
+    net = _region_network(data)
+    _log_done("label_surfaces", net, t0)
+    return net
 
 
 def _read_volume(path: str):
