@@ -11,6 +11,10 @@ pub struct Args {
     scene: Option<String>,
     #[command(flatten)]
     out: crate::output::Output,
+    /// Write the scene as a JSON file to edit (to this path, or `-` for the
+    /// terminal) and exit: `septa regions builtin:cad-part --print part.json`.
+    #[arg(long, value_name = "FILE")]
+    print: Option<std::path::PathBuf>,
     /// Print the built-in scenes and exit.
     #[arg(long)]
     list: bool,
@@ -45,6 +49,18 @@ pub fn run(a: Args) -> CliResult {
         return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
     };
     let scene = Scene::load(&path)?;
+    if let Some(to) = &a.print {
+        let text = septa::scene::scene_text(&scene).map_err(|e| format!("{path}: {e}"))?;
+        if to.as_os_str() == "-" {
+            print!("{text}");
+        } else {
+            std::fs::write(to, text).map_err(|e| format!("{}: {e}", to.display()))?;
+            if a.out.talk() {
+                println!("wrote {} (edit it, then: septa regions {})", to.display(), to.display());
+            }
+        }
+        return Ok(());
+    }
     if let Some(f) = a.clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(format!("--clean: expected a factor >= 0, not {f}").into());
