@@ -43,8 +43,12 @@ def write_viewer(net: Network, folder, title: str = "Septa") -> Path:
     files["data.js"] = _payload(net, title).encode()
     for name, data in files.items():
         tmp = folder / (name + ".tmp-septa")
-        tmp.write_bytes(data)
-        os.replace(tmp, folder / name)
+        try:
+            tmp.write_bytes(data)
+            os.replace(tmp, folder / name)
+        finally:  # a failed write leaves the old file and no temporary
+            if tmp.exists():
+                tmp.unlink()
     return (folder / "index.html").resolve()
 
 

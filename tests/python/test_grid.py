@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 import septa
-from conftest import ISN
+from conftest import ISN, need
 
 
 def volumes(g):
@@ -35,8 +35,7 @@ def test_box_faces_match(split):
 
 def test_box_equals_reference_grid():
     path = ISN / "ia4_R20.npz"
-    if not path.exists():
-        pytest.skip(f"shared test data not found at {path}")
+    need(path, "shared test data")
     ref = np.load(path)
     R = int(ref["grid_res"])
     g = septa.grid.box(R, ref["bbox"])

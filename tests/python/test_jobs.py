@@ -57,11 +57,9 @@ def _counts(s):
 def test_reference_cases(case):
     import json
 
-    from conftest import ISN
+    from conftest import ISN, need
 
-    path = ISN / f"{case}.npz"
-    if not path.exists():
-        pytest.skip(f"shared test data not found at {path}")
+    path = need(ISN / f"{case}.npz", "shared test data")
     d = np.load(path)
     expected = json.loads((ISN / "expected.json").read_text())[case]
     g = septa.grid.box(int(d["grid_res"]), d["bbox"])
@@ -71,11 +69,9 @@ def test_reference_cases(case):
 
 
 def test_python_equals_command_line(tmp_path):
-    from conftest import ROOT
+    from conftest import SEPTA, need
 
-    exe = ROOT / "target" / "release" / "septa"
-    if not exe.exists():
-        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    exe = need(SEPTA, "the command line (scripts/test.sh builds it)")
     spec = [{"type": "sphere", "center": [0.4, 0.45, 0.5], "radius": 0.3},
             {"type": "sphere", "center": [0.6, 0.5, 0.55], "radius": 0.25},
             {"type": "plane", "point": [0.5, 0.5, 0.5], "normal": [0, 0, 1]}]

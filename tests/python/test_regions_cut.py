@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 import septa
+from conftest import need
 
 ROOT = Path(__file__).resolve().parents[2]
 SEPTA = ROOT / "target" / "release" / "septa"
@@ -36,8 +37,8 @@ def test_region_errors_name_the_field():
         septa.region_surfaces([{"type": "sphere", "center": [0, 0, 0], "radius": -1}], [{"region": 0}])
 
 
-@pytest.mark.skipif(not SEPTA.exists(), reason="the command line is built by scripts/test.sh first")
 def test_cut_matches_the_command_line(tmp_path):
+    need(SEPTA, "the command line (scripts/test.sh builds it)")
     # A corner tetrahedron cut by 5 planes per axis at exact quarters: 20 cells
     # (cubes with i + j + k <= 3), with planes through its vertices and edges.
     v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
@@ -127,9 +128,7 @@ def test_region_normals_one_copy_per_vertex_and_region_pair(tmp_path):
     # Without normals: None.
     assert septa.region_surfaces("builtin:sphere-with-hole").normals is None
     # The command line writes them: network.json rows and OBJ vn / f v//vn.
-    exe = ROOT / "target" / "release" / "septa"
-    if not exe.exists():
-        return
+    exe = need(ROOT / "target" / "release" / "septa", "the command line (scripts/test.sh builds it)")
     out = tmp_path / "r"
     subprocess.run([str(exe), "regions", "builtin:saucer-square", "--normals", "-o", str(out)], check=True,
                    capture_output=True)
@@ -180,14 +179,12 @@ def test_label_surfaces_numpy_and_files_match_the_command_line(tmp_path):
     # Two boxes meeting on a face: each pair's surface is one disk or one sphere-like piece.
     assert all(s["boundary_loops"] <= 1 for s in net.surfaces)
     np.save(tmp_path / "v.npy", v.astype(np.int64))
-    exe = ROOT / "target" / "release" / "septa"
-    if exe.exists():
-        out = subprocess.run([str(exe), "labels", str(tmp_path / "v.npy"), "--json", "-o", str(tmp_path / "out")],
-                             capture_output=True, text=True,
-                             check=True)
-        cli = json.loads(out.stdout)
-        assert [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in cli["surfaces"]] == \
-            [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in net.surfaces]
+    exe = need(ROOT / "target" / "release" / "septa", "the command line (scripts/test.sh builds it)")
+    out = subprocess.run([str(exe), "labels", str(tmp_path / "v.npy"), "--json", "-o", str(tmp_path / "out")],
+                         capture_output=True, text=True, check=True)
+    cli = json.loads(out.stdout)
+    assert [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in cli["surfaces"]] == \
+        [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in net.surfaces]
     from_npy = septa.label_surfaces(tmp_path / "v.npy")
     assert from_npy.points.tobytes() == net.points.tobytes() and np.array_equal(from_npy.indices, net.indices)
     # Spacing and origin place the points; the combinatorics do not move.

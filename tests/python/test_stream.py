@@ -18,11 +18,9 @@ np = pytest.importorskip("numpy")
 
 @pytest.mark.parametrize("mode,spec,n", [("ia", "ia18", 24), ("mi", "mi18", 20)])
 def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
-    from conftest import ROOT
+    from conftest import ROOT, need
 
-    exe = ROOT / "target" / "release" / "septa"
-    if not exe.exists():
-        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    exe = need(ROOT / "target" / "release" / "septa", "the command line (scripts/test.sh builds it)")
     spec_path = ROOT / "data" / "specs" / f"{spec}.json"
     out = tmp_path / "s.ply"
     run = lambda *a: json.loads(subprocess.run([str(exe), mode, str(spec_path), "--grid", str(n), "--block", "8", "--json", *a],
@@ -70,12 +68,10 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
 
 
 def test_triangulated_stream_loads_with_trimesh(tmp_path):
-    from conftest import ROOT
+    from conftest import ROOT, need
 
     trimesh = pytest.importorskip("trimesh")
-    exe = ROOT / "target" / "release" / "septa"
-    if not exe.exists():
-        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    exe = need(ROOT / "target" / "release" / "septa", "the command line (scripts/test.sh builds it)")
     out = tmp_path / "t.ply"
     s = json.loads(subprocess.run([str(exe), "ia", str(ROOT / "data" / "specs" / "ia18.json"), "--grid", "20", "--json",
                                    "--stream", str(out), "--triangles"], capture_output=True, text=True, check=True).stdout)

@@ -66,14 +66,13 @@ fn counts(net: &septa::network::Network) -> serde_json::Value {
 
 /// The exact network of a built-in scene's functions (no region rule).
 fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
-    use septa::grid::{BoxGrid, Grid, Split};
+    use septa::grid::Grid;
     use septa::network::{compute, NetworkOptions};
     let mut scene = septa::scene::Scene::load(&format!("builtin:{name}"))?;
     if let Some(n) = grid {
         scene.grid.resolution = [n; 3];
     }
-    let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
-    let g = Grid::Box(BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split)?);
+    let g = Grid::Box(scene.grid.box_grid()?);
     let values = septa::scene::sample_grid(&scene.functions, &g.vertices());
     let mode = match scene.mode {
         septa::scene::Mode::Ia => septa::complex::Mode::Ia,

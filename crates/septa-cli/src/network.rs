@@ -2,8 +2,9 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use septa::grid::{BoxGrid, Grid, Split, TetMesh};
-use septa::io::{functions, network_out, npz};
+use septa::grid::Split;
+use septa::io::network_out;
+use septa::job::{GridOverride, Job};
 use septa::network::{self, NetworkOptions};
 
 use crate::CliResult;
@@ -44,9 +45,9 @@ pub struct Args {
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
     #[arg(long, num_args = 6, allow_negative_numbers = true)]
     bounds: Option<Vec<f64>>,
-    /// Tets per cube of a built-in grid (5 or 6).
-    #[arg(long, default_value_t = 5)]
-    split: u8,
+    /// Tets per cube of a box grid (5 or 6; default: the file's, else 5).
+    #[arg(long)]
+    split: Option<u8>,
     /// Do not use look-up tables (incremental construction in every tet).
     #[arg(long)]
     no_lookup: bool,
@@ -94,22 +95,15 @@ pub struct Args {
     polygons_only: bool,
 }
 
-/// Whether the input is analytic functions on a box grid (sparse
-/// evaluation applies): not sampled values (`.npz`), not a tet mesh (given
-/// by `--mesh` or a reference config's `tetMeshFile`).
-fn sparse_applies(args: &Args) -> bool {
-    if args.mesh.is_some() || args.input.extension().and_then(|e| e.to_str()) == Some("npz") {
-        return false;
-    }
-    let name = args.input.display().to_string();
-    if name.starts_with("builtin:") {
-        return true;
-    }
-    let Ok(text) = std::fs::read_to_string(&args.input) else { return false };
-    match input_value(&text, &args.input) {
-        Ok(json) => json.get("tetMeshFile").is_none(),
-        Err(_) => false,
-    }
+/// The job the arguments describe (the library's one reader of inputs).
+fn job(args: &Args) -> Result<Job, Box<dyn std::error::Error>> {
+    let over = GridOverride {
+        resolution: args.grid,
+        bounds: args.bounds.as_ref().map(|b| [[b[0], b[1], b[2]], [b[3], b[4], b[5]]]),
+        split: args.split.map(Split::try_from).transpose().map_err(|e| format!("--split: {e}"))?,
+        mesh: args.mesh.clone(),
+    };
+    Ok(Job::load(&args.input.display().to_string(), &over)?)
 }
 
 /// Runs `septa ia|mi`.
@@ -140,27 +134,12 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     if let Some(out) = &args.stream {
         return run_stream(&args, out, mode, &opts, &pool, bar, t0);
     }
-    // Sparse by default where it applies. Should the scene reader reject a
-    // function file the reference reader accepts, the dense path reads it
-    // (and reports its own error if it is bad).
-    let sparse_input = if !args.dense && sparse_applies(&args) {
-        match load_sparse(&args) {
-            Ok(x) => Some(x),
-            Err(e) if args.sparse => return Err(e),
-            Err(_) => None,
-        }
-    } else {
-        None
-    };
-    let (net, tets, t_read, stats) = if let Some((g, funcs)) = sparse_input {
-        let t_read = t0.elapsed().as_secs_f64();
-        let (net, stats) = pool.install(|| network::compute_sparse(&g, &funcs, &opts))?;
-        (net, g.num_tets(), t_read, Some(stats))
-    } else {
-        let (grid, values, k) = load(&args)?;
-        let t_read = t0.elapsed().as_secs_f64();
-        (pool.install(|| network::compute(&grid, &values, k, &opts))?, grid.num_tets(), t_read, None)
-    };
+    // Sparse by default where it applies (formulas on a box grid); the
+    // output is identical on both paths.
+    let job = job(&args)?;
+    let t_read = t0.elapsed().as_secs_f64();
+    let (net, stats) = pool.install(|| job.run(&opts, args.dense))?;
+    let tets = job.grid.num_tets();
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -213,14 +192,17 @@ fn run_stream(
     bar: Option<indicatif::ProgressBar>,
     t0: Instant,
 ) -> CliResult {
-    let (g, funcs) = load_sparse(args).map_err(|e| format!("--stream: {e}"))?;
+    let job = job(args)?;
+    let (g, funcs) = job.box_formulas().ok_or_else(|| {
+        format!("--stream: {} is not formulas on a box grid (a function list, config or scene)", args.input.display())
+    })?;
     let t_read = t0.elapsed().as_secs_f64();
     let mut sink =
         septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
     let (stats, topology) = if args.polygons_only {
-        (pool.install(|| network::stream_sparse(&g, &funcs, opts, args.window, &mut sink))?, None)
+        (pool.install(|| network::stream_sparse(g, funcs, opts, args.window, &mut sink))?, None)
     } else {
-        let (s, t) = pool.install(|| network::stream_topology(&g, &funcs, opts, args.window, &mut sink))?;
+        let (s, t) = pool.install(|| network::stream_topology(g, funcs, opts, args.window, &mut sink))?;
         (s, Some(t))
     };
     let t_blocks = t0.elapsed().as_secs_f64() - t_read;
@@ -288,95 +270,6 @@ fn topology_path(out: &std::path::Path) -> std::path::PathBuf {
     out.with_extension("topology.json")
 }
 
-/// The input file's value tree: JSON, or a TOML scene (`.toml`) read into
-/// the same tree (the scene itself is parsed again by `Scene::load`, whose
-/// errors name TOML lines).
-fn input_value(text: &str, path: &std::path::Path) -> Result<serde_json::Value, String> {
-    if path.extension().and_then(|e| e.to_str()) == Some("toml") {
-        let v: toml::Value = toml::from_str(text).map_err(|e| format!("{}: not TOML: {e}", path.display()))?;
-        return serde_json::to_value(v).map_err(|e| format!("{}: {e}", path.display()));
-    }
-    serde_json::from_str(text).map_err(|e| format!("{}: not JSON: {e}", path.display()))
-}
-
-fn split(args: &Args) -> Result<Split, String> {
-    match args.split {
-        5 => Ok(Split::Five),
-        6 => Ok(Split::Six),
-        s => Err(format!("--split must be 5 or 6, not {s}")),
-    }
-}
-
-/// Reads the grid and values.
-fn load(args: &Args) -> Result<(Grid, Vec<f64>, usize), Box<dyn std::error::Error>> {
-    let ext = args.input.extension().and_then(|e| e.to_str()).unwrap_or("");
-    if ext == "npz" {
-        let input = npz::read_grid_input(&args.input)?;
-        // A reference-style box grid is used implicitly when it matches the stored tets.
-        if let (Some(r), Some(bbox)) = (input.grid_res, input.bbox) {
-            if let Ok(g) = BoxGrid::new([r; 3], bbox, Split::Five) {
-                let grid = Grid::Box(g);
-                let same = grid.num_tets() == input.tets.len()
-                    && grid.num_vertices() == input.vertices.len()
-                    && input.tets.iter().enumerate().all(|(t, tet)| grid.tet(t).map(|v| v as i64) == *tet);
-                if same {
-                    return Ok((grid, input.values, input.k));
-                }
-            }
-        }
-        let mesh = TetMesh::new(input.vertices, &input.tets).map_err(|e| format!("{}: {e}", args.input.display()))?;
-        return Ok((Grid::Mesh(mesh), input.values, input.k));
-    }
-    // A reference config JSON ({"funcFile", "tetMeshFile" | "gridResolution", "gridBbox"})
-    // or a function list.
-    let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{}: {e}", args.input.display()))?;
-    let json: serde_json::Value = input_value(&text, &args.input)?;
-    if json.get("functions").is_some() {
-        // A scene (JSON or TOML) on the dense path: its functions sampled at every vertex.
-        let (g, funcs) = load_sparse(args)?;
-        let grid = Grid::Box(g);
-        let values = septa::scene::sample_grid(&funcs, &grid.vertices());
-        return Ok((grid, values, funcs.len()));
-    }
-    let (funcs, mesh, grid_res, bounds) = if let Some(cfg) = json.as_object() {
-        let dir = args.input.parent().unwrap_or(std::path::Path::new("."));
-        let file = cfg
-            .get("funcFile")
-            .and_then(|v| v.as_str())
-            .ok_or_else(|| format!("{}: config has no \"funcFile\"", args.input.display()))?;
-        let funcs = functions::read_functions(&dir.join(file))?;
-        let mesh = cfg.get("tetMeshFile").and_then(|v| v.as_str()).map(|m| dir.join(m));
-        let res = cfg.get("gridResolution").and_then(|v| v.as_u64()).map(|r| r as usize);
-        let bounds = cfg.get("gridBbox").and_then(|b| {
-            let b: Vec<f64> = b
-                .as_array()?
-                .iter()
-                .flat_map(|p| p.as_array().cloned().unwrap_or_default())
-                .filter_map(|x| x.as_f64())
-                .collect();
-            (b.len() == 6).then_some(b)
-        });
-        (funcs, mesh.or(args.mesh.clone()), res.or(args.grid), bounds.or(args.bounds.clone()))
-    } else {
-        let funcs = functions::parse_functions(&text, &args.input.display().to_string())?;
-        (funcs, args.mesh.clone(), args.grid, args.bounds.clone())
-    };
-    if let Some(mesh) = mesh {
-        let ext = mesh.extension().and_then(|e| e.to_str()).unwrap_or("");
-        let (vertices, tets) =
-            if ext == "msh" { septa::io::msh::read_msh(&mesh)? } else { functions::read_tet_mesh_json(&mesh)? };
-        let mesh = TetMesh::new(vertices, &tets).map_err(|e| format!("{}: {e}", mesh.display()))?;
-        let values = functions::sample(&funcs, &mesh.vertices);
-        return Ok((Grid::Mesh(mesh), values, funcs.len()));
-    }
-    let n = grid_res.ok_or("a function JSON input needs --grid N (and optionally --bounds) or --mesh FILE")?;
-    let b = bounds.unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
-    let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
-    let grid = Grid::Box(g);
-    let values = functions::sample_grid(&funcs, &grid);
-    Ok((grid, values, funcs.len()))
-}
-
 /// `"blocks"` of the JSON summary of a sparse run.
 pub fn sparse_json(s: &network::SparseStats) -> serde_json::Value {
     serde_json::json!({
@@ -387,47 +280,4 @@ pub fn sparse_json(s: &network::SparseStats) -> serde_json::Value {
         "sampled_vertices": s.sampled_vertices,
         "dense_fallback": s.dense_fallback,
     })
-}
-
-/// Reads a box grid and analytic functions for sparse evaluation: a function
-/// list sampled on `--grid`, or a reference config / scene file (its grid).
-fn load_sparse(args: &Args) -> Result<(BoxGrid, Vec<septa::scene::Primitive>), Box<dyn std::error::Error>> {
-    let name = args.input.display().to_string();
-    if args.mesh.is_some() || args.input.extension().and_then(|e| e.to_str()) == Some("npz") {
-        return Err(format!("{name}: sparse evaluation needs analytic functions on a box grid (a function JSON, config or scene), not sampled values or a tet mesh").into());
-    }
-    if name.starts_with("builtin:") {
-        let scene = septa::scene::Scene::load(&name)?;
-        let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
-        return Ok((BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split)?, scene.functions));
-    }
-    let text = std::fs::read_to_string(&args.input).map_err(|e| format!("{name}: {e}"))?;
-    let json: serde_json::Value = input_value(&text, &args.input)?;
-    if json.is_object() && json.get("input").is_none() {
-        let scene = septa::scene::Scene::load(&name)?;
-        // A reference config has no split: `--split`, as on the dense path.
-        let split = match json.get("grid") {
-            Some(_) if scene.grid.split == 6 => Split::Six,
-            Some(_) => Split::Five,
-            None => split(args)?,
-        };
-        let mut res = scene.grid.resolution;
-        let mut bounds = scene.grid.bounds;
-        if json.get("gridResolution").is_none() && json.get("grid").is_none() {
-            if let Some(n) = args.grid {
-                res = [n; 3];
-            }
-        }
-        if json.get("gridBbox").is_none() && json.get("grid").is_none() {
-            if let Some(b) = &args.bounds {
-                bounds = [[b[0], b[1], b[2]], [b[3], b[4], b[5]]];
-            }
-        }
-        return Ok((BoxGrid::new(res, bounds, split)?, scene.functions));
-    }
-    let funcs = septa::scene::load_function_list(&text, &name, args.input.parent())?;
-    let n = args.grid.ok_or("a function JSON input needs --grid N (and optionally --bounds)")?;
-    let b = args.bounds.clone().unwrap_or_else(|| vec![-1.0, -1.0, -1.0, 1.0, 1.0, 1.0]);
-    let g = BoxGrid::new([n; 3], [[b[0], b[1], b[2]], [b[3], b[4], b[5]]], split(args)?)?;
-    Ok((g, funcs))
 }

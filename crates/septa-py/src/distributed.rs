@@ -13,13 +13,12 @@ use crate::InputError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
-use septa::grid::{BoxGrid, Split};
+use septa::grid::BoxGrid;
 use septa::network::{
     compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Mode, Network, NetworkOptions,
     SparsePlan, SparseStats,
 };
-use septa::scene::{load_function_list, sample_grid, Primitive, Scene};
-use serde_json::Value;
+use septa::scene::{sample_grid, Primitive, Scene};
 
 /// A parsed job.
 pub(crate) struct Job {
@@ -29,74 +28,19 @@ pub(crate) struct Job {
     scene: Option<Scene>,
 }
 
-fn grid_of(v: &Value) -> Result<BoxGrid, String> {
-    let res = match v.get("resolution") {
-        Some(Value::Array(a)) if a.len() == 3 => {
-            let mut r = [0; 3];
-            for (i, x) in a.iter().enumerate() {
-                r[i] = x.as_u64().ok_or("grid.resolution: expected positive integers")? as usize;
-            }
-            r
-        }
-        Some(x) => [x.as_u64().ok_or("grid.resolution: expected n or [nx, ny, nz]")? as usize; 3],
-        None => return Err("grid.resolution: missing".into()),
-    };
-    let bounds = match v.get("bounds") {
-        None => [[-1.0; 3], [1.0; 3]],
-        Some(b) => {
-            let b: [[f64; 3]; 2] = serde_json::from_value(b.clone())
-                .map_err(|_| "grid.bounds: expected [[x0, y0, z0], [x1, y1, z1]]".to_string())?;
-            b
-        }
-    };
-    let split = match v.get("split").and_then(Value::as_u64).unwrap_or(5) {
-        5 => Split::Five,
-        6 => Split::Six,
-        s => return Err(format!("grid.split: must be 5 or 6, not {s}")),
-    };
-    BoxGrid::new(res, bounds, split).map_err(|e| format!("grid: {e}"))
-}
-
+/// The job JSON (module doc), read by the library's one job model
+/// (`septa::job::Job::from_job_json`): a formulas-on-a-box-grid job.
 pub(crate) fn parse_job(text: &str) -> Result<Job, String> {
-    let v: Value = serde_json::from_str(text).map_err(|e| format!("job: not JSON: {e}"))?;
-    let base = v.get("base_dir").and_then(Value::as_str).map(std::path::PathBuf::from);
-    let (functions, mut grid, mut mode, scene) = match (v.get("scene"), v.get("functions")) {
-        (Some(s), None) => {
-            let scene = match s {
-                Value::String(name) => Scene::load(name),
-                _ => Scene::from_json(&s.to_string(), "<scene>", base.as_deref()),
-            }
-            .map_err(|e| e.to_string())?;
-            let g = &scene.grid;
-            let split = if g.split == 6 { Split::Six } else { Split::Five };
-            let grid = BoxGrid::new(g.resolution, g.bounds, split).map_err(|e| format!("scene grid: {e}"))?;
-            let mode = match scene.mode {
-                septa::scene::Mode::Ia => Mode::Ia,
-                septa::scene::Mode::Mi => Mode::Mi,
-            };
-            (scene.functions.clone(), Some(grid), Some(mode), Some(scene))
-        }
-        (None, Some(f)) => {
-            let fs = load_function_list(&f.to_string(), "<functions>", base.as_deref()).map_err(|e| e.to_string())?;
-            (fs, None, None, None)
-        }
-        _ => return Err("job: give exactly one of \"scene\" and \"functions\"".into()),
+    let (job, block) = septa::job::Job::from_job_json(text).map_err(|e| e.to_string())?;
+    let mut options = NetworkOptions::new(job.mode.unwrap_or(Mode::Ia));
+    if let Some(b) = block {
+        options.block = b;
+    }
+    let (grid, functions) = match (job.grid, job.functions) {
+        (septa::grid::Grid::Box(g), septa::job::Functions::Formulas(f)) => (g, f),
+        _ => return Err("job: the distributed path needs formulas on a box grid".into()),
     };
-    if let Some(g) = v.get("grid") {
-        grid = Some(grid_of(g)?);
-    }
-    match v.get("mode").and_then(Value::as_str) {
-        Some("ia") => mode = Some(Mode::Ia),
-        Some("mi") => mode = Some(Mode::Mi),
-        Some(m) => return Err(format!("job.mode: must be \"ia\" or \"mi\", not {m:?}")),
-        None => {}
-    }
-    let grid = grid.ok_or("job: a list of functions needs \"grid\"")?;
-    let mut options = NetworkOptions::new(mode.unwrap_or(Mode::Ia));
-    if let Some(b) = v.get("block") {
-        options.block = b.as_u64().filter(|&b| b >= 1).ok_or("job.block: expected a positive integer")? as usize;
-    }
-    Ok(Job { grid, functions, options, scene })
+    Ok(Job { grid, functions, options, scene: job.scene })
 }
 
 fn plan_of(p: (usize, Vec<usize>, bool)) -> SparsePlan {

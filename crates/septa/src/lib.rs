@@ -15,6 +15,7 @@
 //! - [`cut`]: planar cut-cell meshes of closed triangle meshes (TopoCut).
 //! - [`scene`]: primitives, sampling and region rules.
 //! - [`io`]: readers and writers.
+//! - [`job`]: one job model (grid, functions, mode) read from any input, for every front end.
 //!
 //! What is exact: every combinatorial answer (which vertices, edges, faces
 //! and cells exist and how they connect). What is floating point: vertex
@@ -26,6 +27,7 @@ pub mod complex;
 pub mod cut;
 pub mod grid;
 pub mod io;
+pub mod job;
 pub mod network;
 pub mod regions;
 pub mod scene;

@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
-use septa::io::functions::{sample, Primitive};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};
+use septa::scene::{sample_grid as sample, Primitive};
 
 fn data_dir() -> Option<PathBuf> {
     Some(common::shared_data().join("isn"))
@@ -191,11 +191,11 @@ fn expect(net: &Network, want: &[(&str, usize)], name: &str) {
 }
 
 fn plane(normal: [f64; 3]) -> Primitive {
-    Primitive::Plane { point: [0.0; 3], normal }
+    Primitive::plane([0.0; 3], normal)
 }
 
 fn sphere(center: [f64; 3], radius: f64) -> Primitive {
-    Primitive::Sphere { center, radius }
+    Primitive::sphere(center, radius)
 }
 
 #[test]
@@ -357,7 +357,7 @@ fn nested_spheres_off_grid_raytrace() {
 
 /// Spheres in the pattern of Du et al. Sec. 8.3 (IA: unit spheres at the
 /// origin, on the axes and at cube corners), jittered by up to 1e-3 from a seed.
-fn paper_spheres(k: usize, seed: u64) -> Vec<septa::scene::Primitive> {
+fn paper_spheres(k: usize, seed: u64) -> Vec<Primitive> {
     use rand::{Rng, SeedableRng};
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
     let centres = [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]];
@@ -365,7 +365,7 @@ fn paper_spheres(k: usize, seed: u64) -> Vec<septa::scene::Primitive> {
         .map(|i| {
             let c: [f64; 3] = centres[i % 4];
             let mut j = || rng.gen_range(-1e-3..1e-3);
-            septa::scene::Primitive::sphere([c[0] + j(), c[1] + j(), c[2] + j()], 0.5 + j())
+            Primitive::sphere([c[0] + j(), c[1] + j(), c[2] + j()], 0.5 + j())
         })
         .collect()
 }
@@ -376,7 +376,7 @@ fn paper_pattern_with_other_jitter() {
     // combinatorics (ia4_R20: 32 patches, 24 chains, 8 corners, 16 cells).
     let f = paper_spheres(4, 7);
     let grid = Grid::Box(BoxGrid::new([20; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap());
-    let values = septa::scene::sample_grid(&f, &grid.vertices());
+    let values = sample(&f, &grid.vertices());
     let net = compute(&grid, &values, 4, &NetworkOptions::new(Mode::Ia)).unwrap();
     expect(
         &net,
@@ -402,9 +402,9 @@ fn three_coordinate_planes_through_grid_nodes() {
         check_invariants(&net, &grid, "octants");
         // The same planes off the grid nodes: the generic case, by ray shooting.
         let f = [
-            Primitive::Plane { point: [0.013, 0.0, 0.0], normal: [1.0, 0.0, 0.0] },
-            Primitive::Plane { point: [0.0, 0.021, 0.0], normal: [0.0, 1.0, 0.0] },
-            Primitive::Plane { point: [0.0, 0.0, -0.017], normal: [0.0, 0.0, 1.0] },
+            Primitive::plane([0.013, 0.0, 0.0], [1.0, 0.0, 0.0]),
+            Primitive::plane([0.0, 0.021, 0.0], [0.0, 1.0, 0.0]),
+            Primitive::plane([0.0, 0.0, -0.017], [0.0, 0.0, 1.0]),
         ];
         let values = sample(&f, &grid.vertices());
         let net = compute(&grid, &values, 3, &NetworkOptions::new(Mode::Ia)).unwrap();

@@ -5,17 +5,17 @@
 use std::path::PathBuf;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::io::functions::{sample, Primitive};
 use septa::io::network_out::write_all;
 use septa::network::{compute, Mode, NetworkOptions};
+use septa::scene::{sample_grid as sample, Primitive};
 
 #[test]
 fn outputs_round_trip() {
     let grid = Grid::Box(BoxGrid::new([6, 5, 7], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap());
     let f = [
-        Primitive::Sphere { center: [0.1, 0.05, 0.02], radius: 0.6 },
-        Primitive::Sphere { center: [0.4, 0.1, 0.03], radius: 0.5 },
-        Primitive::Sphere { center: [-0.3, -0.2, 0.1], radius: 0.45 },
+        Primitive::sphere([0.1, 0.05, 0.02], 0.6),
+        Primitive::sphere([0.4, 0.1, 0.03], 0.5),
+        Primitive::sphere([-0.3, -0.2, 0.1], 0.45),
     ];
     let values = sample(&f, &grid.vertices());
     for mode in [Mode::Ia, Mode::Mi] {

@@ -165,6 +165,19 @@ fn assert_same(net: &Network, sum: &NetworkSummary, c: &Collect, what: &str) {
         .collect();
     ours.sort();
     theirs.sort();
+    if ours != theirs {
+        for (a, b) in ours.iter().zip(&theirs) {
+            if a != b {
+                eprintln!(
+                    "{what}: chain of {} keys: streamed {:?}, in memory {:?} (same chain: {})",
+                    a.0.len(),
+                    a.1,
+                    b.1,
+                    a.0 == b.0
+                );
+            }
+        }
+    }
     assert_eq!(ours, theirs, "{what}: chain patches");
 }
 
@@ -188,7 +201,16 @@ fn check(
         eprintln!("{what}: the in-memory path groups cells; streaming refuses it: {e}");
         return None;
     }
-    let (s, sum) = stream_topology(grid, f, &o, window, &mut c).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let (s, sum) = match stream_topology(grid, f, &o, window, &mut c) {
+        Ok(x) => x,
+        // Network faces lying in tet faces (a function vanishing on a whole
+        // tet face, a tie on one) are paired by the in-memory merge only.
+        Err(e) if e.to_string().contains("lies in a tet face") => {
+            eprintln!("{what}: streaming refuses faces in tet faces: {e}");
+            return None;
+        }
+        Err(e) => panic!("{what}: {e}"),
+    };
     assert_eq!(s.vertices as usize, net.keys.len(), "{what}");
     assert_same(&net, &sum, &c, what);
     Some(sum)
@@ -199,11 +221,22 @@ fn streamed_topology_equals_the_in_memory_network() {
     for (name, mode) in [("ia18", Mode::Ia), ("mi18", Mode::Mi), ("separate8", Mode::Ia), ("nested8", Mode::Ia)] {
         let f = spec(name);
         for (n, block, window) in [(20, 4, 1), (24, 8, 3), (32, 8, 0), (33, 16, 2), (40, 5, 7)] {
-            check(&cube_grid(n), &f, mode, block, window, &format!("{name} {n}^3 block {block} window {window}"));
+            check(&cube_grid(n), &f, mode, block, window, &format!("{name} {n}^3 block {block} window {window}"))
+                .expect("streams");
         }
     }
     for name in ["separate8", "nested8"] {
-        check(&cube_grid(28), &spec(name), Mode::Mi, 4, 2, &format!("{name} MI"));
+        check(&cube_grid(28), &spec(name), Mode::Mi, 4, 2, &format!("{name} MI")).expect("streams");
+    }
+    // Spheres through grid vertices (values exactly 0 at nodes): streamed
+    // with topology, equal to the in-memory network, no fallback anywhere.
+    let round: Vec<Primitive> = [[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.0, 0.0, 0.5]]
+        .iter()
+        .map(|&c| Primitive::sphere(c, 0.5))
+        .collect();
+    for (n, block) in [(20, 4), (40, 8)] {
+        let sum = check(&cube_grid(n), &round, Mode::Ia, block, 2, &format!("round spheres {n}^3")).expect("streams");
+        assert_eq!((sum.patches.len(), sum.chains.len(), sum.cells.len()), (32, 24, 16), "round spheres {n}^3");
     }
     // Surfaces crossing the grid boundary (open edges and tet-face pieces
     // on the boundary stay unpaired) and a chain leaving the grid.
@@ -225,6 +258,7 @@ fn streamed_topology_equals_the_in_memory_network() {
 
 #[test]
 fn streamed_topology_on_every_builtin_scene() {
+    let (mut streamed, mut refused) = (0, 0);
     for (name, _) in septa::scene::builtin::list() {
         let scene = Scene::load(&format!("builtin:{name}")).unwrap();
         for n in [16, 23] {
@@ -239,10 +273,17 @@ fn streamed_topology_on_every_builtin_scene() {
                 if compute_sparse(&grid, &scene.functions, &o).is_err() {
                     continue; // input the network rejects (tested elsewhere)
                 }
-                check(&grid, &scene.functions, mode, 4, 3, &what);
+                match check(&grid, &scene.functions, mode, 4, 3, &what) {
+                    Some(_) => streamed += 1,
+                    None => refused += 1,
+                }
             }
         }
     }
+    // Most built-in scenes stream; those with faces in tet faces (planes
+    // and boxes through grid vertices) are refused clearly.
+    eprintln!("built-in scenes: {streamed} streamed, {refused} refused");
+    assert!(streamed >= 12, "{streamed} streamed, {refused} refused");
 }
 
 #[test]

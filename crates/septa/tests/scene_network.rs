@@ -256,6 +256,21 @@ fn voronoi_lines_5_has_one_cell_per_line() {
     assert_eq!(c["components"], 1);
     // Recorded from the exact run (regression values).
     assert_eq!((c["patches"], c["chains"], c["corners"]), (16, 17, 19));
+    // Their source: not one run but the diagram of the lines. Other
+    // samplings of the same distance functions (a finer grid, the 6-tet
+    // split: other sample points, other tets) resolve the same Voronoi
+    // diagram, so they must give the same combinatorics (issue 18).
+    for (n, split) in [(33, 6), (45, 5), (45, 6)] {
+        let mut t = builtin::voronoi_lines_5();
+        t.grid.resolution = [n; 3];
+        t.grid.split = split;
+        let (other, _) = network(&t);
+        let o: BTreeMap<_, _> = other.counts().into_iter().collect();
+        eprintln!("voronoi-lines-5 at {n}^3, {split} tets per cube: {o:?}");
+        for k in ["patches", "chains", "corners", "cells", "components"] {
+            assert_eq!(o[k], c[k], "{k} at {n}^3 with {split} tets per cube");
+        }
+    }
 }
 
 /// Polygons of the surfaces of interest oriented counter-clockwise seen

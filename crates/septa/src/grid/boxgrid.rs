@@ -22,6 +22,30 @@ impl Split {
     }
 }
 
+impl TryFrom<u8> for Split {
+    type Error = String;
+
+    /// 5 or 6 tets per cube; any other number is an error naming it.
+    fn try_from(n: u8) -> Result<Split, String> {
+        match n {
+            5 => Ok(Split::Five),
+            6 => Ok(Split::Six),
+            n => Err(format!("a cube splits into 5 or 6 tets, not {n}")),
+        }
+    }
+}
+
+/// Coordinate of grid line `i` of `n` cubes over `[lo, hi]`: `lo + (hi - lo)
+/// * i / n` (the reference data's formula, bit-identical vertices), and
+/// exactly `hi` at `i = n` (the formula can miss it by an ulp).
+pub fn grid_coordinate(lo: f64, hi: f64, i: usize, n: usize) -> f64 {
+    if i == n {
+        hi
+    } else {
+        lo + (hi - lo) * i as f64 / n as f64
+    }
+}
+
 /// Local cube corner `(dx, dy, dz)` packed as `dx * 4 + dy * 2 + dz`.
 const fn c(dx: u8, dy: u8, dz: u8) -> u8 {
     dx * 4 + dy * 2 + dz
@@ -127,8 +151,7 @@ impl BoxGrid {
         let ijk = self.vertex_ijk(v);
         let mut p = [0.0; 3];
         for a in 0..3 {
-            let (lo, hi) = (self.bounds[0][a], self.bounds[1][a]);
-            p[a] = if ijk[a] == self.res[a] { hi } else { lo + (hi - lo) * ijk[a] as f64 / self.res[a] as f64 };
+            p[a] = grid_coordinate(self.bounds[0][a], self.bounds[1][a], ijk[a], self.res[a]);
         }
         p
     }

@@ -9,7 +9,7 @@
 mod boxgrid;
 mod mesh;
 
-pub use boxgrid::{BoxGrid, Split};
+pub use boxgrid::{grid_coordinate, BoxGrid, Split};
 pub use mesh::{MeshError, TetMesh};
 
 /// A tetrahedral grid.

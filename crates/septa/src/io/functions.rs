@@ -1,8 +1,6 @@
-//! The reference implementation's tet-mesh JSON and function JSON files.
-//!
-//! Function evaluation proper lives in `scene/`; this reader evaluates the
-//! primitives whose values are needed to switch from the reference
-//! (`sphere`, `plane`, `zero`) and names any other type in its error.
+//! The reference implementation's tet-mesh JSON files. Its function JSON
+//! is read by the scene reader (`scene::load_function_list`), the one
+//! reader and evaluator of every primitive.
 
 use std::path::Path;
 
@@ -65,93 +63,4 @@ pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
         tets.push(out);
     }
     Ok((vertices, tets))
-}
-
-/// A primitive of the reference's function JSON that this reader evaluates.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Primitive {
-    /// `r - |p - c|`.
-    Sphere {
-        /// Centre.
-        center: [f64; 3],
-        /// Radius.
-        radius: f64,
-    },
-    /// `(p - point) . normal`.
-    Plane {
-        /// A point on the plane.
-        point: [f64; 3],
-        /// Normal.
-        normal: [f64; 3],
-    },
-    /// Constant 0.
-    Zero,
-}
-
-impl Primitive {
-    /// Value at `p`.
-    pub fn eval(&self, p: &[f64; 3]) -> f64 {
-        match self {
-            Primitive::Sphere { center, radius } => {
-                let d = [p[0] - center[0], p[1] - center[1], p[2] - center[2]];
-                radius - (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt()
-            }
-            Primitive::Plane { point, normal } => {
-                (p[0] - point[0]) * normal[0] + (p[1] - point[1]) * normal[1] + (p[2] - point[2]) * normal[2]
-            }
-            Primitive::Zero => 0.0,
-        }
-    }
-}
-
-/// Parses a function list (the reference's function JSON, or `spec_json` of the test inputs).
-pub fn parse_functions(text: &str, path: &str) -> Result<Vec<Primitive>, RefError> {
-    let bad = |message: String| RefError::Format { path: path.to_string(), message };
-    let v: serde_json::Value = serde_json::from_str(text).map_err(|e| bad(format!("not JSON: {e}")))?;
-    let list = v.as_array().ok_or_else(|| bad("expected a list of functions".into()))?;
-    let mut out = Vec::with_capacity(list.len());
-    for (i, f) in list.iter().enumerate() {
-        let ty = f["type"].as_str().ok_or_else(|| bad(format!("function {i} has no \"type\"")))?;
-        let num = |k: &str| f[k].as_f64().ok_or_else(|| bad(format!("function {i} ({ty}): missing number \"{k}\"")));
-        let v3 = |k: &str| vec3(&f[k]).ok_or_else(|| bad(format!("function {i} ({ty}): missing [x, y, z] \"{k}\"")));
-        out.push(match ty {
-            "sphere" => Primitive::Sphere { center: v3("center")?, radius: num("radius")? },
-            "plane" => Primitive::Plane { point: v3("point")?, normal: v3("normal")? },
-            "zero" => Primitive::Zero,
-            other => return Err(bad(format!("function {i}: type \"{other}\" is not supported by this reader"))),
-        });
-    }
-    Ok(out)
-}
-
-/// Reads a function JSON file.
-pub fn read_functions(path: &Path) -> Result<Vec<Primitive>, RefError> {
-    let text =
-        std::fs::read_to_string(path).map_err(|source| RefError::Io { path: path.display().to_string(), source })?;
-    parse_functions(&text, &path.display().to_string())
-}
-
-/// Values `out[v * k + f]` of the functions at the vertices of `grid`,
-/// without materialising the vertex positions (memory: the values only).
-pub fn sample_grid(functions: &[Primitive], grid: &crate::grid::Grid) -> Vec<f64> {
-    let n = grid.num_vertices();
-    let mut out = Vec::with_capacity(n * functions.len());
-    for v in 0..n as u32 {
-        let p = grid.vertex(v);
-        for f in functions {
-            out.push(f.eval(&p));
-        }
-    }
-    out
-}
-
-/// Values `out[v * k + f]` of the functions at the given points.
-pub fn sample(functions: &[Primitive], points: &[[f64; 3]]) -> Vec<f64> {
-    let mut out = Vec::with_capacity(points.len() * functions.len());
-    for p in points {
-        for f in functions {
-            out.push(f.eval(p));
-        }
-    }
-    out
 }

@@ -33,7 +33,7 @@ mod surfaces;
 use std::time::Instant;
 
 use crate::complex::Mode;
-use crate::grid::{BoxGrid, Grid, Split};
+use crate::grid::Grid;
 use crate::network::{compute, Network, NetworkError, NetworkOptions};
 use crate::network::{compute_sparse, SparseStats};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
@@ -143,12 +143,8 @@ pub enum RegionError {
 /// and extracts the surfaces and curves of interest.
 pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionSurfaces, RegionError> {
     let t0 = Instant::now();
-    let split = if scene.grid.split == 6 { Split::Six } else { Split::Five };
-    let bgrid = BoxGrid::new(scene.grid.resolution, scene.grid.bounds, split).map_err(RegionError::Grid)?;
-    let mode = match scene.mode {
-        crate::scene::Mode::Ia => Mode::Ia,
-        crate::scene::Mode::Mi => Mode::Mi,
-    };
+    let bgrid = scene.grid.box_grid().map_err(RegionError::Grid)?;
+    let mode = scene.mode;
     if options.sparse {
         let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
         let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);

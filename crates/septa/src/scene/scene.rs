@@ -10,15 +10,9 @@ use super::primitive::Primitive;
 use super::regions::{Expr, Interest, RegionId, RegionRule, Rule};
 use super::spec::{array, num, primitive, vec3, Ctx, Obj};
 use super::vec3::V3;
+use crate::grid::{BoxGrid, Split};
 
-/// Arrangement (IA) or material interface (MI).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
-    /// Implicit arrangement: cells labelled by sign vectors.
-    Ia,
-    /// Material interface: cells labelled by the largest function.
-    Mi,
-}
+pub use crate::complex::Mode;
 
 /// A box grid split into tetrahedra.
 #[derive(Clone, Debug, PartialEq)]
@@ -37,11 +31,16 @@ impl GridSpec {
         GridSpec { resolution: [n; 3], bounds: [[lo; 3], [hi; 3]], split: 5 }
     }
 
-    /// Position of grid vertex `(i, j, k)`: `lo + (hi - lo) * i / n` per
-    /// axis, the reference data's formula (bit-identical vertices).
+    /// Position of grid vertex `(i, j, k)`, as [`BoxGrid::vertex`] places it
+    /// ([`crate::grid::grid_coordinate`] per axis).
     pub fn vertex(&self, ijk: [usize; 3]) -> V3 {
         let [lo, hi] = self.bounds;
-        [0, 1, 2].map(|a| lo[a] + (hi[a] - lo[a]) * ijk[a] as f64 / self.resolution[a] as f64)
+        [0, 1, 2].map(|a| crate::grid::grid_coordinate(lo[a], hi[a], ijk[a], self.resolution[a]))
+    }
+
+    /// The box grid this spec describes (the one builder every front end uses).
+    pub fn box_grid(&self) -> Result<BoxGrid, String> {
+        BoxGrid::new(self.resolution, self.bounds, Split::try_from(self.split)?)
     }
 
     /// All vertices, vertex `(i, j, k)` at index

@@ -13,9 +13,13 @@
 //! with ray shooting (Du et al. Sec. 7.1), contribute nothing to the merge.
 //! Rays do cross skipped blocks; the few values they look at are computed
 //! on demand by the same formula at the same point, hence bit-identical to
-//! the dense samples. Where the dense path would group cells instead of
-//! shooting rays (volumes asked for, a value exactly 0 in IA, a tie for the
-//! maximum in MI), the sparse path falls back to the dense one and says so.
+//! the dense samples. Values exactly 0 (IA) or tied (MI) at grid vertices
+//! need nothing special: polygons lying in tet faces pair by key in the
+//! merge on both paths, and ray shooting works on the merged network
+//! either way. Only where ray shooting declines (a ray running along the
+//! network, components touching at points) or cell volumes are asked for,
+//! which need cell grouping across every tet face, does the sparse path
+//! fall back to the dense one, and it says so (`dense_fallback`).
 
 use std::time::Instant;
 
@@ -370,9 +374,10 @@ pub(crate) fn finish_with(
     stats.skipped = plan.blocks - plan.kept.len();
     stats.sampled_vertices = results.iter().map(|r| r.sampled_vertices).sum();
     stats.active = results.iter().filter(|r| r.out.active_tets > 0).count();
-    if !results.iter().all(|r| r.clean) {
-        return dense_fallback(grid, stats, dense);
-    }
+    // Blocks with a value exactly 0 (IA) or a tie (MI) at a grid vertex
+    // are merged like the others: their polygons on tet faces pair by key
+    // in the merge, and ray shooting decides whether it can identify the
+    // cells (it declines only where the dense path would group them).
     let outs: Vec<BlockOut> = results.into_iter().map(|r| r.out).collect();
     let t1 = Instant::now();
     let m = merge(options.mode, outs);
@@ -468,12 +473,6 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
             .collect::<Result<_, NetworkError>>()?;
         let t = Instant::now();
         for r in results {
-            if !r.clean {
-                // Ray shooting's precondition fails: the dense path decides.
-                let mut p = plan.clone();
-                p.dense = true;
-                return finish_sparse(grid, functions, options, &p, Vec::new());
-            }
             stats.sampled_vertices += r.sampled_vertices;
             stats.active += (r.out.active_tets > 0) as usize;
             merger.add(r.out);

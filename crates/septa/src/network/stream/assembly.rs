@@ -27,13 +27,14 @@
 //! `canon.rs` numbers cells), vertices as streamed (`numbering.rs`).
 
 use rustc_hash::FxHashMap;
+use smallvec::SmallVec;
 
 use super::numbering::max_x;
 use super::summary::{BlockSummary, ShellNode};
 use crate::complex::NONE;
 use crate::network::block::{BlockOut, Label, OpenT};
 use crate::network::dense::label_free_cells;
-use crate::network::topology::{chains, min_rotation, wedge_cycle};
+use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
 use crate::network::{named_counts, CellInfo, Mode, NetworkError, Patch};
 use crate::uf::UnionFind;
 
@@ -97,8 +98,8 @@ impl NetworkSummary {
 struct OpenEdge {
     /// Polygons around it so far.
     faces: u32,
-    /// Pieces of its first two polygons.
-    pieces: [u32; 2],
+    /// Pieces of its polygons.
+    pieces: SmallVec<[u32; 4]>,
     /// It is closed once the current slab starts right of this x index.
     retire: u32,
 }
@@ -123,6 +124,8 @@ pub(crate) struct Assembler {
     open_edges: FxHashMap<[u32; 2], OpenEdge>,
     open_t: FxHashMap<OpenT, u32>,
     chain_edges: Vec<[u32; 2]>,
+    /// The pieces around each chain edge (streamed vertex ids).
+    chain_pieces: FxHashMap<[u32; 2], SmallVec<[u32; 4]>>,
     /// Wedges (edge, side `2 f + s`, side) with streamed face ids, and the piece of each face in one.
     wedges: Vec<([u32; 2], u32, u32)>,
     wedge_piece: FxHashMap<u32, u32>,
@@ -154,6 +157,7 @@ impl Assembler {
             open_edges: FxHashMap::default(),
             open_t: FxHashMap::default(),
             chain_edges: Vec::new(),
+            chain_pieces: FxHashMap::default(),
             wedges: Vec::new(),
             wedge_piece: FxHashMap::default(),
             edges: 0,
@@ -242,25 +246,24 @@ impl Assembler {
         }
         self.edges += s.inner_edges;
         let gid = |v: u32| ids[v as usize];
-        for &[a, b] in &s.chain_edges {
-            let (x, y) = (gid(a), gid(b));
+        for ([a, b], around) in &s.chain_edges {
+            let (x, y) = (gid(*a), gid(*b));
             self.chain_edges.push([x.min(y), x.max(y)]);
+            self.chain_pieces.insert([x.min(y), x.max(y)], around.iter().map(|&p| base + p).collect());
         }
         for ([a, b], around) in &s.open_edges {
             let (x, y) = (gid(*a), gid(*b));
             let key = [x.min(y), x.max(y)];
             let e = self.open_edges.entry(key).or_insert_with(|| OpenEdge {
                 faces: 0,
-                pieces: [NONE; 2],
+                pieces: SmallVec::new(),
                 retire: max_x(self.plane, &out.keys[*a as usize]).min(max_x(self.plane, &out.keys[*b as usize])) as u32,
             });
             if e.faces == 0 {
                 self.edges += 1;
             }
             for &p in around {
-                if (e.faces as usize) < 2 {
-                    e.pieces[e.faces as usize] = base + p;
-                }
+                e.pieces.push(base + p);
                 e.faces += 1;
                 // Any edge joins its polygons' sheets.
                 self.sheet_uf.union(e.pieces[0], base + p);
@@ -280,7 +283,7 @@ impl Assembler {
 
     /// Closes the open edges and tet-face pieces no block from x index `slab` on can reach.
     fn close(&mut self, slab: usize) {
-        let Assembler { open_edges, patch_uf, chain_edges, open_t, plane, .. } = self;
+        let Assembler { open_edges, patch_uf, chain_edges, chain_pieces, open_t, plane, .. } = self;
         open_edges.retain(|key, e| {
             if (e.retire as usize) >= slab {
                 return true;
@@ -288,7 +291,10 @@ impl Assembler {
             match e.faces {
                 2 => patch_uf.union(e.pieces[0], e.pieces[1]),
                 1 => {}
-                _ => chain_edges.push(*key),
+                _ => {
+                    chain_edges.push(*key);
+                    chain_pieces.insert(*key, std::mem::take(&mut e.pieces));
+                }
             }
             false
         });
@@ -386,7 +392,7 @@ impl Assembler {
         label_free_cells(&mut cells, self.mode, row0);
         let (chains, corners) = compact_chains(&mut self.chain_edges);
         self.wedges.sort_unstable();
-        let chain_patches = self.chain_patches(&chains, &piece_patch);
+        let chain_patches = self.chain_patches(&chains, &piece_patch, &piece_cells);
         Ok(NetworkSummary {
             mode: self.mode,
             functions: self.functions,
@@ -406,8 +412,10 @@ impl Assembler {
         })
     }
 
-    /// Cyclic patch orders of the chains from the per-tet wedges.
-    fn chain_patches(&self, chains: &[Vec<u32>], piece_patch: &[u32]) -> Vec<Vec<u32>> {
+    /// Cyclic patch orders of the chains from the per-tet wedges, else
+    /// (chains on tet faces and tet edges) from the cells between the
+    /// pieces around a chain edge, as the in-memory network finds them.
+    fn chain_patches(&self, chains: &[Vec<u32>], piece_patch: &[u32], piece_cells: &[[u32; 2]]) -> Vec<Vec<u32>> {
         let mut by_edge: FxHashMap<[u32; 2], Vec<(u32, u32)>> = FxHashMap::default();
         // Sorted by the caller, so each edge's walk starts the same way every run.
         for &(e, x, y) in &self.wedges {
@@ -421,6 +429,12 @@ impl Assembler {
                 let n = c.len().saturating_sub(1);
                 let cyc = (0..n)
                     .find_map(|k| by_edge.get(&edge(c, k)).and_then(|p| wedge_cycle(p, &patch_of)))
+                    .or_else(|| {
+                        (0..n).find_map(|k| {
+                            let pieces = self.chain_pieces.get(&edge(c, k))?;
+                            cell_cycle(pieces, piece_cells, piece_patch)
+                        })
+                    })
                     .unwrap_or_default();
                 min_rotation(&cyc)
             })

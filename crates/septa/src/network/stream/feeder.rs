@@ -36,16 +36,25 @@ pub struct StreamFeeder<'a> {
     stats: StreamStats,
 }
 
-/// The summary of a clean block (an error naming the block otherwise).
+/// The summary of a block (an error naming the block if it has network
+/// faces lying in tet faces, which only the in-memory merge pairs yet).
 pub(crate) fn summary_of(r: &BlockResult) -> Result<BlockSummary, NetworkError> {
-    super::summary::summarize(&r.out).map_err(|_| unclean(r.index))
+    super::summary::summarize(&r.out).map_err(|_| face_on_tet_face(r))
 }
 
-fn unclean(index: usize) -> NetworkError {
+/// Values exactly 0 (IA) or tied (MI) at grid vertices stream like any
+/// others; a network face lying in a tet face (a function vanishing on a
+/// whole tet face, two materials tied on one) does not yet.
+fn face_on_tet_face(r: &BlockResult) -> NetworkError {
+    let face = match r.out.halves.first() {
+        Some(h) => format!(" (grid vertices {:?}, function {})", h.face, h.zero),
+        None => String::new(),
+    };
     NetworkError::BlockResults(format!(
-        "block {index}: a value exactly 0 (IA) or a tie for the maximum (MI) at a grid vertex; \
-         network faces may lie on tet faces, which only the in-memory merge pairs: \
-         run without streaming"
+        "block {}: a network face lies in a tet face{face}: a function vanishes on a whole tet face \
+         (IA) or two materials tie on one (MI); streaming cannot pair such faces across blocks yet: \
+         run in memory (without --stream), which handles them",
+        r.index
     ))
 }
 
@@ -93,9 +102,9 @@ impl<'a> StreamFeeder<'a> {
     /// Feeds the next block's result (it must be block `plan.kept[i]` for
     /// the `i`-th call, of this job) to `sink`, then drops it.
     pub fn feed<S: StreamSink + ?Sized>(&mut self, result: BlockResult, sink: &mut S) -> Result<(), StreamError> {
-        let summary = match (&self.assembler, result.clean) {
-            (Some(_), true) => Some(summary_of(&result)?),
-            _ => None,
+        let summary = match &self.assembler {
+            Some(_) => Some(summary_of(&result)?),
+            None => None,
         };
         self.feed_with(result, summary, sink)
     }
@@ -112,7 +121,7 @@ impl<'a> StreamFeeder<'a> {
         let topology = self.assembler.is_some();
         let summaries: Vec<Option<BlockSummary>> = results
             .par_iter()
-            .map(|r| if topology && r.clean { summary_of(r).map(Some) } else { Ok(None) })
+            .map(|r| if topology { summary_of(r).map(Some) } else { Ok(None) })
             .collect::<Result<_, _>>()?;
         for (r, s) in results.into_iter().zip(summaries) {
             self.feed_with(r, s, sink)?;
@@ -145,8 +154,8 @@ impl<'a> StreamFeeder<'a> {
                 .into())
             }
         }
-        if !r.clean {
-            return Err(unclean(r.index).into());
+        if !r.out.halves.is_empty() {
+            return Err(face_on_tet_face(&r).into());
         }
         let b = block_at(&self.grid, self.options.block, r.index).expect("a planned block exists");
         let (lo, hi) = cubes(&b);

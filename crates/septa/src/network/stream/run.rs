@@ -99,7 +99,7 @@ fn drive<S: StreamSink + Send>(
                     let r = run_block_with(w, &g, grid, functions, &o, i)?;
                     // Summaries are made here, in parallel; only their
                     // assembly runs in block order.
-                    let summary = if topology && r.clean { Some(summary_of(&r)?) } else { None };
+                    let summary = if topology { Some(summary_of(&r)?) } else { None };
                     if let Some(p) = &o.progress {
                         p.tick(&done, plan.kept.len());
                     }

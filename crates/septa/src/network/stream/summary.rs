@@ -52,8 +52,10 @@ pub(crate) struct BlockSummary {
     pub open_edges: Vec<([u32; 2], SmallVec<[u32; 4]>)>,
     /// Number of edges that are not open.
     pub inner_edges: usize,
-    /// Chain edges (three or more polygons) that are not open.
-    pub chain_edges: Vec<[u32; 2]>,
+    /// Chain edges (three or more polygons) that are not open, with the
+    /// piece of each polygon around them (for the cyclic patch order where
+    /// no wedge gives it: chains on tet faces and tet edges).
+    pub chain_edges: Vec<([u32; 2], SmallVec<[u32; 4]>)>,
     /// Pieces joined along a chain edge inside the block (edge-connected).
     pub sheet_pairs: Vec<(u32, u32)>,
     /// Pieces joined at a vertex inside the block (network components).
@@ -106,7 +108,6 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
                 1 => {}
                 2 => uf.union(sides[i].2, sides[i + 1].2),
                 _ => {
-                    s.chain_edges.push([a, b]);
                     runs.push((i, j));
                 }
             }
@@ -124,6 +125,7 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
             for &x in &around[1..] {
                 sheet.union(around[0], x);
             }
+            s.chain_edges.push(([a, b], around));
         }
     }
     drop(sides);

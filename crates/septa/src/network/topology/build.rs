@@ -397,7 +397,7 @@ pub(crate) fn wedge_cycle(pairs: &[(u32, u32)], patch_of: &dyn Fn(u32) -> u32) -
 /// by the cell they face; `None` unless every cell there is faced by
 /// exactly two sides (then each pair is one wedge) and the walk closes
 /// through every face.
-fn cell_cycle(faces: &[u32], face_cells: &[[u32; 2]], face_patch: &[u32]) -> Option<Vec<u32>> {
+pub(crate) fn cell_cycle(faces: &[u32], face_cells: &[[u32; 2]], face_patch: &[u32]) -> Option<Vec<u32>> {
     let sides: Vec<(u32, u32)> =
         faces.iter().flat_map(|&f| [0, 1].map(|s| (face_cells[f as usize][s], 2 * f + s as u32))).collect();
     if sides.iter().any(|x| x.0 == NONE) {

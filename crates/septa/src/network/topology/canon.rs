@@ -39,7 +39,16 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
                 .then_with(|| ka.funcs.cmp(&kb.funcs))
         },
     );
-    let mut vnew = vec![0u32; nv];
+    // Only vertices of faces are network vertices: a point found in a tet
+    // (say, a tie of two materials at a grid vertex) that bounds no face
+    // after the merge is no vertex and no component of the network.
+    let mut used = vec![false; nv];
+    for &v in &m.face_verts {
+        used[v as usize] = true;
+    }
+    let mut order = order;
+    order.retain(|&o| used[o as usize]);
+    let mut vnew = vec![NONE; nv];
     for (i, &o) in order.iter().enumerate() {
         vnew[o as usize] = i as u32;
     }
