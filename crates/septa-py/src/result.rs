@@ -178,5 +178,7 @@ pub fn write_result(
     let meta: serde_json::Value =
         serde_json::from_str(meta).map_err(|e| InputError::new_err(format!("meta: not JSON: {e}")))?;
     let shown = path.display().to_string();
-    py.detach(|| write_file(&view, &path, format, &meta)).map_err(|e| InputError::new_err(format!("{shown}: {e}")))
+    // A failing write is the file system's error, not bad input: OSError.
+    py.detach(|| write_file(&view, &path, format, &meta))
+        .map_err(|e| pyo3::exceptions::PyOSError::new_err((e.raw_os_error().unwrap_or(0), format!("{shown}: {e}"))))
 }
