@@ -115,23 +115,25 @@ def two_planes(n=4):
 
 def write_ply(path, net):
     """Binary little-endian PLY in Septa's layout: each polygon as a fan of
-    triangles with its polygon id, patch and label pair."""
+    triangles with its polygon id, patch, label pair and cell pair (the
+    names of crates/septa/src/io/result_mesh.rs, written independently)."""
     pts, faces = net["points"], net["faces"]
     ntri = sum(len(f) - 2 for f in faces)
     header = (
         "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n"
         f"element vertex {len(pts)}\nproperty double x\nproperty double y\nproperty double z\n"
         f"element face {ntri}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n"
-        "property int label0\nproperty int label1\nend_header\n"
+        "property int labels_0\nproperty int labels_1\nproperty int cells_0\nproperty int cells_1\nend_header\n"
     )
     out = bytearray(header.encode("ascii"))
     for p in pts:
         out += struct.pack("<3d", *p)
     labels = net.get("face_label", [[-1, -1]] * len(faces))
-    for i, (f, patch, label) in enumerate(zip(faces, net["face_patch"], labels)):
+    cells = net.get("face_cells", [[-1, -1]] * len(faces))
+    for i, (f, patch, label, cell) in enumerate(zip(faces, net["face_patch"], labels, cells)):
         for j in range(1, len(f) - 1):
             out += struct.pack("<B3i", 3, f[0], f[j], f[j + 1])
-            out += struct.pack("<4i", i, patch, label[0], label[1])
+            out += struct.pack("<6i", i, patch, label[0], label[1], cell[0], cell[1])
     atomic_write(path, bytes(out))
 
 

@@ -19,13 +19,22 @@ def network(
     lookup: bool = True,
     raytrace: bool = True,
     threads: int | None = None,
+    progress: object | None = None,
 ) -> dict: ...
 
-def regions(scene: str, normals: bool = False, clean: float | None = None) -> str:
-    """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as ``network.json`` text."""
+def regions(scene: str, normals: bool = False, clean: float | None = None) -> dict:
+    """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as numpy arrays (``septa.Network``'s names)."""
 
-def labels(volume: np.ndarray, sigma: float = 0.0) -> str:
-    """Surfaces between the labels of an int64 ``(nx, ny, nz)`` volume as ``network.json`` text."""
+def labels(volume: np.ndarray, sigma: float = 0.0) -> dict:
+    """Surfaces between the labels of an int64 ``(nx, ny, nz)`` volume as numpy arrays (as ``regions``)."""
+
+def write_result(path: str, format: str, mode: str, functions: int, points: np.ndarray, offsets: np.ndarray,
+                 indices: np.ndarray, patch: np.ndarray, labels: np.ndarray, cells: np.ndarray,
+                 patch_labels: np.ndarray, chain_offsets: np.ndarray, chain_indices: np.ndarray,
+                 chain_patch_offsets: np.ndarray, chain_patch_indices: np.ndarray, corners: np.ndarray,
+                 shell_offsets: np.ndarray, shell_indices: np.ndarray, cell_shell_offsets: np.ndarray,
+                 cell_shell_indices: np.ndarray, cell_labels: np.ndarray, meta: str) -> None:
+    """Writes a result with the command line's writers (ply, plain.ply, obj, vtu, vtm, npz)."""
 
 def cut(
     vertices: npt.NDArray[np.float64],
@@ -44,8 +53,8 @@ def sparse_blocks(job: str, indices: list[int]) -> list[bytes]:
 def sparse_finish(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> dict:
     """Step 3: merge in block order, topology; the network dict (as ``network``)."""
 
-def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> str:
-    """Step 3 for a scene's region surfaces: ``network.json`` text (as ``regions``)."""
+def sparse_finish_regions(job: str, plan: tuple[int, list[int], bool], results: list[bytes]) -> dict:
+    """Step 3 for a scene's region surfaces: numpy arrays (as ``regions``)."""
 
 def sparse_network(job: str, dense: bool = False, threads: int | None = None) -> dict:
     """The whole job in this process (``compute_sparse``, or the dense path)."""

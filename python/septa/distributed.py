@@ -156,7 +156,7 @@ def _distributed(job: dict, client, batch, regions=False, normals=False):
     if regions:
         from .jobs import _region_network
 
-        net = _region_network(json.loads(_septa.sparse_finish_regions(text, plan, results, normals)))
+        net = _region_network(_septa.sparse_finish_regions(text, plan, results, normals))
     else:
         net = Network._from_core(_septa.sparse_finish(text, plan, results))
     if "blocks" in net._counts and isinstance(net._counts["blocks"], dict):

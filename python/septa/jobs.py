@@ -9,7 +9,9 @@ shapes on the exact network) and ``cut_mesh`` (TopoCut planar cut-cells).
 from __future__ import annotations
 
 import json
+import logging
 import os
+import time
 
 import numpy as np
 
@@ -19,6 +21,10 @@ from .grid import Grid
 from .network import Network
 
 __all__ = ["arrangement", "material_interface", "region_surfaces", "cut_mesh", "CutCells"]
+
+# Messages of every job: its counts and stage seconds at INFO
+# (logging.getLogger("septa").setLevel(logging.INFO) to see them).
+log = logging.getLogger("septa")
 
 
 
@@ -47,7 +53,7 @@ def _grid_inputs(grid_or_vertices, tets, values):
     return v, t, f
 
 
-def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells):
+def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progress=None):
     v, t, f = _grid_inputs(grid_or_vertices, tets, values)
     if cells not in ("raytrace", "grouping"):
         raise _septa.InputError(f'cells must be "raytrace" or "grouping", not {cells!r}')
@@ -55,18 +61,34 @@ def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells):
     g = grid_or_vertices
     if isinstance(g, Grid) and g.resolution is not None and (tets is None or values is None or tets is g.tets):
         box = (tuple(g.resolution), g.bounds.tolist(), g.split)
+    if progress is not None and not callable(progress):
+        raise _septa.InputError("progress: expected a function progress(done, total)")
+    t0 = time.perf_counter()
     d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"),
-                       threads=_inputs.threads(threads))
-    return Network._from_core(d)
+                       threads=_inputs.threads(threads), progress=progress)
+    net = Network._from_core(d)
+    _log_done(mode, net, t0)
+    return net
 
 
-def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace"):
+def _log_done(what, net, t0):
+    if log.isEnabledFor(logging.INFO):
+        s = net.summary()
+        log.info("%s: %d faces, %d patches, %d chains, %d cells in %.3f s (%s)", what, s["faces"], s["patches"],
+                 s["chains"], s["cells"], time.perf_counter() - t0,
+                 ", ".join(f"{k} {v:.3f}" for k, v in net.seconds.items()))
+
+
+def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace", progress=None):
     """Implicit arrangement of the zero sets of k functions sampled on a tet grid.
 
     ``arrangement(grid, values)`` or ``arrangement(vertices, tets, values)``
     with ``values`` ``(#V, k) float64`` (a 1-D array is one function).
     ``threads``: worker threads (default all cores); ``lookup``: use the
-    look-up tables; ``cells``: ``"raytrace"`` or ``"grouping"``.
+    look-up tables; ``cells``: ``"raytrace"`` or ``"grouping"``;
+    ``progress``: a function ``progress(done, total)`` called as blocks of
+    the grid finish (e.g. to drive a tqdm bar). Counts and stage seconds are
+    logged at INFO on the ``septa`` logger.
     Returns a :class:`septa.Network`; the same as ``septa ia``.
 
     >>> import septa
@@ -77,13 +99,14 @@ def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=Tru
     >>> s["patches"], s["chains"], s["cells"]
     (4, 1, 4)
     """
-    return _network("ia", grid_or_vertices, tets, values, threads, lookup, cells)
+    return _network("ia", grid_or_vertices, tets, values, threads, lookup, cells, progress)
 
 
-def material_interface(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace"):
+def material_interface(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace",
+                       progress=None):
     """Material interface (argmax partition) of k functions on a tet grid;
     the same arguments as :func:`arrangement`, the same result as ``septa mi``."""
-    return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells)
+    return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells, progress)
 
 
 def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False,
@@ -123,7 +146,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     scene = scene_or_functions
     if isinstance(scene, (list, tuple)):
         scene = {"grid": grid or {"resolution": 32, "bounds": [[-1, -1, -1], [1, 1, 1]]}, "mode": mode,
-                 "functions": list(scene)}
+                 "functions": [f.to_spec() if hasattr(f, "to_spec") else f for f in scene]}
         if rule is not None:
             scene["solid" if isinstance(rule, str) else "regions"] = rule
         if surfaces is not None:
@@ -133,7 +156,10 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     elif rule is not None or surfaces is not None or curves is not None:
         raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
-    return _region_network(json.loads(_septa.regions(text, normals=normals, clean=clean)))
+    t0 = time.perf_counter()
+    net = _region_network(_septa.regions(text, normals=normals, clean=clean))
+    _log_done("region_surfaces", net, t0)
+    return net
 
 
 def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0)) -> Network:
@@ -184,17 +210,23 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     m = np.asarray(affine, dtype=np.float64)[:3]
     if not np.isfinite(m).all() or np.linalg.matrix_rank(m[:, :3]) < 3:
         raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
-    data = json.loads(_septa.labels(a, float(sigma)))
+    t0 = time.perf_counter()
+    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma))
     # Placing the grid in space moves no combinatorics: points only. The
     # full affine (direction cosines, shears, flips) maps voxel indices to
     # world points, as nibabel's apply_affine and NRRD's space directions do.
     pts = np.asarray(data["points"], dtype=np.float64).reshape(-1, 3)
-    data["points"] = (pts @ m[:, :3].T + m[:, 3]).tolist()
+    data["points"] = pts @ m[:, :3].T + m[:, 3]
     if np.linalg.det(m[:, :3]) < 0:
         # A mirror turns counter-clockwise loops clockwise: reverse each
         # polygon so it stays counter-clockwise seen from the lesser region.
-        data["faces"] = [f[::-1] for f in data["faces"]]
-    return _region_network(data)
+        off = np.asarray(data["offsets"], dtype=np.int64)
+        idx = np.asarray(data["indices"], dtype=np.int64)
+        face = np.repeat(np.arange(len(off) - 1), np.diff(off))
+        data["indices"] = idx[off[face] + off[face + 1] - 1 - np.arange(len(idx))]
+    net = _region_network(data)
+    _log_done("label_surfaces", net, t0)
+    return net
 
 
 def _read_volume(path: str):
@@ -234,8 +266,20 @@ def _read_volume(path: str):
 
 
 def _region_network(data: dict) -> Network:
-    """A region-surfaces document as a :class:`Network` with ``surfaces``,
-    ``curves`` and, when computed, ``normals``."""
+    """Region surfaces as a :class:`Network` with ``surfaces``, ``curves``
+    and, when computed, ``normals``: from the core's arrays (with
+    ``"summary"``) or from a ``network.json`` document."""
+    if "summary" in data:
+        summary = json.loads(data["summary"])
+        data["counts"], data["seconds"] = summary, summary.get("seconds", {})
+        net = Network._from_core(data)
+        net.surfaces, net.curves = summary["surfaces"], summary["curves"]
+        net.normals = net.indices_normal = None
+        if "normal_vertex" in data:
+            net.normals = {"vertex": data["normal_vertex"], "regions": data["normal_regions"],
+                           "normal": data["normal_vectors"]}
+            net.indices_normal = data["indices_normal"]
+        return net
     net = Network(data)
     net.surfaces = data["counts"]["surfaces"]
     net.curves = data["counts"]["curves"]

@@ -51,6 +51,7 @@ class Network:
         net = cls.__new__(cls)
         net._data = None
         net.mode = d["mode"]
+        net.functions = int(d.get("functions", 0) or 0)
         net.points = d["points"]
         net.offsets, net.indices = d["offsets"], d["indices"]
         net._triangulate()
@@ -86,18 +87,36 @@ class Network:
         return self._data
 
     def _triangulate(self):
+        # Built on first use (loading stays fast): see `triangles`.
+        self._tri = None
+
+    def _fan(self):
         # Fan triangulation (faces are convex): triangle (v0, vk, vk+1).
-        sizes = np.diff(self.offsets)
-        ntri = sizes - 2
-        self.triangle_face = np.repeat(np.arange(len(sizes), dtype=np.int64), ntri)
-        k = np.arange(len(self.triangle_face)) - np.repeat(np.cumsum(ntri) - ntri, ntri)
-        first = self.offsets[:-1][self.triangle_face]
-        self.triangles = np.stack([self.indices[first], self.indices[first + k + 1], self.indices[first + k + 2]], axis=1)
+        if getattr(self, "_tri", None) is None:
+            sizes = np.diff(self.offsets)
+            ntri = sizes - 2
+            face = np.repeat(np.arange(len(sizes), dtype=np.int64), ntri)
+            k = np.arange(len(face)) - np.repeat(np.cumsum(ntri) - ntri, ntri)
+            first = self.offsets[:-1][face]
+            tri = np.stack([self.indices[first], self.indices[first + k + 1], self.indices[first + k + 2]], axis=1)
+            self._tri = (tri, face)
+        return self._tri
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """``(#tri, 3) int64``: the polygons' fan triangulation (computed on first use)."""
+        return self._fan()[0]
+
+    @property
+    def triangle_face(self) -> np.ndarray:
+        """``(#tri,) int64``: the polygon of each triangle."""
+        return self._fan()[1]
 
     def __init__(self, data: dict):
         self._data = data
         self._counts = dict(data.get("counts", {}))
         self.mode = data.get("mode", "ia")
+        self.functions = int(data.get("functions", 0) or 0)
         self.points = np.asarray(data.get("points", []), dtype=np.float64).reshape(-1, 3)
         faces = data.get("faces", [])
         sizes = np.fromiter((len(f) for f in faces), dtype=np.int64, count=len(faces))
@@ -144,99 +163,174 @@ class Network:
 
     # --- saving -------------------------------------------------------
     def save(self, path) -> Path:
-        """Saves by extension: .json (network contract), .ply (binary, per-face
-        patch), .obj (a group per patch, chains as polylines), .vtu / .msh
-        (through meshio). Written to a temporary file, then renamed."""
+        """Saves by extension with the command line's writers (one vocabulary:
+        per polygon ``patch``, ``labels`` (2), ``cells`` (2); chains and
+        corners as line and vertex cells): ``.npz`` (every array, numpy
+        reads it), ``.ply`` (triangles with ``face``, ``patch``,
+        ``labels_0/1``, ``cells_0/1``), ``.plain.ply`` (triangles only, for
+        meshio), ``.obj``, ``.vtu``, ``.vtm`` (ParaView multiblock of
+        patches, chains, corners, cells), ``.json`` (the ``network.json``
+        document) and ``.msh`` (through meshio). Written to a temporary
+        file, then renamed."""
         path = Path(path)
-        ext = path.suffix.lower()
+        name = path.name.lower()
+        ext = ".plain.ply" if name.endswith(".plain.ply") else path.suffix.lower()
+        if ext in _RUST_FORMATS:
+            self._write_rust(path, _RUST_FORMATS[ext])
+            return path
         tmp = path.with_name(path.name + ".tmp")
         try:
             if ext == ".json":
                 tmp.write_text(json.dumps(self.data, separators=(",", ":")))
-            elif ext == ".ply":
-                tmp.write_bytes(self._ply_bytes())
-            elif ext == ".obj":
-                tmp.write_text(self._obj_text())
-            elif ext in (".vtu", ".msh"):
+            elif ext == ".msh":
                 meshio = _need("meshio", "meshio")
-                fmt = "vtu" if ext == ".vtu" else "gmsh22"
                 mesh = self.to_meshio()
-                if ext == ".msh":
-                    tags = self.face_patch[self.triangle_face].astype(np.int32)
-                    mesh.cell_data = {"gmsh:physical": [tags], "gmsh:geometrical": [tags]}
-                meshio.write(str(tmp), mesh, file_format=fmt, **({"binary": True} if ext == ".msh" else {}))
+                tags = self.face_patch[self.triangle_face].astype(np.int32)
+                mesh.cell_data = {"gmsh:physical": [tags], "gmsh:geometrical": [tags]}
+                meshio.write(str(tmp), mesh, file_format="gmsh22", binary=True)
             else:
-                raise InputError(f"save: unknown extension {ext!r} (use .json .ply .obj .vtu .msh)")
+                raise InputError(f"save: unknown extension {ext!r} (use {' '.join(sorted(_RUST_FORMATS))} .json .msh)")
             os.replace(tmp, path)
         finally:
             if tmp.exists():
                 tmp.unlink()
         return path
 
-    def _ply_bytes(self) -> bytes:
-        # The CLI's network.ply layout: polygons as triangle fans, each with
-        # its polygon id, patch and label pair (mesh tools read only face
-        # lists of one length with extra properties).
-        t = self.triangle_face
-        header = (
-            "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n"
-            f"element vertex {len(self.points)}\nproperty double x\nproperty double y\nproperty double z\n"
-            f"element face {len(t)}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n"
-            "property int label0\nproperty int label1\nend_header\n"
-        ).encode()
-        rec = np.dtype([("n", "u1"), ("v", "<i4", (3,)), ("face", "<i4"), ("patch", "<i4"), ("l0", "<i4"), ("l1", "<i4")])
-        rows = np.empty(len(t), dtype=rec)
-        rows["n"] = 3
-        rows["v"] = self.triangles
-        rows["face"] = t
-        rows["patch"] = self.face_patch[t]
-        rows["l0"] = self.face_label[t, 0]
-        rows["l1"] = self.face_label[t, 1]
-        return header + self.points.astype("<f8").tobytes() + rows.tobytes()
+    def _write_rust(self, path: Path, fmt: str) -> None:
+        from . import _septa
 
-    def _obj_text(self) -> str:
-        lines = [f"# septa network: {json.dumps({k: v for k, v in self.summary().items() if k != 'seconds'})}"]
-        lines += [f"v {x!r} {y!r} {z!r}" for x, y, z in self.points.tolist()]
-        for p in range(len(self.patch_labels)):
-            lines.append(f"g patch_{p}_label_{self.patch_labels[p, 0]}_{self.patch_labels[p, 1]}")
-            for f in np.flatnonzero(self.face_patch == p):
-                lines.append("f " + " ".join(str(i + 1) for i in self.indices[self.offsets[f]:self.offsets[f + 1]]))
-        for c, chain in enumerate(self.chains):
-            lines.append(f"g chain_{c}")
-            lines.append("l " + " ".join(str(i + 1) for i in chain))
-        return "\n".join(lines) + "\n"
+        def csr(lists):
+            lists = [np.asarray(x, dtype=np.int64).ravel() for x in lists]
+            offsets = np.zeros(len(lists) + 1, dtype=np.int64)
+            offsets[1:] = np.cumsum([len(x) for x in lists]) if lists else []
+            return offsets, (np.concatenate(lists) if lists else np.zeros(0, dtype=np.int64))
+
+        i64 = lambda a, *shape: np.ascontiguousarray(np.asarray(a, dtype=np.int64).reshape(*shape))
+        labels = [list(c.get("label", [])) for c in self.cells]
+        width = max((len(l) for l in labels), default=0)
+        cell_labels = np.full((len(labels), width), -1, dtype=np.int64)
+        for i, l in enumerate(labels):
+            cell_labels[i, :len(l)] = [int(x) for x in l]
+        meta = {"counts": {k: v for k, v in self._counts.items() if k != "cells_method"}, "seconds": self.seconds,
+                "cells_method": self._counts.get("cells_method")}
+        _septa.write_result(
+            str(path), fmt, self.mode if self.mode in ("ia", "mi", "regions") else "ia", self.functions,
+            np.ascontiguousarray(self.points, dtype=np.float64).reshape(-1, 3), i64(self.offsets, -1), i64(self.indices, -1),
+            i64(self.face_patch, -1), i64(self.face_label, -1, 2), i64(self.face_cells, -1, 2), i64(self.patch_labels, -1, 2),
+            *csr(self.chains), *csr(self.chain_patches), i64(self.corners, -1), *csr(self.shells),
+            *csr([c.get("shells", []) for c in self.cells]), cell_labels, json.dumps(meta, default=str))
 
     # --- converters ---------------------------------------------------
     def _triangle_data(self) -> dict:
-        pf = self.face_patch[self.triangle_face]
-        lab = self.patch_labels[pf] if len(self.patch_labels) else np.full((len(pf), 2), -1)
-        return {"patch": pf, "label_a": lab[:, 0], "label_b": lab[:, 1], "face": self.triangle_face}
+        t = self.triangle_face
+        return {"patch": self.face_patch[t], "labels": self.face_label[t], "cells": self.face_cells[t], "face": t}
 
     def to_meshio(self):
         """A ``meshio.Mesh`` of the triangulated faces with cell data
-        ``patch``, ``label_a``, ``label_b``, ``face``."""
+        ``patch``, ``labels`` ``(#tri, 2)``, ``cells`` ``(#tri, 2)`` and
+        ``face`` (the polygon of each triangle)."""
         meshio = _need("meshio", "meshio")
         data = self._triangle_data()
         return meshio.Mesh(self.points, [("triangle", self.triangles)], cell_data={k: [v] for k, v in data.items()})
 
     def to_trimesh(self):
         """A ``trimesh.Trimesh`` (not processed: vertices keep their ids) with
-        ``face_attributes`` patch / label_a / label_b / face."""
+        ``face_attributes`` patch / labels / cells / face."""
         trimesh = _need("trimesh", "trimesh")
         return trimesh.Trimesh(vertices=self.points, faces=self.triangles, face_attributes=self._triangle_data(), process=False)
 
     def to_pyvista(self):
-        """A ``pyvista.PolyData`` of the polygons with cell data ``patch``."""
+        """A ``pyvista.MultiBlock`` with the blocks of ``network.vtm``:
+        ``patches`` (PolyData of the polygons with cell data ``patch``,
+        ``labels`` (2), ``cells`` (2)), ``chains`` (a line per chain edge
+        with ``chain``), ``corners`` (vertex cells with ``corner``) and
+        ``cells`` (each polygon once per side, oriented out of that cell,
+        with ``cell`` and ``patch``). ``mb["patches"]`` is the surface."""
         pv = _need("pyvista", "pyvista")
         sizes = np.diff(self.offsets)
-        flat = np.insert(self.indices, self.offsets[:-1], sizes)
-        mesh = pv.PolyData(self.points, faces=flat)
-        mesh.cell_data["patch"] = self.face_patch
-        return mesh
+        polys = np.insert(self.indices, self.offsets[:-1], sizes)
+        patches = pv.PolyData(self.points, faces=polys)
+        patches.cell_data["patch"] = self.face_patch
+        patches.cell_data["labels"] = self.face_label
+        patches.cell_data["cells"] = self.face_cells
+        mb = pv.MultiBlock()
+        mb["patches"] = patches
+        edges = [np.stack([c[:-1], c[1:]], axis=1) for c in self.chains if len(c) > 1]
+        if edges:
+            e = np.concatenate(edges)
+            chains = pv.PolyData(self.points, lines=np.hstack([np.full((len(e), 1), 2), e]).ravel())
+            chains.cell_data["chain"] = np.repeat(np.arange(len(self.chains)), [max(len(c) - 1, 0) for c in self.chains])
+            mb["chains"] = chains
+        if len(self.corners):
+            corners = pv.PolyData(self.points, verts=np.stack([np.ones_like(self.corners), self.corners], axis=1).ravel())
+            corners.cell_data["corner"] = np.arange(len(self.corners))
+            mb["corners"] = corners
+        side = []  # (cell, face, reversed): reversed for the positive side, so it faces out of the cell
+        for k, rev in ((0, True), (1, False)):
+            f = np.flatnonzero(self.face_cells[:, k] >= 0)
+            side.append((self.face_cells[f, k], f, np.full(len(f), rev)))
+        cell = np.concatenate([s[0] for s in side])
+        face = np.concatenate([s[1] for s in side])
+        rev = np.concatenate([s[2] for s in side])
+        if len(face):
+            order = np.lexsort((face, cell))
+            cell, face, rev = cell[order], face[order], rev[order]
+            loops = [self.indices[self.offsets[f]:self.offsets[f + 1]] for f in face]
+            flat = np.concatenate([np.concatenate([[len(l)], l[::-1] if r else l]) for l, r in zip(loops, rev)])
+            cells = pv.PolyData(self.points, faces=flat)
+            cells.cell_data["cell"] = cell
+            cells.cell_data["patch"] = self.face_patch[face]
+            mb["cells"] = cells
+        return mb
+
+    def _repr_html_(self) -> str:
+        """The viewer inline in a notebook: one self-contained iframe (the
+        bundled viewer and the result; nothing loaded from the network)."""
+        from .viewer import inline_html
+
+        return inline_html(self)
+
+
+_RUST_FORMATS = {".npz": "npz", ".ply": "ply", ".plain.ply": "plain.ply", ".obj": "obj", ".vtu": "vtu", ".vtm": "vtm"}
+
+
+def _from_npz(p: Path) -> Network:
+    """A :class:`Network` from ``network.npz`` (``numpy.load`` only: no JSON
+    parsing but the small ``meta``)."""
+    try:
+        z = np.load(p, allow_pickle=False)
+        a = {k: z[k] for k in z.files}
+    except (OSError, ValueError) as e:
+        raise InputError(f"{p}: not a readable .npz ({e})") from e
+    need = ("meta", "points", "offsets", "indices", "patch", "labels", "cells")
+    missing = [k for k in need if k not in a]
+    if missing:
+        raise InputError(f"{p}: not a septa result (no {', '.join(missing)})")
+    meta = json.loads(str(a["meta"]))
+    split = lambda name: np.split(a[f"{name}_indices"], a[f"{name}_offsets"][1:-1]) if len(a[f"{name}_offsets"]) > 1 else []
+    offsets, indices = a["offsets"], a["indices"]
+    if len(offsets) == 0 or offsets[0] != 0 or offsets[-1] != len(indices) or np.any(np.diff(offsets) < 3):
+        raise InputError(f"{p}: offsets do not describe polygons of 3 or more vertices")
+    if len(indices) and (indices.min() < 0 or indices.max() >= len(a["points"])):
+        raise InputError(f"{p}: a face refers to a point that does not exist")
+    mode = meta.get("mode", "ia")
+    cell_shells = split("cell_shell")
+    cells = [{"shells": s.tolist(), "label": [bool(x) for x in l] if mode == "ia" else l.tolist()}
+             for s, l in zip(cell_shells, a["cell_labels"])]
+    d = {"mode": mode, "points": a["points"], "offsets": offsets, "indices": indices, "face_patch": a["patch"],
+         "face_cells": a["cells"], "face_label": a["labels"], "patch_labels": a["patch_labels"],
+         "patch_faces": np.bincount(a["patch"], minlength=len(a["patch_labels"])), "chains": split("chain"),
+         "chain_patches": split("chain_patch"), "corners": a["corners"], "shells": split("shell"), "cells": cells,
+         "functions": meta.get("functions", 0), "counts": meta.get("counts", {}), "seconds": meta.get("seconds", {}), "cells_method": meta.get("cells_method")}
+    net = Network._from_core(d)
+    if mode == "regions":
+        net.surfaces, net.curves = meta["counts"].get("surfaces", []), meta["counts"].get("curves", [])
+    return net
 
 
 def load(path) -> Network:
-    """Loads a job output: a folder holding ``network.json`` or the file itself.
+    """Loads a job output: a folder (its ``network.npz`` when there is one,
+    else ``network.json``), or a ``.npz`` / ``.json`` file.
 
     >>> import septa, pathlib
     >>> net = septa.load(pathlib.Path(septa.__file__).parents[2] / "tests/fixtures/two-planes")  # doctest: +SKIP
@@ -246,7 +340,13 @@ def load(path) -> Network:
         # A folder written by septa holds manifest.json once complete (io/outdir.rs).
         if (p / ".septa.lock").exists() and not (p / "manifest.json").exists():
             raise InputError(f"{p}: incomplete result: a run was interrupted or is still writing (no manifest.json)")
-        p = p / "network.json"
+        p = p / "network.npz" if (p / "network.npz").exists() else p / "network.json"
+    if p.suffix.lower() == ".npz":
+        if not p.exists():
+            raise InputError(f"{p}: cannot read (no such file)")
+        net = _from_npz(p)
+        net.source = p
+        return net
     try:
         text = p.read_bytes().decode("utf-8")
     except OSError as e:

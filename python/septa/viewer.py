@@ -12,7 +12,27 @@ from pathlib import Path
 from . import _septa
 from .network import Network, load
 
-__all__ = ["view", "write_viewer"]
+__all__ = ["view", "write_viewer", "inline_html"]
+
+
+def _payload(net: Network, title: str) -> str:
+    payload = {"title": title, "network": net.data, "cut": None}
+    return "window.__SEPTA_DATA = " + json.dumps(payload, separators=(",", ":")) + ";\n"
+
+
+def inline_html(net: Network, title: str = "Septa", height: int = 480) -> str:
+    """The viewer for ``net`` as one ``<iframe srcdoc=...>`` (the bundled
+    viewer, three.js and the result inline; nothing is loaded from the
+    network): what a notebook shows for a :class:`Network`."""
+    import html
+
+    files = dict(_septa.viewer_assets())
+    page = files["index.html"].decode()
+    script = lambda js: "<script>" + js.replace("</script", "<\\/script") + "</script>"
+    page = page.replace('<script src="data.js"></script>', script(_payload(net, title)))
+    page = page.replace('<script src="viewer.js"></script>', script(files["viewer.js"].decode()))
+    return (f'<iframe srcdoc="{html.escape(page, quote=True)}" style="width:100%;height:{int(height)}px;border:0" '
+            f'sandbox="allow-scripts"></iframe>')
 
 
 def write_viewer(net: Network, folder, title: str = "Septa") -> Path:
@@ -20,8 +40,7 @@ def write_viewer(net: Network, folder, title: str = "Septa") -> Path:
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     files = dict(_septa.viewer_assets())
-    payload = {"title": title, "network": net.data, "cut": None}
-    files["data.js"] = ("window.__SEPTA_DATA = " + json.dumps(payload, separators=(",", ":")) + ";\n").encode()
+    files["data.js"] = _payload(net, title).encode()
     for name, data in files.items():
         tmp = folder / (name + ".tmp-septa")
         try:

@@ -32,7 +32,8 @@ def test_save_roundtrip(tmp_path, fixture_net):
     net = fixture_net
     ntri = len(net.triangles)
     # PLY: the polygons as triangle fans, each naming its polygon and patch.
-    # (meshio's PLY reader cannot read per-face properties, so trimesh reads it.)
+    # (meshio 5.3's binary PLY reader cannot read per-face properties, so
+    # trimesh reads it; meshio reads the .plain.ply, test_formats.py.)
     net.save(tmp_path / "n.ply")
     t = trimesh.load(tmp_path / "n.ply", process=False)
     assert len(t.faces) == ntri and np.allclose(t.vertices, net.points)
@@ -40,7 +41,8 @@ def test_save_roundtrip(tmp_path, fixture_net):
     raw = t.metadata["_ply_raw"]["face"]["data"]
     assert np.array_equal(raw["face"].ravel(), net.triangle_face)
     assert np.array_equal(raw["patch"].ravel(), net.face_patch[net.triangle_face])
-    assert np.array_equal(raw["label0"].ravel(), net.face_label[net.triangle_face, 0])
+    assert np.array_equal(raw["labels_0"].ravel(), net.face_label[net.triangle_face, 0])
+    assert np.array_equal(raw["cells_1"].ravel(), net.face_cells[net.triangle_face, 1])
     # The fixture's PLY (as the CLI writes it) reads the same way.
     ref = trimesh.load(FIXTURE / "network.ply", process=False)
     assert np.array_equal(ref.faces, t.faces)
@@ -50,10 +52,11 @@ def test_save_roundtrip(tmp_path, fixture_net):
     t = trimesh.load(tmp_path / "n.obj", process=False, force="mesh")
     assert len(t.faces) == ntri
     assert (tmp_path / "n.obj").read_text().count("\ng patch_") == 4
-    # VTU and MSH through meshio, with patch ids as cell data.
+    # VTU (the polygons) and MSH (triangles) through meshio, with patch ids as cell data.
     net.save(tmp_path / "n.vtu")
     m = meshio.read(tmp_path / "n.vtu")
-    assert np.array_equal(m.cell_data["patch"][0], net.face_patch[net.triangle_face])
+    assert np.array_equal(np.concatenate(m.cell_data["patch"]).ravel(), net.face_patch)
+    assert np.array_equal(np.concatenate(m.cell_data["labels"]), net.face_label)
     net.save(tmp_path / "n.msh")
     m = meshio.read(tmp_path / "n.msh")
     assert len(m.cells_dict["triangle"]) == ntri
@@ -81,7 +84,9 @@ def test_to_pyvista_hint_or_mesh(fixture_net):
         with pytest.raises(ImportError, match="pip install pyvista"):
             fixture_net.to_pyvista()
     else:
-        assert fixture_net.to_pyvista().n_cells == len(fixture_net)
+        mb = fixture_net.to_pyvista()
+        assert mb["patches"].n_cells == len(fixture_net)
+        assert mb["corners"].n_cells == 2 and mb["chains"].n_cells == len(fixture_net.chains[0]) - 1
 
 
 def test_load_errors(tmp_path):

@@ -180,8 +180,8 @@ def test_label_surfaces_numpy_and_files_match_the_command_line(tmp_path):
     assert all(s["boundary_loops"] <= 1 for s in net.surfaces)
     np.save(tmp_path / "v.npy", v.astype(np.int64))
     exe = need(ROOT / "target" / "release" / "septa", "the command line (scripts/test.sh builds it)")
-    out = subprocess.run([str(exe), "labels", str(tmp_path / "v.npy"), "--json"], capture_output=True, text=True,
-                         check=True)
+    out = subprocess.run([str(exe), "labels", str(tmp_path / "v.npy"), "--json", "-o", str(tmp_path / "out")],
+                         capture_output=True, text=True, check=True)
     cli = json.loads(out.stdout)
     assert [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in cli["surfaces"]] == \
         [(s["regions"], s["euler"], s["boundary_loops"], s["faces"]) for s in net.surfaces]

@@ -38,7 +38,7 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
     ref_pts = np.asarray(ref["points"], dtype=np.float64)
     pts = np.stack([verts[c] for c in ("x", "y", "z")], axis=1)
     mine = sorted((tuple(sorted(map(tuple, pts[vs].tolist()))), int(a), int(b))
-                  for vs, a, b in zip(faces["vertex_indices"], faces["label0"], faces["label1"]))
+                  for vs, a, b in zip(faces["vertex_indices"], faces["labels_0"], faces["labels_1"]))
     theirs = sorted((tuple(sorted(map(tuple, ref_pts[vs].tolist()))), int(a), int(b))
                     for vs, (a, b) in zip(ref["faces"], ref["face_label"]))
     assert mine == theirs
@@ -49,7 +49,7 @@ def test_streamed_ply_loads_with_plyfile(tmp_path, mode, spec, n):
     assert topo["counts"] == streamed["counts"] and len(topo["cells"]) == full["cells"]
     ref_of = {tuple(sorted(map(tuple, ref_pts[vs].tolist()))): f for f, vs in enumerate(ref["faces"])}
     pairs = {"patch": set(), "cell": set()}
-    for vs, p, c0, c1 in zip(faces["vertex_indices"], faces["patch"], faces["cell0"], faces["cell1"]):
+    for vs, p, c0, c1 in zip(faces["vertex_indices"], faces["patch"], faces["cells_0"], faces["cells_1"]):
         f = ref_of[tuple(sorted(map(tuple, pts[vs].tolist())))]
         pairs["patch"].add((int(p), ref["face_patch"][f]))
         pairs["cell"].update({(int(c0), ref["face_cells"][f][0]), (int(c1), ref["face_cells"][f][1])})
@@ -95,7 +95,7 @@ def test_python_stream_matches_the_in_memory_network(tmp_path):
     ply = plyfile.PlyData.read(str(out))
     assert len(ply["face"].data) == len(net) and len(ply["vertex"].data) == len(net.points)
     # Same label pairs, polygon for polygon up to order.
-    got = sorted(zip(ply["face"].data["label0"].tolist(), ply["face"].data["label1"].tolist()))
+    got = sorted(zip(ply["face"].data["labels_0"].tolist(), ply["face"].data["labels_1"].tolist()))
     want = sorted(map(tuple, net.face_label.tolist()))
     assert got == want
     # Bad input: a clear error and no file.

@@ -9,9 +9,9 @@ use std::time::Instant;
 /// Arguments of `septa bench`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// What to time: `tet` (one tetrahedron, paper Table 3), `grid`
-    /// (a whole grid against marching tetrahedra and a label-separating
-    /// extractor, paper Sec. 8.3) or `stream` (topology from block
+    /// What to time: `tet` (the network inside one tetrahedron, per
+    /// tetrahedron), `grid` (a whole grid against marching tetrahedra and a
+    /// label-separating extractor) or `stream` (topology from block
     /// summaries while streaming, against the in-memory run).
     what: String,
     /// Grid: cubes per axis.
@@ -35,7 +35,7 @@ pub struct Args {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
-    /// Always run the incremental construction (the paper's Table 3 setting).
+    /// Always build each tetrahedron's network step by step (no look-up tables).
     #[arg(long)]
     no_lookup: bool,
     /// Grid: runs of each contender, interleaved; the medians are reported

@@ -24,10 +24,11 @@ pub struct Args {
     /// Plane file: `a b c d` per line (optionally TopoCut's `N 4` header).
     #[arg(long)]
     pub planes: Option<PathBuf>,
-    /// Output folder (required unless MESH is a .vtu to --verify).
-    #[arg(short = 'o', long = "out")]
+    /// Output folder (cells.vtu, cells.obj, cut.json; default septa-out; not
+    /// needed to --verify a .vtu).
+    #[arg(short = 'o', long = "output", visible_alias = "out")]
     pub out: Option<PathBuf>,
-    /// Worker threads (0: all cores).
+    /// Worker threads (default: all cores; 0 also means all cores).
     #[arg(long, default_value_t = 0, value_parser = crate::args::threads_or_all)]
     pub threads: usize,
     /// Print one JSON object with counts, checks and timings.
@@ -90,9 +91,7 @@ pub fn run(a: Args) -> CliResult {
     if a.verify && a.mesh.extension().is_some_and(|e| e.eq_ignore_ascii_case("vtu")) {
         return verify_file(&a);
     }
-    let Some(out_dir) = a.out.clone() else {
-        return Err("give the output folder with -o OUT".into());
-    };
+    let out_dir = a.out.clone().unwrap_or_else(|| PathBuf::from("septa-out"));
     let t0 = Instant::now();
     let mesh = read_mesh(&a.mesh)?;
     let planes = match (a.grid, a.random, &a.planes) {

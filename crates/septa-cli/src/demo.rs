@@ -14,7 +14,7 @@ use std::time::Instant;
 #[derive(clap::Args)]
 pub struct Args {
     /// Folder that receives one sub-folder per job.
-    #[arg(long, short, default_value = "septa-demo")]
+    #[arg(short = 'o', long = "output", visible_alias = "out", default_value = "septa-demo")]
     pub out: PathBuf,
     /// Grid resolution (cubes per side) of the grid scenes.
     #[arg(long, default_value_t = 64, value_parser = crate::args::grid)]
@@ -42,7 +42,7 @@ pub struct Job {
 /// The demo jobs: one per job Septa does.
 pub fn jobs() -> Vec<Job> {
     vec![
-        Job { name: "cad-part", about: "implicit arrangement of a CAD-like part's primitives (IA)", run: cad_part },
+        Job { name: "cad-part", about: "a CAD part from half-spaces and cylinders: faces and sharp edges", run: cad_part },
         Job { name: "apollonius-18", about: "Apollonius diagram of 18 spheres (MI)", run: apollonius },
         Job {
             name: "sphere-plane-hole",
@@ -83,8 +83,10 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
     Ok(JobRow { counts: counts(&net), viewer: true })
 }
 
+/// The part's solid (its CSG rule) from the exact arrangement of its
+/// half-spaces and cylinders: its faces, and its sharp edges as curves.
 fn cad_part(dir: &Path, _: &Args) -> JobResult {
-    scene_network("cad-part", None, dir)
+    region_job("builtin:cad-part", dir)
 }
 
 fn apollonius(dir: &Path, a: &Args) -> JobResult {
@@ -109,7 +111,11 @@ fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
 }
 
 fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
-    let scene = septa::scene::Scene::load("builtin:sphere-plane-hole")?;
+    region_job("builtin:sphere-plane-hole", dir)
+}
+
+fn region_job(name: &str, dir: &Path) -> JobResult {
+    let scene = septa::scene::Scene::load(name)?;
     let r = septa::regions::region_surfaces(&scene, &Default::default())?;
     septa::io::regions_out::write(&r, dir)?;
     let mut c = counts(&r.network);
@@ -206,8 +212,8 @@ pub fn run(args: Args) -> CliResult {
         println!("To try the viewer now: septa view tests/fixtures/two-planes");
     } else {
         println!("Open a result in the viewer: septa view {}/{}", args.out.display(), rows[0].0);
-        println!("(each job folder but the streamed one already has viewer/index.html; stream.ply opens in ParaView,");
-        println!(" coloured by its per-face patch or cell0/cell1)");
+        println!("(each job folder but the streamed one already has viewer/index.html; `septa view` writes one for");
+        println!(" the streamed one too, and stream.ply opens in ParaView coloured by its per-face patch or cells_0/cells_1)");
     }
     Ok(())
 }

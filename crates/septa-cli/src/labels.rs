@@ -12,15 +12,11 @@ pub struct Args {
     /// A `.npy` array of labels with 3 axes (integer, bool, or float holding
     /// whole numbers; C or Fortran order; either byte order).
     volume: PathBuf,
-    /// Output folder.
-    #[arg(short = 'o', long)]
-    output: Option<PathBuf>,
+    #[command(flatten)]
+    out: crate::output::Output,
     /// Gaussian smoothing of each label's indicator, in voxels (0: none).
     #[arg(long, default_value_t = 0.0, value_parser = crate::args::sigma)]
     sigma: f64,
-    /// Print one JSON object with counts, surfaces and curves.
-    #[arg(long)]
-    json: bool,
 }
 
 /// Runs `septa labels`.
@@ -46,14 +42,16 @@ pub fn run(a: Args) -> CliResult {
         }
         Array::Str(_) => return Err(format!("{file}: labels must be a numeric array, not a string").into()),
     };
-    let r = label_surfaces(&labels, shape, a.sigma).map_err(|e| format!("{file}: {e}"))?;
-    if let Some(dir) = &a.output {
-        regions_out::write(&r, dir)?;
-    }
+    let quiet = a.out.json || a.out.quiet;
+    let r = crate::progress::during(quiet, "label surfaces", || a.out.install(|| label_surfaces(&labels, shape, a.sigma)))?
+        .map_err(|e| format!("{file}: {e}"))?;
+    crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
+        regions_out::write_formats(&r, &a.out.output, &a.out.format.0)
+    })?;
     let summary = regions_out::summary(&r);
-    if a.json {
+    if a.out.json {
         println!("{summary}");
-    } else {
+    } else if a.out.talk() {
         println!("{file}: {} surfaces, {} curves, {} polygons", r.surfaces.len(), r.curves.len(), r.faces.len());
     }
     Ok(())

@@ -10,6 +10,7 @@ mod cut;
 mod demo;
 mod labels;
 mod network;
+mod output;
 mod progress;
 mod regions;
 mod stress;
@@ -25,7 +26,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Robustness test of the per-tet construction (paper Table 1).
+    /// Robustness test: random nearly degenerate tetrahedra, each checked for a valid exact result.
     Stress(stress::Args),
     /// Benchmarks.
     Bench(bench::Args),

@@ -20,7 +20,7 @@ pub enum Mode {
 /// How cells are identified.
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
 pub enum CellMethod {
-    /// Topological ray shooting (Sec. 7.1); falls back to grouping.
+    /// Shoot rays through the network (exact, fast); falls back to grouping.
     Raytrace,
     /// Cell grouping across tet faces.
     Grouping,
@@ -29,16 +29,17 @@ pub enum CellMethod {
 /// Arguments of `septa ia|mi`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Input: an `.npz` (arrays vertices, tets, values), or a function JSON
-    /// (the reference's format: sphere / plane / zero) sampled on `--grid`.
+    /// Input: a scene (.json or .toml, see docs/scenes.md) or `builtin:NAME`
+    /// (`septa regions --list`); a JSON list of functions (sphere, plane,
+    /// ...) sampled on `--grid`; or an `.npz` with arrays vertices, tets and
+    /// values (one column per function).
     input: PathBuf,
-    /// Output folder (network.json, network.ply, network.obj).
-    #[arg(short, long, default_value = "septa-out")]
-    output: PathBuf,
+    #[command(flatten)]
+    out: crate::output::Output,
     /// Box grid resolution (cubes per axis) for a function JSON input.
     #[arg(long, value_parser = crate::args::grid)]
     grid: Option<usize>,
-    /// Tet mesh (Gmsh .msh 2.2/4.1, or the reference's tet-mesh .json) for a function JSON input.
+    /// Tet mesh (Gmsh .msh 2.2/4.1, or a JSON `[vertices, tets]`) for a function JSON input.
     #[arg(long)]
     mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
@@ -47,9 +48,6 @@ pub struct Args {
     /// Tets per cube of a box grid (5 or 6; default: the file's, else 5).
     #[arg(long, value_parser = clap::value_parser!(u8).range(5..=6))]
     split: Option<u8>,
-    /// Worker threads (default: all cores).
-    #[arg(long, value_parser = crate::args::threads)]
-    threads: Option<usize>,
     /// Do not use look-up tables (incremental construction in every tet).
     #[arg(long)]
     no_lookup: bool,
@@ -62,9 +60,6 @@ pub struct Args {
     /// Compute everything, write nothing (for benchmarks).
     #[arg(long)]
     no_output: bool,
-    /// Print one JSON summary on stdout.
-    #[arg(long)]
-    json: bool,
     /// Block edge in cubes.
     #[arg(long, default_value_t = 16, value_parser = crate::args::block)]
     block: usize,
@@ -82,8 +77,8 @@ pub struct Args {
     /// Stream the polygons to this binary PLY block by block, with memory
     /// bounded by a window of blocks (analytic functions on a box grid), and
     /// assemble the topology (patches, chains, corners, shells, cells) from
-    /// block summaries on the way: faces carry `label0`, `label1`, `block`,
-    /// `patch`, `cell0`, `cell1`; the topology goes to `OUT.topology.json`
+    /// block summaries on the way: faces carry `labels_0`, `labels_1`, `block`,
+    /// `patch`, `cells_0`, `cells_1`; the topology goes to `OUT.topology.json`
     /// beside the PLY. Vertices are written once.
     #[arg(long, conflicts_with_all = ["dense", "no_output"])]
     stream: Option<PathBuf>,
@@ -123,7 +118,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     opts.lookup = !args.no_lookup;
     opts.block = args.block;
     opts.raytrace = matches!(args.cells, CellMethod::Raytrace);
-    let bar = crate::progress::bar(args.json, "blocks");
+    let bar = crate::progress::bar(args.out.json || args.out.quiet, "blocks");
     if let Some(bar) = &bar {
         let bar = bar.clone();
         opts.progress = Some(network::Progress(std::sync::Arc::new(move |done, total| {
@@ -132,7 +127,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         })));
     }
     let mut pool = rayon::ThreadPoolBuilder::new();
-    if let Some(t) = args.threads {
+    if let Some(t) = args.out.threads {
         pool = pool.num_threads(t.max(1));
     }
     let pool = pool.build()?;
@@ -151,11 +146,14 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let mut extra = vec![("read", t_read)];
     if !args.no_output {
         let t = Instant::now();
-        network_out::write_all(&net, &args.output, &extra)?;
+        let quiet = args.out.json || args.out.quiet;
+        crate::progress::during(quiet, &format!("writing {}", args.out.output.display()), || {
+            network_out::write_formats(&net, &args.out.output, &args.out.format.0, &extra)
+        })?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
     let cells_method = net.cells_method;
-    if args.json {
+    if args.out.json {
         let mut obj = serde_json::Map::new();
         for (k, v) in net.counts() {
             obj.insert(k.into(), v.into());
@@ -172,7 +170,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         secs.insert("total".into(), t0.elapsed().as_secs_f64().into());
         obj.insert("seconds".into(), secs.into());
         println!("{}", serde_json::Value::Object(obj));
-    } else {
+    } else if args.out.talk() {
         let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
         if let Some(s) = stats {
@@ -247,9 +245,9 @@ fn run_stream(
         summary["peak_open"] = stats.peak_open.into();
         summary["reruns"] = stats.reruns.into();
     }
-    if args.json {
+    if args.out.json {
         println!("{summary}");
-    } else {
+    } else if args.out.talk() {
         println!(
             "{}: {} faces ({} written), {} vertices (streamed)",
             out.display(),

@@ -14,3 +14,29 @@ pub fn bar(json: bool, what: &str) -> Option<ProgressBar> {
     bar.set_style(style);
     Some(bar)
 }
+
+/// A spinner naming a stage without a count (writing, region surfaces,
+/// label surfaces) with its elapsed seconds, redrawn each second; drawn on
+/// a terminal only (`None` when standard error is piped, with `--json` or `-q`).
+pub fn stage(quiet: bool, what: &str) -> Option<ProgressBar> {
+    if quiet || !std::io::stderr().is_terminal() {
+        return None;
+    }
+    let bar = ProgressBar::new_spinner();
+    bar.set_style(
+        ProgressStyle::with_template("{spinner} {msg} {elapsed}").unwrap_or_else(|_| ProgressStyle::default_spinner()),
+    );
+    bar.set_message(what.to_string());
+    bar.enable_steady_tick(std::time::Duration::from_millis(1000));
+    Some(bar)
+}
+
+/// Runs `work` under a [`stage`] spinner and clears it afterwards.
+pub fn during<T>(quiet: bool, what: &str, work: impl FnOnce() -> T) -> T {
+    let bar = stage(quiet, what);
+    let out = work();
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    out
+}

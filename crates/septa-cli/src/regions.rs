@@ -1,6 +1,4 @@
 //! `septa regions`: surfaces and curves of interest of a scene's region rule.
-use std::path::PathBuf;
-
 use crate::CliResult;
 use septa::io::regions_out;
 use septa::regions::{region_surfaces, RegionOptions};
@@ -11,9 +9,12 @@ use septa::scene::{builtin, Scene};
 pub struct Args {
     /// A scene file (JSON) or `builtin:NAME` (see `--list`).
     scene: Option<String>,
-    /// Output folder.
-    #[arg(short = 'o', long)]
-    output: Option<PathBuf>,
+    #[command(flatten)]
+    out: crate::output::Output,
+    /// Write the scene as a JSON file to edit (to this path, or `-` for the
+    /// terminal) and exit: `septa regions builtin:cad-part --print part.json`.
+    #[arg(long, value_name = "FILE")]
+    print: Option<std::path::PathBuf>,
     /// Print the built-in scenes and exit.
     #[arg(long)]
     list: bool,
@@ -21,14 +22,11 @@ pub struct Args {
     /// region pair: `normals` in network.json, `vn` in surfaces.obj).
     #[arg(long)]
     normals: bool,
-    /// Clean up small and thin triangles (Bloomenthal 4.5.3.1): collapse
+    /// Clean up small and thin triangles: collapse
     /// edges shorter than FACTOR times the smallest cube edge wherever that
     /// keeps every surface's topology, curve and corner; output triangles.
     #[arg(long, value_name = "FACTOR", num_args = 0..=1, default_missing_value = "0.2", value_parser = crate::args::finite_nonneg)]
     clean: Option<f64>,
-    /// Print one JSON object with counts, surfaces and curves.
-    #[arg(long)]
-    json: bool,
     /// Sample every grid vertex. By default blocks the functions' bounds
     /// prove empty are skipped (identical output; memory follows the
     /// surface; docs/sparse.md).
@@ -51,22 +49,37 @@ pub fn run(a: Args) -> CliResult {
         return Err("septa regions needs a SCENE (a JSON file or builtin:NAME; see --list)".into());
     };
     let scene = Scene::load(&path)?;
+    if let Some(to) = &a.print {
+        let text = septa::scene::scene_text(&scene).map_err(|e| format!("{path}: {e}"))?;
+        if to.as_os_str() == "-" {
+            print!("{text}");
+        } else {
+            std::fs::write(to, text).map_err(|e| format!("{}: {e}", to.display()))?;
+            if a.out.talk() {
+                println!("wrote {} (edit it, then: septa regions {})", to.display(), to.display());
+            }
+        }
+        return Ok(());
+    }
     if let Some(f) = a.clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(format!("--clean: expected a factor >= 0, not {f}").into());
         }
     }
-    let r = region_surfaces(&scene, &RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean })?;
-    if let Some(dir) = &a.output {
-        regions_out::write(&r, dir)?;
-    }
+    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean };
+    let quiet = a.out.json || a.out.quiet;
+    let r = crate::progress::during(quiet, "region surfaces", || a.out.install(|| region_surfaces(&scene, &options)))??;
+    let dir = &a.out.output;
+    crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
+        regions_out::write_formats(&r, dir, &a.out.format.0)
+    })?;
     let mut summary = regions_out::summary(&r);
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
     }
-    if a.json {
+    if a.out.json {
         println!("{summary}");
-    } else {
+    } else if a.out.talk() {
         println!("{path}: {} polygons in {} surfaces, {} curves", r.faces.len(), r.surfaces.len(), r.curves.len());
         for s in &r.surfaces {
             println!(
@@ -83,9 +96,8 @@ pub fn run(a: Args) -> CliResult {
                 c.length
             );
         }
-        if let Some(dir) = &a.output {
-            println!("wrote {}", dir.display());
-        }
+        println!("wrote {}", dir.display());
     }
     Ok(())
 }
+

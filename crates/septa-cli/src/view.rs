@@ -93,8 +93,11 @@ fn load_network(outdir: &Path) -> Result<serde_json::Value, Box<dyn std::error::
             return Ok(obj_cells_to_network(&obj_path, &text)?);
         }
     }
+    if let Some(topo) = stream_topology_file(outdir) {
+        return stream_to_network(&topo);
+    }
     Err(format!(
-        "{} has neither network.json nor cells.obj: give the output folder of `septa ia|mi|regions|cut`",
+        "{} has neither network.json, cells.obj nor a stream's NAME.ply with NAME.topology.json: give the output folder of `septa ia|mi|regions|labels|cut` or of `--stream`",
         outdir.display()
     )
     .into())
@@ -134,6 +137,38 @@ fn check_network(path: &Path, v: &serde_json::Value) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+/// The first `NAME.topology.json` (by name) in `dir` with its `NAME.ply` beside it.
+fn stream_topology_file(dir: &Path) -> Option<PathBuf> {
+    let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.to_string_lossy().ends_with(".topology.json") && stream_ply_of(p).exists())
+        .collect();
+    found.sort();
+    found.into_iter().next()
+}
+
+fn stream_ply_of(topology: &Path) -> PathBuf {
+    PathBuf::from(topology.to_string_lossy().trim_end_matches(".topology.json").to_string() + ".ply")
+}
+
+/// A streamed network (its PLY's polygons, its topology file's patches,
+/// chains, corners, shells and cells) in the network contract.
+fn stream_to_network(topology: &Path) -> Result<serde_json::Value, Box<dyn std::error::Error>> {
+    let text = std::fs::read_to_string(topology).map_err(|e| format!("{}: {e}", topology.display()))?;
+    let mut value = parse_json(topology, &text)?;
+    let ply = septa::io::ply_stream::read_stream_ply(&stream_ply_of(topology))?;
+    let obj = value.as_object_mut().ok_or_else(|| format!("{}: not a JSON object", topology.display()))?;
+    obj.insert("points".into(), serde_json::json!(ply.points));
+    obj.insert("faces".into(), serde_json::json!(ply.faces));
+    obj.insert("face_label".into(), serde_json::json!(ply.labels));
+    obj.insert("face_patch".into(), serde_json::json!(ply.patch));
+    obj.insert("face_cells".into(), serde_json::json!(ply.cells));
+    obj.remove("piece_patch");
+    obj.remove("piece_cells");
+    Ok(value)
 }
 
 fn parse_json(path: &Path, text: &str) -> Result<serde_json::Value, String> {

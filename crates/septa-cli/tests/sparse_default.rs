@@ -57,8 +57,12 @@ fn ia_and_mi_are_sparse_by_default_and_equal_dense() {
 
 #[test]
 fn regions_sparse_by_default_and_npz_stays_dense() {
-    let r = septa(&["regions", "builtin:sphere-with-hole", "--json"]);
-    let d = septa(&["regions", "builtin:sphere-with-hole", "--json", "--dense"]);
+    // Written into a scratch folder: regions writes its files like every command.
+    let dir = std::env::temp_dir().join(format!("septa-sparse-regions-{}", std::process::id()));
+    let out = dir.to_str().unwrap();
+    let r = septa(&["regions", "builtin:sphere-with-hole", "--json", "-o", out]);
+    let d = septa(&["regions", "builtin:sphere-with-hole", "--json", "--dense", "-o", out]);
+    let _ = std::fs::remove_dir_all(&dir);
     assert!(r["blocks"]["skipped"].as_u64().unwrap() > 0, "{r}");
     assert!(d.get("blocks").is_none());
     assert_eq!(r["network"], d["network"]);

@@ -86,3 +86,39 @@ fn demo_prints_table() {
     assert!(!s.join("viewer").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn view_reads_a_stream_folder() {
+    // A streamed network (`--stream`): polygons in NAME.ply, topology in
+    // NAME.topology.json; the viewer shows both, with the stream's counts.
+    let dir = scratch("stream");
+    let ply = dir.join("stream.ply");
+    let out = septa(&["ia", "builtin:sphere-with-hole", "--stream", ply.to_str().unwrap(), "--json"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let out = septa(&["view", dir.to_str().unwrap(), "--no-open"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let data = std::fs::read_to_string(dir.join("viewer/data.js")).unwrap();
+    let json = data.strip_prefix("window.__SEPTA_DATA = ").unwrap().trim_end().trim_end_matches(';');
+    let net = &serde_json::from_str::<serde_json::Value>(json).unwrap()["network"];
+    let faces = net["faces"].as_array().unwrap();
+    let n = |v: &serde_json::Value| v.as_array().unwrap().len();
+    assert_eq!(faces.len(), n(&net["face_patch"]));
+    assert_eq!(faces.len(), n(&net["face_cells"]));
+    assert_eq!(faces.len() as u64, summary["faces"].as_u64().unwrap());
+    let topo = &summary["counts"];
+    assert_eq!(n(&net["patches"]) as u64, topo["patches"].as_u64().unwrap(), "{summary}");
+    assert_eq!(n(&net["cells"]) as u64, topo["cells"].as_u64().unwrap());
+    // Every face names its patch: as many faces per patch as the topology says.
+    let mut per_patch = vec![0u64; n(&net["patches"])];
+    for p in net["face_patch"].as_array().unwrap() {
+        per_patch[p.as_u64().expect("a patch id, not -1") as usize] += 1;
+    }
+    let expected: Vec<u64> = net["patches"].as_array().unwrap().iter().map(|p| p["faces"].as_u64().unwrap()).collect();
+    assert_eq!(per_patch, expected);
+    // A PLY that is not a stream's is refused with its name.
+    std::fs::write(&ply, b"ply\nformat ascii 1.0\nend_header\n").unwrap();
+    let out = septa(&["view", dir.to_str().unwrap(), "--no-open"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("stream.ply"), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -140,8 +140,8 @@ pub fn sparse_finish<'py>(
 ///
 /// Step 3 for a scene's region surfaces: as `sparse_finish`, then the
 /// surfaces and curves of interest of the scene's region rule (and, with
-/// `normals`, the per region pair vertex normals); returns the
-/// `network.json` document as JSON text (as `regions`).
+/// `normals`, the per region pair vertex normals); returns the arrays of
+/// `regions`.
 #[pyfunction]
 #[pyo3(signature = (job, plan, results, normals = false))]
 pub fn sparse_finish_regions<'py>(
@@ -150,9 +150,9 @@ pub fn sparse_finish_regions<'py>(
     plan: (usize, Vec<usize>, bool),
     results: Vec<Bound<'py, PyBytes>>,
     normals: bool,
-) -> PyResult<String> {
+) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
-    let r: Result<String, String> = py.detach(|| {
+    let r: Result<septa::regions::RegionSurfaces, String> = py.detach(|| {
         let j = parse_job(job)?;
         let scene = j.scene.as_ref().ok_or("region surfaces need a scene (with its region rule)")?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
@@ -161,9 +161,9 @@ pub fn sparse_finish_regions<'py>(
             septa::regions::add_normals(&mut out, &scene.functions);
         }
         out.sparse = Some(stats);
-        Ok(septa::io::regions_out::document(&out).to_string())
+        Ok(out)
     });
-    r.map_err(InputError::new_err)
+    crate::regions::region_dict(py, &r.map_err(InputError::new_err)?)
 }
 
 /// sparse_network(job, dense=False, threads=None)

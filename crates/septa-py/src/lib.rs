@@ -15,6 +15,7 @@ mod distributed;
 mod interrupt;
 mod network;
 mod regions;
+mod result;
 mod stream;
 mod viewer;
 
@@ -61,6 +62,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(regions::labels, m)?)?;
+    m.add_function(wrap_pyfunction!(result::write_result, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation_seeds_py, m)?)?;

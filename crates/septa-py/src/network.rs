@@ -16,7 +16,7 @@ fn id(x: u32) -> i64 {
     }
 }
 
-/// network(mode, vertices, tets, values, box=None, lookup=True, raytrace=True, threads=None)
+/// network(mode, vertices, tets, values, box=None, lookup=True, raytrace=True, threads=None, progress=None)
 /// --
 ///
 /// Computes the IA (`mode="ia"`) or MI (`mode="mi"`) network of the `k`
@@ -24,9 +24,11 @@ fn id(x: u32) -> i64 {
 /// `(#V, 3) float64`, `tets` `(#T, 4) int64`. With `box=((nx, ny, nz),
 /// ((x0, y0, z0), (x1, y1, z1)), split)` the grid is the built-in box (whose
 /// vertices and tets must be the ones given). The GIL is released while the
-/// network is computed. Returns a dict of arrays (see `septa.Network`).
+/// network is computed. `progress(done, total)` is called as blocks finish
+/// (from worker threads, with the GIL taken for the call; an exception in it
+/// is printed and ignored). Returns a dict of arrays (see `septa.Network`).
 #[pyfunction]
-#[pyo3(signature = (mode, vertices, tets, values, r#box = None, lookup = true, raytrace = true, threads = None))]
+#[pyo3(signature = (mode, vertices, tets, values, r#box = None, lookup = true, raytrace = true, threads = None, progress = None))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn network<'py>(
     py: Python<'py>,
@@ -38,6 +40,7 @@ pub fn network<'py>(
     lookup: bool,
     raytrace: bool,
     threads: Option<usize>,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mode = crate::parse_mode(mode).map_err(InputError::new_err)?;
     let k = values.shape()[1];
@@ -47,6 +50,15 @@ pub fn network<'py>(
     let mut options = NetworkOptions::new(mode);
     options.lookup = lookup;
     options.raytrace = raytrace;
+    if let Some(cb) = progress {
+        options.progress = Some(septa::network::Progress(std::sync::Arc::new(move |done, total| {
+            Python::attach(|py| {
+                if let Err(e) = cb.call1(py, (done, total)) {
+                    e.print(py);
+                }
+            })
+        })));
+    }
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     options.cancel = Some(cancel.clone());
     let result: Result<Network, String> = crate::interrupt::run_interruptible(py, &cancel, || {

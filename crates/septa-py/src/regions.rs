@@ -2,36 +2,62 @@
 //! region rule (Bloomenthal's non-manifold model on the exact network).
 use crate::InputError;
 use pyo3::prelude::*;
-use septa::regions::{region_surfaces, RegionOptions};
+use numpy::{IntoPyArray, PyArrayMethods};
+use pyo3::types::PyDict;
+use septa::io::result::ResultView;
+use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
 use septa::scene::Scene;
 
 /// regions(scene, normals=False, clean=None)
 /// --
 ///
 /// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
-/// (starting with `{`). Returns the `network.json` document as JSON text
-/// (`mode` "regions"; `patches` are the surfaces with their region pairs,
-/// `chains` the curves); the GIL is released while it is computed.
+/// (starting with `{`). Returns a dict of numpy arrays (`septa.Network`'s
+/// names: `patches` are the surfaces with their region pairs, `chains` the
+/// curves, `cells` the regions) with `summary` (JSON text: counts, surfaces,
+/// curves) and, with normals, `normal_vertex`, `normal_regions`,
+/// `normal_vectors` and `indices_normal`; the GIL is released while it is
+/// computed.
 #[pyfunction]
 #[pyo3(signature = (scene, normals = false, clean = None))]
-pub fn regions(py: Python<'_>, scene: &str, normals: bool, clean: Option<f64>) -> PyResult<String> {
+pub fn regions<'py>(
+    py: Python<'py>,
+    scene: &str,
+    normals: bool,
+    clean: Option<f64>,
+) -> PyResult<Bound<'py, PyDict>> {
     if let Some(f) = clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(InputError::new_err(format!("clean: expected a factor >= 0, not {f}")));
         }
     }
-    let result: Result<String, String> = py.detach(|| {
+    let result: Result<RegionSurfaces, String> = py.detach(|| {
         let s = if scene.trim_start().starts_with('{') {
             Scene::from_json(scene, "<scene>", None)
         } else {
             Scene::load(scene)
         }
         .map_err(|e| e.to_string())?;
-        let r =
-            region_surfaces(&s, &RegionOptions { normals, clean, ..Default::default() }).map_err(|e| e.to_string())?;
-        Ok(septa::io::regions_out::document(&r).to_string())
+        region_surfaces(&s, &RegionOptions { normals, clean, ..Default::default() }).map_err(|e| e.to_string())
     });
-    result.map_err(InputError::new_err)
+    region_dict(py, &result.map_err(InputError::new_err)?)
+}
+
+/// The arrays of region surfaces (`result::view_dict`) with their summary and normals.
+pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<Bound<'py, PyDict>> {
+    let d = crate::result::view_dict(py, &ResultView::of_regions(r))?;
+    d.set_item("summary", septa::io::regions_out::summary(r).to_string())?;
+    if !r.normals.is_empty() {
+        let v: Vec<i64> = r.normals.iter().map(|n| n.0 as i64).collect();
+        d.set_item("normal_vertex", v.into_pyarray(py))?;
+        let g: Vec<i64> = r.normals.iter().flat_map(|n| n.1).collect();
+        d.set_item("normal_regions", g.into_pyarray(py).reshape([r.normals.len(), 2])?)?;
+        let x: Vec<f64> = r.normals.iter().flat_map(|n| n.2).collect();
+        d.set_item("normal_vectors", x.into_pyarray(py).reshape([r.normals.len(), 3])?)?;
+        let c: Vec<i64> = septa::io::regions_out::face_normals(r).into_iter().flatten().map(|c| c as i64).collect();
+        d.set_item("indices_normal", c.into_pyarray(py))?;
+    }
+    Ok(d)
 }
 
 /// labels(volume, sigma=0.0)
@@ -40,18 +66,19 @@ pub fn regions(py: Python<'_>, scene: &str, normals: bool, clean: Option<f64>) -
 /// Exact surfaces between the labels of a segmented volume (`septa labels`):
 /// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
 /// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
-/// functions in voxels. Returns the region-surfaces `network.json` document
-/// as JSON text; the GIL is released while it is computed.
+/// functions in voxels. Returns the arrays of `regions`; the GIL is
+/// released while it is computed.
 #[pyfunction]
 #[pyo3(signature = (volume, sigma = 0.0))]
-pub fn labels(py: Python<'_>, volume: numpy::PyReadonlyArray3<'_, i64>, sigma: f64) -> PyResult<String> {
+pub fn labels<'py>(
+    py: Python<'py>,
+    volume: numpy::PyReadonlyArray3<'_, i64>,
+    sigma: f64,
+) -> PyResult<Bound<'py, PyDict>> {
     use numpy::PyUntypedArrayMethods;
     let shape = volume.shape();
     let shape = [shape[0], shape[1], shape[2]];
     let data: Vec<i64> = volume.as_array().iter().copied().collect();
-    let result: Result<String, String> = py.detach(|| {
-        let r = septa::regions::label_surfaces(&data, shape, sigma).map_err(|e| e.to_string())?;
-        Ok(septa::io::regions_out::document(&r).to_string())
-    });
-    result.map_err(InputError::new_err)
+    let result = py.detach(|| septa::regions::label_surfaces(&data, shape, sigma).map_err(|e| e.to_string()));
+    region_dict(py, &result.map_err(InputError::new_err)?)
 }

@@ -25,8 +25,9 @@ fn outputs_round_trip() {
         write_all(&net, &dir, &[("read", 0.0)]).unwrap();
         let names: Vec<String> =
             std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-        // The four results, the manifest written last and the folder's lock (io/outdir.rs).
-        assert_eq!(names.len(), 6, "{names:?}");
+        // The five results (json npz ply obj vtu), the manifest written last
+        // and the folder's lock (io/outdir.rs).
+        assert_eq!(names.len(), 7, "{names:?}");
         assert!(names.iter().any(|n| n == "manifest.json") && names.iter().any(|n| n == ".septa.lock"), "{names:?}");
         // JSON
         let j: serde_json::Value =
@@ -56,7 +57,11 @@ fn outputs_round_trip() {
                 pos += 12;
                 assert_eq!(int(&ply, pos) as usize, f);
                 assert_eq!(int(&ply, pos + 4) as u32, net.face_patch[f]);
-                pos += 16 + 3;
+                let l = net.face_label[f];
+                assert_eq!([int(&ply, pos + 8), int(&ply, pos + 12)], [l[0] as i32, l[1] as i32], "labels_0/1");
+                let c = net.face_cells[f].map(|c| if c == u32::MAX { -1 } else { c as i32 });
+                assert_eq!([int(&ply, pos + 16), int(&ply, pos + 20)], c, "cells_0/1");
+                pos += 24 + 3;
             }
         }
         assert_eq!(pos, ply.len());

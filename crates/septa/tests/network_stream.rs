@@ -111,8 +111,8 @@ fn read_ply(path: &Path) -> Ply {
     let (nv, nf) = (count("vertex"), count("face"));
     assert!(head.starts_with("ply\nformat binary_little_endian 1.0\n"), "{head}");
     assert!(head.contains(
-        "property list uchar int vertex_indices\nproperty int label0\nproperty int label1\nproperty int block\n\
-         property int patch\nproperty int cell0\nproperty int cell1\nend_header"
+        "property list uchar int vertex_indices\nproperty int labels_0\nproperty int labels_1\nproperty int block\n\
+         property int patch\nproperty int cells_0\nproperty int cells_1\nend_header"
     ));
     let mut at = end;
     let mut take = |n: usize| {

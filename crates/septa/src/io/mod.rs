@@ -16,6 +16,10 @@ pub mod outdir;
 pub mod planes;
 pub mod ply_stream;
 pub mod regions_out;
+pub mod result;
+pub mod result_mesh;
+pub mod result_npz;
+pub mod result_vtk;
 pub mod summary_out;
 
 pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};

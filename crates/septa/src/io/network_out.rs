@@ -3,11 +3,11 @@
 //! polylines). Every file is written to a temporary file in the same folder
 //! and renamed, so a reader never sees a half-written file.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::Path;
 
 use super::atomic::write_atomic_with;
+use super::result::{Format, ResultView};
 use crate::complex::NONE;
 use crate::network::{CellInfo, Mode, Network, Patch};
 
@@ -196,160 +196,60 @@ pub fn patch_colour(p: u32) -> [u8; 3] {
     [s(r), s(g), s(b)]
 }
 
-/// Writes a binary little-endian PLY: vertices (double x, y, z) and the
-/// network's polygons as fans of triangles, each with `face` (its polygon
-/// in network.json), `patch`, `label0`, `label1` and the patch colour.
-/// Triangles because mesh tools (trimesh, meshio) read only face lists of
-/// one length with extra properties; the polygons are exact in
-/// network.json, network.obj and network.vtu. The polygons are convex, so a
-/// fan from their first vertex covers each one.
+/// Writes `network.ply`: the polygons as triangle fans with `face`, `patch`,
+/// `labels_0`, `labels_1`, `cells_0`, `cells_1` and the patch colour
+/// (`result_mesh.rs`).
 pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
-    let triangles: usize = (0..net.num_faces()).map(|f| net.face(f).len() - 2).sum();
-    write_atomic_with(path, |w| {
-        write!(
-            w,
-            "ply\nformat binary_little_endian 1.0\ncomment septa surface network, polygons as triangle fans\n\
-             element vertex {}\nproperty double x\nproperty double y\nproperty double z\n\
-             element face {}\nproperty list uchar int vertex_indices\nproperty int face\nproperty int patch\n\
-             property int label0\nproperty int label1\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n",
-            net.points.len(),
-            triangles
-        )?;
-        for p in &net.points {
-            for x in p {
-                w.write_all(&x.to_le_bytes())?;
-            }
-        }
-        for f in 0..net.num_faces() {
-            let vs = net.face(f);
-            let p = net.face_patch[f];
-            for j in 1..vs.len() - 1 {
-                w.write_all(&[3u8])?;
-                for v in [vs[0], vs[j], vs[j + 1]] {
-                    w.write_all(&(v as i32).to_le_bytes())?;
-                }
-                w.write_all(&(f as i32).to_le_bytes())?;
-                w.write_all(&(p as i32).to_le_bytes())?;
-                w.write_all(&(net.face_label[f][0] as i32).to_le_bytes())?;
-                w.write_all(&(net.face_label[f][1] as i32).to_le_bytes())?;
-                w.write_all(&patch_colour(p))?;
-            }
-        }
-        Ok(())
-    })
+    super::result_mesh::write_ply(&ResultView::of_network(net), path, super::result_mesh::PlyLayout::Full)
 }
 
-/// Writes an OBJ: a group `patch_<p>` per patch and an `l` polyline per chain.
+/// Writes an OBJ: a group per patch, an `l` polyline per chain, the corners as `p`.
 pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
-    write_atomic_with(path, |w| {
-        writeln!(w, "# septa surface network: {} patches, {} chains", net.patches.len(), net.chains.len())?;
-        for p in &net.points {
-            writeln!(w, "v {} {} {}", p[0], p[1], p[2])?;
-        }
-        let mut by_patch: Vec<Vec<u32>> = vec![Vec::new(); net.patches.len()];
-        for (f, &p) in net.face_patch.iter().enumerate() {
-            by_patch[p as usize].push(f as u32);
-        }
-        for (p, faces) in by_patch.iter().enumerate() {
-            writeln!(w, "g patch_{p}")?;
-            for &f in faces {
-                w.write_all(b"f")?;
-                for &v in net.face(f as usize) {
-                    write!(w, " {}", v + 1)?;
-                }
-                w.write_all(b"\n")?;
-            }
-        }
-        for (c, chain) in net.chains.iter().enumerate() {
-            writeln!(w, "g chain_{c}")?;
-            w.write_all(b"l")?;
-            for &v in chain {
-                write!(w, " {}", v + 1)?;
-            }
-            w.write_all(b"\n")?;
-        }
-        Ok(())
-    })
+    super::result_mesh::write_obj(&ResultView::of_network(net), path)
 }
 
-/// Writes a VTK XML unstructured grid (`.vtu`, raw appended binary) of the
-/// polygons with cell data `patch`, `label` (2 components) and `cells`
-/// (the cells on the positive and negative side, -1 outside the grid).
+/// Writes a VTK XML unstructured grid (`.vtu`) of the polygons with cell
+/// data `patch`, `labels` (2 components) and `cells` (2 components).
 pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
-    write_atomic_with(path, |w| {
-        let nf = net.num_faces();
-        let np = net.points.len();
-        // Appended arrays, in order, each preceded by its UInt64 byte count.
-        let sizes = [
-            (np * 3 * 8, "Float64", "Points", 3),
-            (net.face_verts.len() * 4, "Int32", "connectivity", 1),
-            (nf * 4, "Int32", "offsets", 1),
-            (nf, "UInt8", "types", 1),
-            (nf * 4, "Int32", "patch", 1),
-            (nf * 2 * 4, "Int32", "label", 2),
-            (nf * 2 * 4, "Int32", "cells", 2),
-        ];
-        let mut offsets = Vec::new();
-        let mut off = 0usize;
-        for (n, ..) in &sizes {
-            offsets.push(off);
-            off += 8 + n;
-        }
-        let da = |i: usize| {
-            let (_, ty, name, comps) = sizes[i];
-            format!("<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{}\"/>\n", offsets[i])
-        };
-        write!(
-            w,
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
-             <UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nf}\">\n<Points>\n{}</Points>\n\
-             <Cells>\n{}{}{}</Cells>\n<CellData Scalars=\"patch\">\n{}{}{}</CellData>\n</Piece>\n</UnstructuredGrid>\n\
-             <AppendedData encoding=\"raw\">\n_",
-            da(0), da(1), da(2), da(3), da(4), da(5), da(6)
-        )?;
-        let head = |w: &mut BufWriter<File>, i: usize| w.write_all(&(sizes[i].0 as u64).to_le_bytes());
-        head(w, 0)?;
-        for p in &net.points {
-            for x in p {
-                w.write_all(&x.to_le_bytes())?;
-            }
-        }
-        head(w, 1)?;
-        for &v in &net.face_verts {
-            w.write_all(&(v as i32).to_le_bytes())?;
-        }
-        head(w, 2)?;
-        for f in 0..nf {
-            w.write_all(&(net.face_start[f + 1] as i32).to_le_bytes())?;
-        }
-        head(w, 3)?;
-        w.write_all(&vec![7u8; nf])?; // VTK_POLYGON
-        head(w, 4)?;
-        for &p in &net.face_patch {
-            w.write_all(&(p as i32).to_le_bytes())?;
-        }
-        head(w, 5)?;
-        for l in &net.face_label {
-            w.write_all(&(l[0] as i32).to_le_bytes())?;
-            w.write_all(&(l[1] as i32).to_le_bytes())?;
-        }
-        head(w, 6)?;
-        for c in &net.face_cells {
-            w.write_all(&(id(c[0]) as i32).to_le_bytes())?;
-            w.write_all(&(id(c[1]) as i32).to_le_bytes())?;
-        }
-        w.write_all(b"\n</AppendedData>\n</VTKFile>\n")
-    })
+    super::result_vtk::write_vtu(&ResultView::of_network(net), path)
 }
 
-/// Writes `network.json`, `network.ply`, `network.obj` and `network.vtu` into `dir` (created if needed).
-/// The folder is written as one set (`io::outdir`: lock, stale temporaries
-/// removed, `manifest.json` last); errors name the folder or file.
+/// The JSON of a network's counts, stage seconds and cell method, for
+/// `network.npz`'s `meta`.
+pub fn meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json::Value {
+    let mut counts: serde_json::Map<String, serde_json::Value> =
+        net.counts().into_iter().map(|(k, v)| (k.to_string(), v.into())).collect();
+    counts.insert("components".into(), net.components.into());
+    counts.insert("active_tets".into(), net.active_tets.into());
+    let seconds: serde_json::Map<String, serde_json::Value> =
+        net.seconds.iter().chain(extra_seconds.iter()).map(|(k, v)| (k.to_string(), (*v).into())).collect();
+    serde_json::json!({"counts": counts, "seconds": seconds, "cells_method": net.cells_method.as_str()})
+}
+
+/// Writes `network.json`, `network.npz`, `network.ply`, `network.obj` and
+/// `network.vtu` into `dir` (created if needed): [`Format::DEFAULT`].
 pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
+    write_formats(net, dir, Format::DEFAULT, extra_seconds)
+}
+
+/// Writes `network.<ext>` for each of `formats` into `dir` (created if
+/// needed) as one set (`io::outdir`: lock, stale temporaries removed,
+/// `manifest.json` last); `network.json` after the others. Errors name the
+/// folder or file.
+pub fn write_formats(
+    net: &Network,
+    dir: &Path,
+    formats: &[Format],
+    extra_seconds: &[(&str, f64)],
+) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "network")?;
-    out.write_path("network.ply", |p| write_ply(net, p))?;
-    out.write_path("network.obj", |p| write_obj(net, p))?;
-    out.write_path("network.vtu", |p| write_vtu(net, p))?;
-    out.write_path("network.json", |p| write_json(net, p, extra_seconds))?;
+    let view = ResultView::of_network(net);
+    let meta = meta(net, extra_seconds);
+    for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;
+    }
+    if formats.contains(&Format::Json) {
+        out.write_path("network.json", |p| write_json(net, p, extra_seconds))?;
+    }
     out.finish()
 }

@@ -16,9 +16,9 @@
 //! of the first block that used it), so a vertex is written when its id is
 //! the next one.
 //!
-//! Per face: `vertex_indices` (list uchar int), `label0`, `label1` (int:
+//! Per face: `vertex_indices` (list uchar int), `labels_0`, `labels_1` (int:
 //! IA the function, twice; MI the two materials), `block` (int, the block
-//! index), `patch`, `cell0`, `cell1` (int: the patch and the cells on the
+//! index), `patch`, `cells_0`, `cells_1` (int: the patch and the cells on the
 //! positive and negative side, from the topology given to
 //! [`PlyStreamSink::finish_with`]; -1 without one). The faces' temporary
 //! file holds each polygon's patch piece, mapped while it is appended. Readers
@@ -70,8 +70,8 @@ fn header(comment: &str, vertices: u64, faces: u64) -> String {
         "ply\nformat binary_little_endian 1.0\ncomment {comment}\n\
          element vertex {vertices:020}\nproperty double x\nproperty double y\nproperty double z\n\
          element face {faces:020}\nproperty list uchar int vertex_indices\n\
-         property int label0\nproperty int label1\nproperty int block\n\
-         property int patch\nproperty int cell0\nproperty int cell1\nend_header\n"
+         property int labels_0\nproperty int labels_1\nproperty int block\n\
+         property int patch\nproperty int cells_0\nproperty int cells_1\nend_header\n"
     )
 }
 
@@ -269,4 +269,73 @@ impl Drop for PlyStreamSink {
             self.cleanup();
         }
     }
+}
+
+/// A streamed PLY read back: points and polygons with each face's
+/// `labels_0/1`, `patch` and `cells_0/1` (triangle fans stay triangles).
+#[derive(Clone, Debug, Default)]
+pub struct StreamPly {
+    /// Vertex positions.
+    pub points: Vec<[f64; 3]>,
+    /// Polygons (vertex ids).
+    pub faces: Vec<Vec<u32>>,
+    /// Per face: `labels_0`, `labels_1`.
+    pub labels: Vec<[i32; 2]>,
+    /// Per face: `patch` (-1 without topology).
+    pub patch: Vec<i32>,
+    /// Per face: `cells_0`, `cells_1` (-1: none).
+    pub cells: Vec<[i32; 2]>,
+}
+
+/// Reads a PLY written by [`PlyStreamSink`] (for `septa view` on a stream's
+/// folder); errors name the file and what is wrong.
+pub fn read_stream_ply(path: &Path) -> Result<StreamPly, String> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    let end = bytes
+        .windows(11)
+        .position(|w| w == b"end_header\n")
+        .ok_or_else(|| format!("{name}: not a PLY file (no end_header)"))?
+        + 11;
+    let head = std::str::from_utf8(&bytes[..end]).map_err(|_| format!("{name}: the PLY header is not text"))?;
+    let expected = header("", 0, 0);
+    let props = |h: &str| -> Vec<String> {
+        h.lines().filter(|l| l.starts_with("property") || l.starts_with("format")).map(str::to_string).collect()
+    };
+    if props(head) != props(&expected) {
+        return Err(format!("{name}: not a streamed Septa PLY (its faces need vertex_indices, labels_0, labels_1, block, patch, cells_0, cells_1)"));
+    }
+    let count = |el: &str| -> Result<usize, String> {
+        head.lines()
+            .find_map(|l| l.strip_prefix(&format!("element {el} ")))
+            .and_then(|n| n.trim().parse().ok())
+            .ok_or_else(|| format!("{name}: the header has no element {el} count"))
+    };
+    let (nv, nf) = (count("vertex")?, count("face")?);
+    let short = || format!("{name}: the file ends before its {nv} vertices and {nf} faces");
+    let mut at = end;
+    let mut take = |n: usize| -> Result<&[u8], String> {
+        let s = bytes.get(at..at + n).ok_or_else(short)?;
+        at += n;
+        Ok(s)
+    };
+    let mut out = StreamPly::default();
+    for _ in 0..nv {
+        let s = take(24)?;
+        out.points.push([0, 1, 2].map(|i| f64::from_le_bytes(s[8 * i..8 * i + 8].try_into().unwrap())));
+    }
+    let int = |s: &[u8], i: usize| i32::from_le_bytes(s[4 * i..4 * i + 4].try_into().unwrap());
+    for f in 0..nf {
+        let n = take(1)?[0] as usize;
+        let s = take(4 * n + 24)?;
+        let vs: Vec<u32> = (0..n).map(|i| int(s, i) as u32).collect();
+        if let Some(v) = vs.iter().find(|&&v| v as usize >= nv) {
+            return Err(format!("{name}: face {f} refers to vertex {v} of {nv}"));
+        }
+        out.faces.push(vs);
+        out.labels.push([int(s, n), int(s, n + 1)]);
+        out.patch.push(int(s, n + 3));
+        out.cells.push([int(s, n + 4), int(s, n + 5)]);
+    }
+    Ok(out)
 }

@@ -15,6 +15,7 @@ use std::path::Path;
 
 use serde_json::{json, Value};
 
+use super::result::{Format, ResultView};
 use crate::regions::RegionSurfaces;
 
 /// The JSON summary: counts, surfaces and curves (what `--json` prints).
@@ -97,10 +98,28 @@ pub fn document(r: &RegionSurfaces) -> Value {
     doc
 }
 
-/// Writes `network.json`, `surfaces.obj` and `manifest.json` into `dir` (created if needed).
+/// Writes `network.json`, `network.npz`, `network.ply`, `network.obj`,
+/// `network.vtu` ([`Format::DEFAULT`]) and `surfaces.obj` into `dir`.
 pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
-    // One set: lock, stale temporaries removed, manifest last (io::outdir).
+    write_formats(r, dir, Format::DEFAULT)
+}
+
+/// Writes `network.<ext>` for each of `formats` (the result vocabulary of
+/// `result.rs`: patches are the surfaces, chains the curves) and, with
+/// JSON, `surfaces.obj` (a group per surface named by its regions, normals
+/// as `vn`) into `dir` (created if needed), as one set (`io::outdir`: lock,
+/// stale temporaries removed, `manifest.json` last).
+pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "regions")?;
+    let meta = json!({"counts": summary(r),
+        "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
+    let view = ResultView::of_regions(r);
+    for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;
+    }
+    if !formats.contains(&Format::Json) {
+        return out.finish();
+    }
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();

@@ -32,7 +32,7 @@ pub fn list() -> &'static [(&'static str, &'static str)] {
         ("sphere-with-hole", "Bloomenthal 4.8.2: a sphere surface with a disk removed (one disk)"),
         ("sphere-plane-hole", "Bloomenthal 4.8.3: sphere and square with a hole, curves of interest"),
         ("patch-blend", "Bloomenthal 4.8.4: a blob blended into a bicubic patch"),
-        ("cad-part", "Du et al. Fig. 19 spirit: plate, boss, bore and holes by CSG (genus 3)"),
+        ("cad-part", "Du et al. Fig. 19: a part from half-spaces and cylinders by CSG (genus 3, sharp edges)"),
         ("apollonius-18", "Du et al. Fig. 15: material interface of 18 spheres (Apollonius diagram)"),
         ("voronoi-lines-5", "Du et al. Fig. 20: Voronoi diagram of 5 rotated lines (material interface)"),
         ("box-minus-cylinder", "CSG: box (6 half-spaces) minus a cylinder; sharp edges are chains"),
@@ -265,27 +265,49 @@ pub fn patch_blend() -> Scene {
     )
 }
 
-/// A CAD-like part (Du et al. Fig. 19 spirit), IA with a CSG solid:
-/// `((plate & corner) | boss) - bore - hole1 - hole2`: a plate with one
-/// corner cut by a plane, a cylindrical boss, a bore through boss and
-/// plate and two through-holes in the plate.
+/// A CAD-like part built as Du et al. build theirs (Fig. 19): from exact
+/// low-degree primitives, here half-spaces and cylinders, combined by CSG:
+/// `((plate & corner) | boss) - bore - hole1 - hole2`, where the plate
+/// `x in [-0.7, 0.7], y in [-0.45, 0.45], z in [-0.32, -0.08]` is six
+/// half-spaces with one corner cut by a seventh, the boss a cylinder of
+/// radius 0.3 between two more, the bore and two through-holes cylinders.
+/// A plane's values are linear, so its zero set is exact on the grid and
+/// every sharp edge is a chain where two primitives meet (a box distance
+/// field would be interpolated into staircases along its edges).
 ///
 /// Expected topology: one surface (0,1), closed, genus 3 (bore and two
-/// holes): Euler characteristic -4, no boundary loop; its sharp edges are
-/// chains where the primitives' surfaces meet.
+/// holes): Euler characteristic -4, no boundary loop.
 pub fn cad_part() -> Scene {
+    let (x, y) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let neg = |v: V3| [-v[0], -v[1], -v[2]];
     build(
         45,
         Mode::Ia,
         vec![
-            ("plate", Primitive::cuboid([0.0, 0.0, -0.2], [0.7, 0.45, 0.12])),
+            ("xlo", Primitive::half_space([-0.7, 0.0, 0.0], neg(x))),
+            ("xhi", Primitive::half_space([0.7, 0.0, 0.0], x)),
+            ("ylo", Primitive::half_space([0.0, -0.45, 0.0], neg(y))),
+            ("yhi", Primitive::half_space([0.0, 0.45, 0.0], y)),
+            ("zlo", Primitive::half_space([0.0, 0.0, -0.32], neg(Z))),
+            ("zhi", Primitive::half_space([0.0, 0.0, -0.08], Z)),
             ("corner", Primitive::half_space([0.5, 0.45, 0.0], [1.0, 1.0, 0.0])),
-            ("boss", Primitive::capped_cylinder([0.0, 0.0, -0.15], [0.0, 0.0, 0.35], 0.3)),
+            ("boss", Primitive::cylinder([0.0; 3], Z, 0.3)),
+            ("boss_top", Primitive::half_space([0.0, 0.0, 0.35], Z)),
+            ("boss_bottom", Primitive::half_space([0.0, 0.0, -0.15], neg(Z))),
             ("bore", Primitive::cylinder([0.0; 3], Z, 0.14)),
             ("hole1", Primitive::cylinder([-0.5, 0.0, 0.0], Z, 0.09)),
             ("hole2", Primitive::cylinder([0.5, 0.05, 0.0], Z, 0.09)),
         ],
-        |n| rules(n, &[("(plate & corner) | boss - bore - hole1 - hole2", 1)], 0),
+        |n| {
+            rules(
+                n,
+                &[(
+                    "((xlo & xhi & ylo & yhi & zlo & zhi & corner) | (boss & boss_top & boss_bottom)) - bore - hole1 - hole2",
+                    1,
+                )],
+                0,
+            )
+        },
         Interest::all(),
     )
 }

@@ -1,0 +1,54 @@
+//! The output options every computing command shares: where (`-o`), what
+//! (`--format`), how many threads, and how much to print (`--json`, `-q`).
+use std::path::PathBuf;
+
+use septa::io::result::Format;
+
+/// `-o/--output`, `--format`, `--threads`, `--json`, `-q/--quiet`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct Output {
+    /// Output folder (created if needed); files are named network.<format>.
+    #[arg(short, long, default_value = "septa-out")]
+    pub output: PathBuf,
+    /// Formats to write, comma-separated: json (the whole result as text;
+    /// the viewer reads it), npz (the whole result as numpy arrays, fastest
+    /// to load), ply (triangles with per-face patch/labels/cells), plain.ply
+    /// (triangles only, for meshio), obj, vtu (polygons with patch, labels,
+    /// cells), vtm (ParaView multiblock: patches, chains, corners, cells),
+    /// or all.
+    #[arg(long, default_value = "json,npz,ply,obj,vtu", value_parser = parse_formats)]
+    pub format: Formats,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = crate::args::threads)]
+    pub threads: Option<usize>,
+    /// Print one JSON object (counts, timings) on standard output.
+    #[arg(long)]
+    pub json: bool,
+    /// Print nothing but errors (and the `--json` object if asked for).
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// The parsed `--format` list.
+#[derive(Clone, Debug)]
+pub struct Formats(pub Vec<Format>);
+
+fn parse_formats(s: &str) -> Result<Formats, String> {
+    Format::parse_list(s).map(Formats)
+}
+
+impl Output {
+    /// Runs `work` on a pool of `--threads` threads (all cores by default).
+    pub fn install<T: Send>(&self, work: impl FnOnce() -> T + Send) -> Result<T, Box<dyn std::error::Error>> {
+        let mut pool = rayon::ThreadPoolBuilder::new();
+        if let Some(t) = self.threads {
+            pool = pool.num_threads(t.max(1));
+        }
+        Ok(pool.build()?.install(work))
+    }
+
+    /// Whether to print human-readable lines.
+    pub fn talk(&self) -> bool {
+        !self.json && !self.quiet
+    }
+}
