@@ -53,6 +53,11 @@ impl<'a> Lines<'a> {
         let l = self.next()?;
         l.split_whitespace().map(|t| t.parse().map_err(|_| self.err(format!("'{t}' is not a number")))).collect()
     }
+    /// The first number of the next line (an error naming the line if it has none).
+    fn num<T: std::str::FromStr>(&mut self) -> Result<T, MshError> {
+        let v = self.nums::<T>()?;
+        v.into_iter().next().ok_or_else(|| self.err("a number was expected"))
+    }
 }
 
 /// Reads the vertices and tets of a Gmsh `.msh` (2.2 or 4.1, ASCII).
@@ -85,7 +90,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                 }
             }
             "$Nodes" if version < 3.0 => {
-                let n = ls.nums::<usize>()?[0];
+                let n = ls.num::<usize>()?;
                 for _ in 0..n {
                     let v = ls.nums::<f64>()?;
                     if v.len() < 4 {
@@ -107,9 +112,10 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                         return Err(ls.err("parametric nodes are not supported"));
                     }
                     let n = b[3] as usize;
-                    let mut tags = Vec::with_capacity(n);
+                    // Counts come from the file: never reserve on their word.
+                    let mut tags = Vec::new();
                     for _ in 0..n {
-                        tags.push(ls.nums::<i64>()?[0]);
+                        tags.push(ls.num::<i64>()?);
                     }
                     for tag in tags {
                         let v = ls.nums::<f64>()?;
@@ -122,7 +128,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                 }
             }
             "$Elements" if version < 3.0 => {
-                let n = ls.nums::<usize>()?[0];
+                let n = ls.num::<usize>()?;
                 for _ in 0..n {
                     let e = ls.nums::<i64>()?;
                     if e.len() < 3 {
