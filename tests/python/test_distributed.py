@@ -152,8 +152,9 @@ def test_distributed_stream_writes_the_local_files(client, tmp_path):
     net = sd.arrangement(spec, client=client, grid=24, block=6)
     s = net.summary()
     assert all(dist["counts"][k] == s[k] for k in ("vertices", "faces", "patches", "chains", "shells", "cells"))
-    # A job the stream refuses (a function vanishing at grid vertices) leaves no file.
+    # A job the stream refuses (a plane through grid vertices: faces lying in
+    # tet faces) leaves no file.
     planes = [septa.shapes.plane([0, 0, 0], [1, 0, 0])]
-    with pytest.raises(septa.InputError, match="exactly 0"):
+    with pytest.raises(septa.InputError, match="lies in a tet face"):
         sd.stream_ply(planes, tmp_path / "bad.ply", client=client, grid=8, block=4)
     assert not list(tmp_path.glob("*bad*")) and not list(tmp_path.glob(".bad*"))

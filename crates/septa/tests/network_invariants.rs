@@ -309,20 +309,24 @@ fn raytrace_equals_grouping() {
             panic!("{name}: cell {i}: ray {:?} vs grouping {:?}", a[i], b[i]);
         }
     }
-    // Network vertices at grid vertices: ray shooting or its fallback, same cells.
+    // Network vertices at grid vertices: the same cells as grouping, and the
+    // method each input must take (ray shooting handles round spheres; it
+    // declines for tangent spheres and for planes lying in tet faces).
     for split in [Split::Five, Split::Six] {
         let grid = box4(split);
-        for f in [
-            vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)],
-            vec![plane([1.0, 0.0, 0.0]), plane([0.0, 1.0, 0.0]), plane([0.0, 0.0, 1.0])],
-            vec![sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.75), sphere([0.5, 0.5, 0.0], 0.25)],
+        for (f, want) in [
+            (vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)], "grouping"),
+            (vec![plane([1.0, 0.0, 0.0]), plane([0.0, 1.0, 0.0]), plane([0.0, 0.0, 1.0])], "grouping"),
+            (vec![sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.75), sphere([0.5, 0.5, 0.0], 0.25)], "raytrace"),
         ] {
             let values = sample(&f, &grid.vertices());
+            assert!(values.iter().any(|&x| x == 0.0), "{split:?} {f:?}: no value exactly 0");
             let grouping = run(&grid, &values, f.len(), Mode::Ia, 1);
             let mut o = NetworkOptions::new(Mode::Ia);
             o.block = 4;
             let ray = compute(&grid, &values, f.len(), &o).unwrap();
-            eprintln!("{split:?} {}: {} cells", ray.cells_method, ray.cells.len());
+            assert_eq!(ray.cells_method, want, "{split:?} {f:?}");
+            assert_eq!(grouping.cells_method, "grouping", "{split:?} {f:?}");
             assert_eq!(cell_partition(&ray), cell_partition(&grouping), "{split:?} {f:?}");
         }
     }

@@ -180,21 +180,7 @@ pub(crate) fn write_counts_seconds<W: Write + ?Sized>(
     w.write_all(b"}}\n")
 }
 
-/// A colour per patch (golden-ratio hue walk).
-pub fn patch_colour(p: u32) -> [u8; 3] {
-    let h = (p as f64 * 0.618_033_988_749_895).fract() * 6.0;
-    let x = 1.0 - (h % 2.0 - 1.0).abs();
-    let (r, g, b) = match h as u32 {
-        0 => (1.0, x, 0.0),
-        1 => (x, 1.0, 0.0),
-        2 => (0.0, 1.0, x),
-        3 => (0.0, x, 1.0),
-        4 => (x, 0.0, 1.0),
-        _ => (1.0, 0.0, x),
-    };
-    let s = |v: f64| (55.0 + 200.0 * v) as u8;
-    [s(r), s(g), s(b)]
-}
+pub use super::result_mesh::patch_colour;
 
 /// Writes `network.ply`: the polygons as triangle fans with `face`, `patch`,
 /// `labels_0`, `labels_1`, `cells_0`, `cells_1` and the patch colour

@@ -18,7 +18,6 @@ use std::io::Write;
 use std::path::Path;
 
 use super::atomic::write_atomic_with;
-use super::network_out::patch_colour;
 use super::result::ResultView;
 
 /// Which face properties a PLY carries.
@@ -153,4 +152,20 @@ pub fn write_obj(r: &ResultView, path: &Path) -> std::io::Result<()> {
         }
         Ok(())
     })
+}
+
+/// A colour per patch (golden-ratio hue walk).
+pub fn patch_colour(p: u32) -> [u8; 3] {
+    let h = (p as f64 * 0.618_033_988_749_895).fract() * 6.0;
+    let x = 1.0 - (h % 2.0 - 1.0).abs();
+    let (r, g, b) = match h as u32 {
+        0 => (1.0, x, 0.0),
+        1 => (x, 1.0, 0.0),
+        2 => (0.0, 1.0, x),
+        3 => (0.0, x, 1.0),
+        4 => (x, 0.0, 1.0),
+        _ => (1.0, 0.0, x),
+    };
+    let s = |v: f64| (55.0 + 200.0 * v) as u8;
+    [s(r), s(g), s(b)]
 }
