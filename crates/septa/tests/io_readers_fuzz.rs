@@ -105,7 +105,6 @@ fn all_readers(b: &[u8]) {
     if let Ok(t) = std::str::from_utf8(b) {
         let _ = septa::io::planes::parse_planes(p, t);
         let _ = septa::io::msh::parse_msh(t, "fuzz");
-        let _ = septa::io::functions::parse_functions(t, "fuzz");
         let _ = septa::scene::load_function_list(t, "fuzz", None);
         let _ = septa::scene::Scene::from_json(t, "fuzz", None);
     }
