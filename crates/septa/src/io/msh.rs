@@ -85,7 +85,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                 }
             }
             "$Nodes" if version < 3.0 => {
-                let n = ls.nums::<usize>()?[0];
+                let n = *ls.nums::<usize>()?.first().ok_or_else(|| ls.err("missing count"))?;
                 for _ in 0..n {
                     let v = ls.nums::<f64>()?;
                     if v.len() < 4 {
@@ -109,7 +109,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                     let n = b[3] as usize;
                     let mut tags = Vec::with_capacity(n);
                     for _ in 0..n {
-                        tags.push(ls.nums::<i64>()?[0]);
+                        tags.push(*ls.nums::<i64>()?.first().ok_or_else(|| ls.err("missing node tag"))?);
                     }
                     for tag in tags {
                         let v = ls.nums::<f64>()?;
@@ -122,7 +122,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                 }
             }
             "$Elements" if version < 3.0 => {
-                let n = ls.nums::<usize>()?[0];
+                let n = *ls.nums::<usize>()?.first().ok_or_else(|| ls.err("missing count"))?;
                 for _ in 0..n {
                     let e = ls.nums::<i64>()?;
                     if e.len() < 3 {
