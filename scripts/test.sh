@@ -8,6 +8,9 @@ ROOT=$PWD
 export CARGO_TERM_COLOR=never
 step() { printf '\n=== %s ===\n' "$*"; }
 
+step "Layers: no import cycle in the library (scripts/check_layers.py)"
+python3 scripts/check_layers.py > /dev/null || python3 scripts/check_layers.py
+
 step "Rust: cargo test --workspace --release (all 57 TopoCut reference cases)"
 SEPTA_FULL=1 cargo test --workspace --release
 
@@ -22,7 +25,7 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile "dask[distributed]" pynrrd nibabel
+.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile "dask[distributed]" pynrrd nibabel pyvista
 rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stale one
 # CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
 PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .

@@ -1,4 +1,4 @@
-"""Networks of your own Python function, by continuation (issue 6;
+"""Networks of your own Python function, by continuation (docs/sparse.md;
 Bloomenthal, *Non-Manifold Surfaces*, 4.5.1).
 
 A function without bounds (any callable ``f(points) -> values`` with

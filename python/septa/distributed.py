@@ -1,4 +1,4 @@
-"""Septa jobs on a Dask cluster (issue 6, "Beyond one machine").
+"""Septa jobs on a Dask cluster (docs/distributed.md).
 
 A sparse job has three steps, the same ones the single-process run
 composes (so local and distributed outputs are identical by construction):

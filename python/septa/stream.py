@@ -1,4 +1,4 @@
-"""Polygons of large networks streamed to disk (issue 6).
+"""Polygons of large networks streamed to disk (docs/sparse.md).
 
 :func:`stream_ply` runs a sparse job block by block and writes each
 block's polygons to one binary PLY as soon as it is done, so memory stays

@@ -69,6 +69,25 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, repeat: usiz
     };
     let (t_exact, extract, t_float, t_mt, t_ls) = (median(te), median(tx), median(tf), median(tm), median(tl));
     let (net, float_net, mt, ls) = (last_net.unwrap(), last_float.unwrap(), last_mt.unwrap(), last_ls.unwrap());
+    // With several threads: Septa on one thread, and the machine's ceiling
+    // for the same thread count (busy copies of the single-threaded
+    // marching tetrahedra), so the speed-up is read against what the
+    // machine gives right now.
+    let scaling = if threads > 1 {
+        let one = rayon::ThreadPoolBuilder::new().num_threads(1).build()?;
+        let mut t1 = Vec::new();
+        for _ in 0..repeat.max(1) {
+            let o = NetworkOptions::new(mode);
+            t1.push(secs(|| one.install(|| compute(&grid, &values, k, &o))).1);
+        }
+        let t1 = median(t1);
+        let ceiling = crate::bench_ceiling::ceiling(threads, &|| {
+            std::hint::black_box(marching_tets(&points, &tets, &values, k));
+        });
+        Some((t1, t1 / t_exact, ceiling))
+    } else {
+        None
+    };
     let float_note = match &float_net {
         Ok(n) if n.counts() == net.counts() => "same counts".to_string(),
         Ok(_) => "different counts".to_string(),
@@ -87,6 +106,8 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, repeat: usiz
                 "float": float_note,
                 "counts": net.counts().into_iter().collect::<std::collections::BTreeMap<_, _>>(),
                 "baseline_polygons": {"marching_tets": mt.num_polygons(), "label_separating": ls.num_polygons()},
+                "scaling": scaling.map(|(t1, speedup, ceiling)| serde_json::json!({
+                    "network_one_thread": t1, "speedup": speedup, "machine_ceiling": ceiling})),
             })
         );
     } else {
@@ -103,6 +124,11 @@ pub fn bench_grid(mode: &str, k: usize, res: usize, threads: usize, repeat: usiz
         println!("  float predicates    {t_float:8.3} s   exact/float = {:.2}x ({float_note})", t_exact / t_float);
         println!("  marching tets       {t_mt:8.3} s   ({} polygons)", mt.num_polygons());
         println!("  label-separating    {t_ls:8.3} s   ({} polygons)", ls.num_polygons());
+        if let Some((t1, speedup, ceiling)) = scaling {
+            println!(
+                "  Septa on 1 thread   {t1:8.3} s   {threads}-thread speed-up {speedup:.2}x; machine ceiling now {ceiling:.2}x ({threads} busy copies of marching tets)"
+            );
+        }
         println!("  counts: {:?}", net.counts());
     }
     Ok(())

@@ -1,5 +1,5 @@
 //! `septa bench stream`: the streamed network with its topology assembled
-//! from block summaries (issue 6) against the in-memory sparse run on the
+//! from block summaries (docs/sparse.md) against the in-memory sparse run on the
 //! same input, in one run, and against streaming the polygons alone (what
 //! the summaries and their assembly cost).
 //!

@@ -24,9 +24,9 @@ pub struct Args {
     /// Plane file: `a b c d` per line (optionally TopoCut's `N 4` header).
     #[arg(long)]
     pub planes: Option<PathBuf>,
-    /// Output folder.
+    /// Output folder (required unless MESH is a .vtu to --verify).
     #[arg(short = 'o', long = "out")]
-    pub out: PathBuf,
+    pub out: Option<PathBuf>,
     /// Worker threads (0: all cores).
     #[arg(long, default_value_t = 0, value_parser = crate::args::threads_or_all)]
     pub threads: usize,
@@ -39,13 +39,60 @@ pub struct Args {
     /// Skip the exact self-intersection test of the input mesh.
     #[arg(long)]
     pub no_self_check: bool,
+    /// Skip the exact check and repair of the written embedding (faster;
+    /// cells.vtu then carries no guarantee beyond the exact combinatorics).
+    #[arg(long)]
+    pub no_certify: bool,
     /// Exploded view factor for cells.obj.
     #[arg(long, default_value_t = 0.0, value_parser = crate::args::finite_nonneg)]
     pub explode: f64,
+    /// Prove the written embedding exactly (closed, consistently oriented,
+    /// planar-faced, non-self-intersecting cells of positive volume on the
+    /// written doubles; `verify` in cut.json); fails if anything is violated.
+    /// With a `.vtu` as MESH: check that file's polyhedra instead of cutting.
+    #[arg(long)]
+    pub verify: bool,
+    /// Also write `vertices_exact.json`: each cut-vertex's defining triple
+    /// of input elements (mesh vertex, mesh edge and plane, triangle and two
+    /// planes, or three planes), from which its exact rational position follows.
+    #[arg(long)]
+    pub exact_vertices: bool,
+}
+
+/// `septa cut FILE.vtu --verify`: the exact check of a written polyhedral mesh.
+fn verify_file(a: &Args) -> CliResult {
+    let (points, cells) = septa::io::cut_vtu::read_polyhedra(&a.mesh)?;
+    let r = septa::cut::verify::verify_cells(&points, &cells);
+    let j = serde_json::json!({ "file": a.mesh.display().to_string(), "violations": r.violations(), "verify": r });
+    if a.json {
+        println!("{j}");
+    } else {
+        println!(
+            "{}: {} cells, {} faces, {} triangles checked exactly: {} violations",
+            a.mesh.display(),
+            r.cells,
+            r.faces,
+            r.triangles,
+            r.violations()
+        );
+        for e in &r.examples {
+            println!("  {e}");
+        }
+    }
+    if r.violations() > 0 {
+        return Err(format!("{}: {} violations of the exact check", a.mesh.display(), r.violations()).into());
+    }
+    Ok(())
 }
 
 /// Runs `septa cut`.
 pub fn run(a: Args) -> CliResult {
+    if a.verify && a.mesh.extension().is_some_and(|e| e.eq_ignore_ascii_case("vtu")) {
+        return verify_file(&a);
+    }
+    let Some(out_dir) = a.out.clone() else {
+        return Err("give the output folder with -o OUT".into());
+    };
     let t0 = Instant::now();
     let mesh = read_mesh(&a.mesh)?;
     let planes = match (a.grid, a.random, &a.planes) {
@@ -63,7 +110,7 @@ pub fn run(a: Args) -> CliResult {
         &mesh.vertices,
         &mesh.triangles,
         &planes,
-        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check },
+        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify },
     )?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
@@ -72,11 +119,30 @@ pub fn run(a: Args) -> CliResult {
     let check = out.validate();
     let t2 = Instant::now();
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
-    let mut dir = septa::io::OutputDir::create(&a.out, "cut")?;
+    let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     if !a.no_mesh_output {
         dir.write("cells.vtu", cut_out::vtu(&out).as_bytes())?;
         dir.write("cells.obj", cut_out::obj(&out, a.explode).as_bytes())?;
     }
+    if a.exact_vertices {
+        let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
+        let j = serde_json::json!({
+            "about": "cut-vertex i of cells.vtu is defined by defs[i]: V(v) mesh vertex v; EP(e, p) mesh edge e (edges[e] = [u, v]) and plane p; TPP(t, p, q) triangle t and planes p, q; PPP(p, q, r) three planes. Planes index `planes` (a x + b y + c z + d = 0, the doubles used); the exact position is the rational intersection of these input elements.",
+            "defs": defs,
+            "planes": out.planes,
+        });
+        dir.write("vertices_exact.json", serde_json::to_string(&j)?.as_bytes())?;
+    }
+    // --verify: the exact check of the file as written (read back), else of
+    // the polygons in memory
+    let verify = if !a.verify {
+        None
+    } else if a.no_mesh_output {
+        Some(out.verify())
+    } else {
+        let (points, cells) = septa::io::cut_vtu::read_polyhedra(&out_dir.join("cells.vtu"))?;
+        Some(septa::cut::verify::verify_cells(&points, &cells))
+    };
     let write_s = t2.elapsed().as_secs_f64();
     let c = out.counts;
     let mut seconds = serde_json::Map::new();
@@ -121,6 +187,10 @@ pub fn run(a: Args) -> CliResult {
         "sidedness_violations": out.stats.sidedness_violations,
         "line_order_violations": out.stats.line_order_violations,
         "dropped_planes": out.stats.dropped_planes.len(),
+        "faces_split_nonplanar": out.stats.faces_split_nonplanar,
+        "faces_split_holes": out.stats.faces_split_holes,
+        "embedding": out.stats.embedding,
+        "verify_written_file": verify,
         "seconds": seconds,
     });
     dir.write("cut.json", serde_json::to_string_pretty(&j)?.as_bytes())?;
@@ -138,5 +208,13 @@ pub fn run(a: Args) -> CliResult {
         );
     }
     check?;
+    if let Some(r) = &verify {
+        for e in &r.examples {
+            eprintln!("verify: {e}");
+        }
+        if r.violations() > 0 {
+            return Err(format!("the exact check found {} violations in the written embedding", r.violations()).into());
+        }
+    }
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! folder (default `./septa-demo/`), then prints a table of counts and
 //! timings and how to open each result in the viewer.
 //!
-//! Jobs are added to [`jobs`] as the library grows them (issue 4): a CAD-like
+//! Jobs are added to [`jobs`] as the library grows them: a CAD-like
 //! IA, an Apollonius MI, a Bloomenthal non-manifold shape, a planar cut of a
 //! bundled mesh. Each writes the standard output folder (`network.json`, ...)
 //! under the demo folder and returns its counts and seconds.
@@ -151,12 +151,15 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
         random: None,
         seed: 0,
         planes: None,
-        out: dir.to_path_buf(),
+        out: Some(dir.to_path_buf()),
         threads: 0,
         json: false,
         no_mesh_output: false,
         no_self_check: false,
         explode: 0.0,
+        verify: false,
+        exact_vertices: false,
+        no_certify: false,
     })?;
     let j: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("cut.json"))?)?;
     Ok(JobRow {

@@ -3,6 +3,7 @@ use clap::{Parser, Subcommand};
 
 mod args;
 mod bench;
+mod bench_ceiling;
 mod bench_grid;
 mod bench_stream;
 mod cut;

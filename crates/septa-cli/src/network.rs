@@ -164,7 +164,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         if let Some(s) = stats {
             obj.insert("blocks".into(), sparse_json(&s));
         }
-        obj.insert("cells_method".into(), cells_method.into());
+        obj.insert("cells_method".into(), cells_method.as_str().into());
         let mut secs = serde_json::Map::new();
         for (k, v) in net.seconds.iter().chain(extra.iter()) {
             secs.insert((*k).into(), (*v).into());

@@ -16,7 +16,7 @@
 //!   including the cases decided by its static filter, whose stated error
 //!   bound (`|v - exact| <= 7u S`) is measured against the rationals.
 //!
-//! Mutations these tests catch (issue 18): the static bound set to zero,
+//! Mutations these tests catch: the static bound set to zero,
 //! TwoProduct skipped for 54-bit products, the `1e-270` guard removed,
 //! quotients or sums not rounded outward. Not caught: the static bound
 //! narrowed from 8u S to 1u S; the largest error measured here is 1.8u S

@@ -50,7 +50,7 @@ pub fn cut<'py>(
             tris.push([c[0] as u32, c[1] as u32, c[2] as u32]);
         }
         let p: Vec<[f64; 4]> = p.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
-        let m = cut_mesh(&v, &tris, &p, &CutOptions { threads, skip_self_intersection_check: false }).map_err(|e| e.to_string())?;
+        let m = cut_mesh(&v, &tris, &p, &CutOptions { threads, ..Default::default() }).map_err(|e| e.to_string())?;
         let check = m.validate().map_err(|e| e.to_string())?;
         let c = m.counts;
         Ok(serde_json::json!({

@@ -1,5 +1,4 @@
-//! `septa.distributed`: the three steps of a sparse job (issue 6, "Beyond
-//! one machine") as separate calls, so that a Dask cluster can run the
+//! `septa.distributed`: the three steps of a sparse job (docs/distributed.md) as separate calls, so that a Dask cluster can run the
 //! middle one anywhere: plan the blocks, run blocks into bytes, finish from
 //! the bytes. A job travels as JSON text (never Rust objects), so a worker
 //! only needs `pip install septa`.

@@ -126,7 +126,7 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py
     counts.set_item("components", net.components)?;
     counts.set_item("active_tets", net.active_tets)?;
     d.set_item("counts", counts)?;
-    d.set_item("cells_method", net.cells_method)?;
+    d.set_item("cells_method", net.cells_method.as_str())?;
     let seconds = PyDict::new(py);
     for (k, v) in &net.seconds {
         seconds.set_item(*k, *v)?;

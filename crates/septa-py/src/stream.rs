@@ -1,5 +1,5 @@
 //! `septa.stream_ply`: the polygons of a sparse job streamed block by block
-//! into one PLY in bounded memory (issue 6: networks larger than memory),
+//! into one PLY in bounded memory (docs/sparse.md: networks larger than memory),
 //! with the topology assembled from block summaries on the way (written to
 //! `<path>.topology.json`, as `septa ia --stream` does).
 use std::path::Path;

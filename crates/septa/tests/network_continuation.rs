@@ -1,4 +1,4 @@
-//! Continuation (Bloomenthal 4.5.1, issue 6) gives exactly the dense
+//! Continuation (Bloomenthal 4.5.1, docs/sparse.md) gives exactly the dense
 //! network when the seeds reach every component, and (by design) misses a
 //! separate component that no seed reaches.
 

@@ -1,6 +1,6 @@
 //! The three steps of a sparse job, with every block result sent through
 //! its byte encoding and merged in a shuffled order (as a cluster would),
-//! give exactly the dense network (issue 6, "Beyond one machine").
+//! give exactly the dense network (docs/distributed.md).
 
 use std::path::Path;
 

@@ -1,5 +1,5 @@
 //! The same network.json (apart from timings) for any permutation of the
-//! functions, after mapping the function ids back (issue 5), with ray
+//! functions, after mapping the function ids back (invariant 2 of docs/architecture.md), with ray
 //! shooting and with cell grouping, and for other block sizes.
 
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! Sparse evaluation (issue 6) gives exactly the dense network: every
+//! Sparse evaluation (docs/sparse.md) gives exactly the dense network: every
 //! count, every array, and the same network.json bytes apart from timings.
 
 mod common;

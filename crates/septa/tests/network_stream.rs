@@ -1,4 +1,4 @@
-//! Streaming (issue 6): the polygons streamed block by block are exactly
+//! Streaming (docs/sparse.md): the polygons streamed block by block are exactly
 //! the in-memory network's (same multiset of faces as sorted global-key
 //! lists, same labels), for several block and window sizes, and the
 //! streamed PLY holds them with every vertex once.

@@ -1,5 +1,5 @@
 //! Topology assembled from block summaries while the polygons stream
-//! (issue 6) equals the in-memory network's, face by face: the same counts;
+//! (docs/sparse.md) equals the in-memory network's, face by face: the same counts;
 //! the same partition of faces into patches, and the same cells on both
 //! sides of every face, up to numbering; the same patch labels and sizes,
 //! shells (as sets of half-patches), cells (as sets of shells, with labels),

@@ -1,4 +1,4 @@
-//! Bounds enclose the *floating-point* values `eval` returns (issue 6):
+//! Bounds enclose the *floating-point* values `eval` returns (docs/sparse.md):
 //! sparse evaluation skips a block when a primitive's bound excludes zero
 //! (IA) or proves one function larger than the others (MI), and the dense
 //! path decides on the rounded samples, so sparse equals dense only if

@@ -259,7 +259,7 @@ fn voronoi_lines_5_has_one_cell_per_line() {
     // Their source: not one run but the diagram of the lines. Other
     // samplings of the same distance functions (a finer grid, the 6-tet
     // split: other sample points, other tets) resolve the same Voronoi
-    // diagram, so they must give the same combinatorics (issue 18).
+    // diagram, so they must give the same combinatorics.
     for (n, split) in [(33, 6), (45, 5), (45, 6)] {
         let mut t = builtin::voronoi_lines_5();
         t.grid.resolution = [n; 3];

@@ -33,7 +33,7 @@ pub(crate) fn barycentric(mode: Option<Mode>, simplex: u8, functions: &[u16], va
     let n = s.len();
     // The functions in an order given by their values, not their ids, so
     // the rounded position does not depend on how the functions are
-    // numbered (the same output for any permutation of them; issue 5).
+    // numbered (the same output for any permutation of them; invariant 2 of docs/architecture.md).
     let mut f: smallvec::SmallVec<[u16; 4]> = functions.into();
     let key = |g: u16| -> [u64; 4] {
         let mut k = [0; 4];

@@ -38,6 +38,8 @@ mod build;
 mod canonical;
 mod check;
 mod coords;
+mod dominated;
+pub(crate) use dominated::average_dominates;
 pub(crate) use coords::barycentric;
 mod lookup;
 #[doc(hidden)]

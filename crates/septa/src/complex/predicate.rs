@@ -42,8 +42,15 @@ impl Predicates<'_> {
 
     fn rows(&self, v: &Vertex, last: Option<u16>) -> Rows {
         let mut r = Rows { a: [[0.0; 4]; 4], b: [[0.0; 4]; 4], n: 0 };
-        let s = v.tet_vertices();
-        let n = s.len();
+        // The tet corners of the vertex's simplex, without allocating.
+        let mut s = [0u8; 4];
+        let mut n = 0;
+        for i in 0..4u8 {
+            if v.simplex() >> i & 1 == 1 {
+                s[n] = i;
+                n += 1;
+            }
+        }
         r.n = n;
         let f = v.functions();
         let val = |func: u16, j: usize| self.values[func as usize][s[j] as usize];

@@ -29,9 +29,11 @@ pub(crate) struct Scratch {
     pub face_child: Vec<u32>,
     pub face_cut_edge: Vec<u32>,
     pub cell_side: Vec<i8>,
-    pub loop_v: SmallVec<[u32; 16]>,
-    pub loop_e: SmallVec<[u32; 16]>,
-    pub directed: SmallVec<[(u32, u32, u32); 16]>,
+    // Plain vectors: reused across builds, so a push is one length check
+    // (a SmallVec also tests whether it has spilled on every access).
+    pub loop_v: Vec<u32>,
+    pub loop_e: Vec<u32>,
+    pub directed: Vec<(u32, u32, u32)>,
     pub merge: super::merge::MergeBuffers,
 }
 
@@ -39,10 +41,13 @@ pub(crate) struct Scratch {
 /// and the union of the functions of its planes (Sec. 5.1).
 pub(crate) fn vertex_from_planes(planes: [Plane; 3]) -> Vertex {
     let mut simplex = 0b1111u8;
-    let mut funcs: SmallVec<[u16; 6]> = SmallVec::new();
+    // At most 6 functions from 3 pair planes, distinct ones first-come.
+    let mut funcs = [0u16; 6];
+    let mut n = 0;
     let mut add = |f: u16| {
-        if !funcs.contains(&f) {
-            funcs.push(f)
+        if !funcs[..n].contains(&f) {
+            funcs[n] = f;
+            n += 1;
         }
     };
     for p in planes {
@@ -55,8 +60,7 @@ pub(crate) fn vertex_from_planes(planes: [Plane; 3]) -> Vertex {
             }
         }
     }
-    funcs.truncate(4);
-    Vertex::new(simplex, &funcs)
+    Vertex::new(simplex, &funcs[..n.min(4)])
 }
 
 impl Complex {
@@ -126,11 +130,21 @@ impl Complex {
         s.face_cut_edge.clear();
         s.face_cut_edge.resize(n_faces, NONE);
         for f in 0..n_faces {
-            self.insert_cut_vertices(f, s);
+            // Most faces neither gain a cut-vertex nor change sign: decide
+            // those from the stored loop without copying it (cut-vertices
+            // have sign 0, so they never change `pos`/`neg`).
             let (mut pos, mut neg) = (false, false);
-            for &v in &s.loop_v {
-                pos |= self.vsign[v as usize] > 0;
-                neg |= self.vsign[v as usize] < 0;
+            let mut cut = false;
+            {
+                let face = &self.faces[f];
+                for (&v, &e) in face.vertices.iter().zip(&face.edges) {
+                    pos |= self.vsign[v as usize] > 0;
+                    neg |= self.vsign[v as usize] < 0;
+                    cut |= s.edge_cut[e as usize] != NONE;
+                }
+            }
+            if cut || (pos && neg) {
+                self.insert_cut_vertices(f, s);
             }
             if !(pos && neg) {
                 s.face_side[f] = if pos {
@@ -152,7 +166,12 @@ impl Complex {
             };
             let ambiguous = BuildError::Ambiguous { function: new as usize, element: "face" };
             let n = s.loop_v.len();
-            let zeros: SmallVec<[usize; 4]> = (0..n).filter(|&k| self.vsign[s.loop_v[k] as usize] == 0).collect();
+            let mut zeros: SmallVec<[usize; 4]> = SmallVec::new();
+            for k in 0..n {
+                if self.vsign[s.loop_v[k] as usize] == 0 {
+                    zeros.push(k);
+                }
+            }
             if zeros.len() != 2 || zeros[1] - zeros[0] < 2 || zeros[0] + n - zeros[1] < 2 {
                 return Err(ambiguous);
             }
@@ -180,24 +199,27 @@ impl Complex {
             let ne = self.edges.len() as u32;
             self.edges.push(Edge { vertices: [zi, zk], planes: [plane, cut_plane(j)] });
             // Part A: i..=k then the cut-edge back to i. Part B: k..=i (cyclic) then the cut-edge back to k.
-            let mut a_v: SmallVec<[u32; 8]> = s.loop_v[i..=k].iter().copied().collect();
-            let mut a_e: SmallVec<[u32; 8]> = s.loop_e[i..k].iter().copied().collect();
-            a_e.push(ne);
+            // Part A stays in face f's buffers (written in place), part B
+            // is the new child face; which is positive decides the order.
             let mut b_v: SmallVec<[u32; 8]> = SmallVec::new();
             let mut b_e: SmallVec<[u32; 8]> = SmallVec::new();
-            for m in k..i + n {
-                b_v.push(s.loop_v[m % n]);
-                b_e.push(s.loop_e[m % n]);
-            }
+            b_v.extend_from_slice(&s.loop_v[k..]);
+            b_v.extend_from_slice(&s.loop_v[..i]);
             b_v.push(zi);
+            b_e.extend_from_slice(&s.loop_e[k..]);
+            b_e.extend_from_slice(&s.loop_e[..i]);
             b_e.push(ne);
+            let face = &mut self.faces[f];
+            face.vertices.clear();
+            face.vertices.extend_from_slice(&s.loop_v[i..=k]);
+            face.edges.clear();
+            face.edges.extend_from_slice(&s.loop_e[i..k]);
+            face.edges.push(ne);
             if !first_positive {
-                std::mem::swap(&mut a_v, &mut b_v);
-                std::mem::swap(&mut a_e, &mut b_e);
+                std::mem::swap(&mut face.vertices, &mut b_v);
+                std::mem::swap(&mut face.edges, &mut b_e);
             }
             let child = self.faces.len() as u32;
-            self.faces[f].vertices = a_v;
-            self.faces[f].edges = a_e;
             self.faces.push(Face { plane, vertices: b_v, edges: b_e, cells });
             s.face_side[f] = 1;
             s.face_side.push(-1);
@@ -234,11 +256,8 @@ impl Complex {
         s.loop_v.clear();
         s.loop_e.clear();
         let face = &self.faces[f];
-        let n = face.vertices.len();
         let mut changed = false;
-        for k in 0..n {
-            let v = face.vertices[k];
-            let e = face.edges[k];
+        for (&v, &e) in face.vertices.iter().zip(face.edges.iter()) {
             s.loop_v.push(v);
             let c = s.edge_cut[e as usize];
             if c == NONE {
@@ -260,8 +279,10 @@ impl Complex {
         }
         if changed {
             let face = &mut self.faces[f];
-            face.vertices = s.loop_v.iter().copied().collect();
-            face.edges = s.loop_e.iter().copied().collect();
+            face.vertices.clear();
+            face.vertices.extend_from_slice(&s.loop_v);
+            face.edges.clear();
+            face.edges.extend_from_slice(&s.loop_e);
         }
     }
 
@@ -292,11 +313,12 @@ impl Complex {
         for &g in &pos_faces {
             let face = &self.faces[g as usize];
             let inward = face.cells[0] == c;
-            let n = face.vertices.len();
+            let (fv, fe): (&[u32], &[u32]) = (&face.vertices, &face.edges);
+            let n = fv.len();
             for k in 0..n {
-                let (p, q) = (face.vertices[k], face.vertices[(k + 1) % n]);
+                let (p, q) = (fv[k], fv[if k + 1 == n { 0 } else { k + 1 }]);
                 if self.vsign[p as usize] == 0 && self.vsign[q as usize] == 0 {
-                    let e = face.edges[k];
+                    let e = fe[k];
                     s.directed.push(if inward { (q, p, e) } else { (p, q, e) });
                 }
             }
@@ -335,11 +357,13 @@ impl Complex {
                 }
             }
         }
-        let mut neg_cell = self.cells[c as usize].clone();
-        neg_cell.faces = neg_faces.iter().copied().collect();
+        let old = &self.cells[c as usize];
+        let mut neg_cell = super::types::Cell { faces: SmallVec::new(), positive: old.positive.clone(), material: old.material };
+        neg_cell.faces.extend_from_slice(&neg_faces);
         neg_cell.faces.push(nf);
         let cell = &mut self.cells[c as usize];
-        cell.faces = pos_faces.iter().copied().collect();
+        cell.faces.clear();
+        cell.faces.extend_from_slice(&pos_faces);
         cell.faces.push(nf);
         match plane {
             Plane::Function(_) => {

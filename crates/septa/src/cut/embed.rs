@@ -246,6 +246,37 @@ type Bad = (u32, Support, Sign);
 /// rounding of its homogeneous coordinates) and an interval box enclosing
 /// its exact point, from one interval evaluation of the coordinates.
 pub fn round(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
+    let (mut x, b) = round_unsnapped(c, d);
+    snap_axis_planes(c, d, &mut x);
+    (x, b)
+}
+
+/// Puts a cut-vertex exactly on each axis-aligned plane of its triple whose
+/// offset is a double (`x = c` planes, as in TopoCut's An sets): that double
+/// is the correct rounding of the exact coordinate, and it keeps every face
+/// in such a plane exactly planar in the written doubles. Checked exactly
+/// (`plane_point_sign` = 0) before it is kept.
+pub fn snap_axis_planes(c: &Ctx, d: Def, x: &mut [f64; 3]) {
+    let ps: &[u32] = match &d {
+        Def::V(_) => return,
+        Def::EP(_, p) => std::slice::from_ref(p),
+        Def::TPP(_, p, q) => &[*p, *q],
+        Def::PPP(p, q, r) => &[*p, *q, *r],
+    };
+    for &p in ps {
+        let pl = c.planes[p as usize];
+        let nz: Vec<usize> = (0..3).filter(|&k| pl[k] != 0.0).collect();
+        if let [k] = nz[..] {
+            let old = x[k];
+            x[k] = -pl[3] / pl[k];
+            if !x[k].is_finite() || septa_exact::plane_point_sign(&pl, x) != Sign::Zero {
+                x[k] = old;
+            }
+        }
+    }
+}
+
+fn round_unsnapped(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
     if let Def::V(v) = d {
         let x = c.verts[v as usize];
         return (x, Some(x.map(Interval::point)));

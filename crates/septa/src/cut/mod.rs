@@ -61,10 +61,12 @@ pub mod lines;
 pub mod nodes;
 pub mod output;
 pub mod plane_graph;
+pub mod repair;
 pub mod selfx;
 pub mod side_filter;
 pub mod triangulate;
 mod validate;
+pub mod verify;
 pub mod voids;
 mod volume;
 
@@ -88,6 +90,9 @@ pub struct CutOptions {
     /// Skip the exact self-intersection test of the input (for inputs known
     /// to be clean; the reference implementation assumes it).
     pub skip_self_intersection_check: bool,
+    /// Skip the exact check and repair of the written embedding
+    /// ([`repair`]; default: run it, [`CutStats::embedding`] holds the report).
+    pub skip_certify: bool,
 }
 
 /// Counts of the cut-cell mesh.
@@ -142,6 +147,14 @@ pub struct CutStats {
     pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
+    /// Cut-faces written as triangles because their rounded vertices are
+    /// not exactly coplanar (TopoCut Sec. 8, Limitations: relax planarity).
+    pub faces_split_nonplanar: usize,
+    /// Cut-faces written as triangles because they have holes.
+    pub faces_split_holes: usize,
+    /// The exact check of the written embedding and what its repair changed
+    /// (`None` with [`CutOptions::skip_certify`]).
+    pub embedding: Option<repair::RepairStats>,
 }
 
 /// One cut-face.
@@ -187,6 +200,14 @@ pub struct CutCellMesh {
     /// homogeneous coordinates; `volume.rs`): what [`CutCellMesh::validate`]
     /// checks, since a legitimate cell can be too small for `cell_volumes`.
     pub cell_volume_signs: Vec<Sign>,
+    /// Per cut-face: written as triangles (no new vertices) instead of one
+    /// polygon, because it has holes or its rounded vertices are not exactly
+    /// coplanar ([`CutCellMesh::cell_polygons`]).
+    pub face_split: Vec<bool>,
+    /// Per cut-face: the triangles it is written as when split (vertex ids;
+    /// ids from `vertex_defs.len()` on are face centres added by [`repair`],
+    /// not cut-vertices), empty otherwise.
+    pub face_triangles: Vec<Vec<[u32; 3]>>,
     /// Timings and predicate statistics.
     pub stats: CutStats,
 }
@@ -416,6 +437,10 @@ fn cut_impl(
     stats.sidedness_violations_rounded = es.sidedness_violations_rounded;
     stats.sidedness_violations = es.sidedness_violations;
     stats.line_order_violations = es.line_order_violations;
+    // the moves above may leave an axis plane by an ulp: back onto it
+    for (x, &d) in out.vertices.iter_mut().zip(&out.vertex_defs) {
+        embed::snap_axis_planes(&c, d, x);
+    }
     lap("embed", &mut stats);
     // volumes by the divergence theorem: loops count + for cells[0] and -
     // for cells[1] (volume.rs relies on this orientation)
@@ -431,6 +456,15 @@ fn cut_impl(
         }
     }
     out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
+    // planarity on the written doubles, exactly: a face whose rounded
+    // vertices leave its plane is written as triangles
+    out.face_split = out
+        .faces
+        .par_iter()
+        .map(|f| f.loops.len() > 1 || verify::polygon_planar(&out.vertices, &f.loops[0]) != Some(true))
+        .collect();
+    stats.faces_split_holes = out.faces.iter().filter(|f| f.loops.len() > 1).count();
+    stats.faces_split_nonplanar = out.face_split.iter().filter(|&&s| s).count() - stats.faces_split_holes;
     out.mesh_volume = output::mesh_volume(vertices, triangles);
     out.planes = planes.clone();
     out.tri_normals = triangles
@@ -449,6 +483,24 @@ fn cut_impl(
         cut_cells: out.num_cells,
     };
     lap("output", &mut stats);
+    out.face_triangles = out
+        .faces
+        .par_iter()
+        .zip(&out.face_split)
+        .map(
+            |(f, &s)| {
+                if s {
+                    triangulate::triangulate(&out.vertices, &f.loops, out.support_normal(f))
+                } else {
+                    Vec::new()
+                }
+            },
+        )
+        .collect();
+    if !opts.skip_certify {
+        stats.embedding = Some(repair::repair(&mut out));
+    }
+    lap("certify", &mut stats);
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
     out.stats = stats;
     Ok(out)

@@ -20,3 +20,41 @@ pub fn loop_volume(x: &[[f64; 3]], verts: &[u32]) -> f64 {
 pub fn mesh_volume(x: &[[f64; 3]], tris: &[[u32; 3]]) -> f64 {
     tris.iter().map(|t| loop_volume(x, t)).sum()
 }
+
+impl super::CutCellMesh {
+    /// The polygons written for each cell, oriented outwards (what
+    /// `cells.vtu` and `cells.obj` hold and [`super::verify`] checks): a
+    /// cut-face as one polygon, or as its triangles (no new vertices) when
+    /// [`super::CutCellMesh::face_split`] says so (holes, or rounded
+    /// vertices not exactly coplanar).
+    pub fn cell_polygons(&self) -> Vec<Vec<Vec<u32>>> {
+        let mut cells: Vec<Vec<Vec<u32>>> = vec![Vec::new(); self.num_cells];
+        for (i, f) in self.faces.iter().enumerate() {
+            let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
+            let polys: Vec<Vec<u32>> = if !split {
+                vec![f.loops[0].clone()]
+            } else if let Some(t) = self.face_triangles.get(i).filter(|t| !t.is_empty()) {
+                t.iter().map(|t| t.to_vec()).collect()
+            } else {
+                super::triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f))
+                    .iter()
+                    .map(|t| t.to_vec())
+                    .collect()
+            };
+            // the face normal points away from cells[0] (negative side): outward for it
+            if f.cells[1] != u32::MAX {
+                let c = &mut cells[f.cells[1] as usize];
+                c.extend(polys.iter().map(|l| l.iter().rev().copied().collect::<Vec<u32>>()));
+            }
+            if f.cells[0] != u32::MAX {
+                cells[f.cells[0] as usize].extend(polys);
+            }
+        }
+        cells
+    }
+
+    /// The exact check of [`super::verify`] on the polygons as written.
+    pub fn verify(&self) -> super::verify::VerifyReport {
+        super::verify::verify_cells(&self.vertices, &self.cell_polygons())
+    }
+}

@@ -8,7 +8,7 @@ use super::CutError;
 use rayon::prelude::*;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
-fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
     // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
     // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
     // permanent of absolute values of the same products.
@@ -70,7 +70,7 @@ fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
 }
 
 /// 2D orientation of points projected by dropping axis `k`.
-fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
+pub(crate) fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
     let (i, j) = ((k + 1) % 3, (k + 2) % 3);
     // Shewchuk's static filter for orient2d (`ccwerrboundA` = (3u + 16u^2))
     let (pa, pb, pc) = (&x[a as usize], &x[b as usize], &x[c as usize]);
@@ -213,7 +213,7 @@ fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
 }
 
 /// Do two triangles meet anywhere besides their shared vertices?
-fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+pub(crate) fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
     if projections_separated(x, t1, t2) {
         return false;
     }
@@ -288,9 +288,20 @@ fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
 
 /// Fails with the first intersecting pair (by triangle index).
 pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(), CutError> {
+    match intersecting_pairs(x, tris, true).first() {
+        Some(&(a, b)) => Err(CutError::SelfIntersection { first: a as usize, second: b as usize }),
+        None => Ok(()),
+    }
+}
+
+/// Pairs of triangles (`first < second`, sorted) that meet anywhere besides
+/// their shared vertices and edges, decided exactly on the doubles `x`;
+/// with `first_only` just the smallest pair (or none). Triangles must not be
+/// degenerate (collinear corners).
+pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -> Vec<(u32, u32)> {
     let n = tris.len();
     if n < 2 {
-        return Ok(());
+        return Vec::new();
     }
     let boxes: Vec<([f64; 3], [f64; 3])> = tris
         .iter()
@@ -343,38 +354,39 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
         groups.push((s, e));
         s = e;
     }
-    let bad = groups
-        .par_iter()
-        .filter_map(|&(s, e)| {
-            let here = entries[s].0;
-            let mut found: Option<(u32, u32)> = None;
-            for a in s..e {
-                for b in a + 1..e {
-                    let (t1, t2) = (entries[a].1, entries[b].1);
-                    let (b1, b2) = (&boxes[t1 as usize], &boxes[t2 as usize]);
-                    if (0..3).any(|k| b1.0[k] > b2.1[k] || b2.0[k] > b1.1[k]) {
-                        continue;
-                    }
-                    // test each pair once: in the cell of the overlap's low corner
-                    let low = key([0, 1, 2].map(|k| cell(b1.0[k].max(b2.0[k]), k)));
-                    if low != here {
-                        continue;
-                    }
-                    if pair_intersects(x, &tris[t1 as usize], &tris[t2 as usize]) {
-                        let p = (t1.min(t2), t1.max(t2));
-                        if found.is_none_or(|f| p < f) {
-                            found = Some(p);
-                        }
+    let per_group = |&(s, e): &(usize, usize)| -> Vec<(u32, u32)> {
+        let here = entries[s].0;
+        let mut found: Vec<(u32, u32)> = Vec::new();
+        for a in s..e {
+            for b in a + 1..e {
+                let (t1, t2) = (entries[a].1, entries[b].1);
+                let (b1, b2) = (&boxes[t1 as usize], &boxes[t2 as usize]);
+                if (0..3).any(|k| b1.0[k] > b2.1[k] || b2.0[k] > b1.1[k]) {
+                    continue;
+                }
+                // test each pair once: in the cell of the overlap's low corner
+                let low = key([0, 1, 2].map(|k| cell(b1.0[k].max(b2.0[k]), k)));
+                if low != here {
+                    continue;
+                }
+                if pair_intersects(x, &tris[t1 as usize], &tris[t2 as usize]) {
+                    let p = (t1.min(t2), t1.max(t2));
+                    if !first_only {
+                        found.push(p);
+                    } else if found.first().is_none_or(|f| p < *f) {
+                        found = vec![p];
                     }
                 }
             }
-            found
-        })
-        .min();
-    match bad {
-        Some((a, b)) => Err(CutError::SelfIntersection { first: a as usize, second: b as usize }),
-        None => Ok(()),
+        }
+        found
+    };
+    if first_only {
+        return groups.par_iter().map(per_group).filter_map(|v| v.first().copied()).min().into_iter().collect();
     }
+    let mut all: Vec<(u32, u32)> = groups.par_iter().map(per_group).flatten().collect();
+    all.sort_unstable();
+    all
 }
 
 #[cfg(test)]

@@ -1,8 +1,13 @@
 //! Triangulation of cut-faces without new vertices, for output (TopoCut
 //! Sec. 6.3 "Trian"). Works on the floating-point embedding: holes are
 //! joined to the outer boundary by a bridge edge (as in the paper's
-//! multi-boundary post-processing), then ears are clipped. This only shapes
-//! output files; no combinatorial decision depends on it.
+//! multi-boundary post-processing), then ears are clipped with exact 2D
+//! orientations of the projected doubles. This only shapes output files; no
+//! combinatorial decision of the cut depends on it, and `verify` checks
+//! the written result exactly.
+
+use super::selfx::orient2;
+use septa_exact::Sign;
 
 /// Triangles (vertex ids) covering a planar face given by its loops (outer
 /// first, counter-clockwise about `normal`; holes clockwise).
@@ -50,7 +55,7 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
         merged.extend_from_slice(&poly[c..]);
         poly = merged;
     }
-    ear_clip(&poly, &p)
+    ear_clip(x, k, normal[k] < 0.0, &poly)
 }
 
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -63,39 +68,66 @@ fn proper_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
     o1 * o2 < 0.0 && o3 * o4 < 0.0
 }
 
-fn ear_clip(poly: &[u32], p: &dyn Fn(u32) -> [f64; 2]) -> Vec<[u32; 3]> {
+/// Ear clipping decided by exact 2D orientations of the projected doubles
+/// (`selfx::orient2`, dropping axis `k`; `flip` when the projection reverses
+/// the loop): an ear is strictly convex and holds no other corner in its
+/// closed triangle, so on a simple projected polygon every triangle is
+/// non-degenerate and none overlaps another (Meisters' two ears). Only a
+/// polygon with no such ear (not simple in projection) falls back to the
+/// least bad corner; the exact check (`verify`) then reports it.
+fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]> {
+    let o2 = |a: u32, b: u32, c: u32| {
+        let s = orient2(x, k, a, b, c);
+        if flip {
+            s.flip()
+        } else {
+            s
+        }
+    };
+    // sine of the corner angle at v (floating point): among the exact ears
+    // the first well-shaped one is cut, else the best. A rounded chain of
+    // exactly collinear cut-vertices (along a plane-plane or mesh line) makes
+    // ears of almost zero angle that would lie in a neighbouring face.
+    let quality = |u: u32, v: u32, w: u32| {
+        let (pu, pv, pw) = (x[u as usize], x[v as usize], x[w as usize]);
+        let a: [f64; 3] = std::array::from_fn(|i| pu[i] - pv[i]);
+        let b: [f64; 3] = std::array::from_fn(|i| pw[i] - pv[i]);
+        let c = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+        let n = |p: [f64; 3]| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        n(c) / (n(a) * n(b)).max(f64::MIN_POSITIVE)
+    };
     let mut idx: Vec<u32> = poly.to_vec();
     let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
     while idx.len() > 3 {
         let n = idx.len();
-        let mut cut = None;
-        for pass in 0..2 {
-            for a in 0..n {
-                let (u, v, w) = (idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]);
-                let (pu, pv, pw) = (p(u), p(v), p(w));
-                let c = cross(pu, pv, pw);
-                if c < 0.0 || (pass == 0 && c == 0.0) {
-                    continue;
+        let mut cut: Option<(usize, f64)> = None;
+        let mut fallback = None;
+        for a in 0..n {
+            let (u, v, w) = (idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]);
+            if o2(u, v, w) != Sign::Positive {
+                continue;
+            }
+            fallback.get_or_insert(a);
+            let blocked = idx.iter().any(|&q| {
+                q != u
+                    && q != v
+                    && q != w
+                    && o2(u, v, q) != Sign::Negative
+                    && o2(v, w, q) != Sign::Negative
+                    && o2(w, u, q) != Sign::Negative
+            });
+            if !blocked {
+                let qa = quality(u, v, w);
+                if cut.is_none_or(|c| qa > c.1) {
+                    cut = Some((a, qa));
                 }
-                // no other corner strictly inside the candidate ear
-                let blocked = pass == 0
-                    && idx.iter().any(|&o| {
-                        if o == u || o == v || o == w {
-                            return false;
-                        }
-                        let q = p(o);
-                        cross(pu, pv, q) > 0.0 && cross(pv, pw, q) > 0.0 && cross(pw, pu, q) > 0.0
-                    });
-                if !blocked {
-                    cut = Some(a);
+                if qa > 1e-3 {
                     break;
                 }
             }
-            if cut.is_some() {
-                break;
-            }
         }
-        let a = cut.unwrap_or(0);
+        let cut = cut.map(|c| c.0);
+        let a = cut.or(fallback).unwrap_or(0);
         out.push([idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]]);
         idx.remove(a);
     }

@@ -3,7 +3,7 @@
 //!
 //! Every grid hands out positively oriented tets (`det[v1-v0, v2-v0, v3-v0] > 0`)
 //! and a decomposition into [`Block`]s, the unit of parallel work and of
-//! the block-wise assembly of the network (issue 6: blocks merge exactly in
+//! the block-wise assembly of the network (docs/sparse.md: blocks merge exactly in
 //! any order because every key is global).
 
 mod boxgrid;

@@ -1,5 +1,5 @@
-//! Writers for cut-cell meshes: `cells.vtu` (VTK unstructured grid of
-//! `VTK_POLYHEDRON` cells with a `cell_id` array), `cells.obj` (one group
+//! Writers for cut-cell meshes: `cells.vtu` (binary VTK unstructured grid of
+//! `VTK_POLYHEDRON` cells with `cell_id` and `volume` arrays), `cells.obj` (one group
 //! per cell) and `cut.json`. Every file is written to a temporary name in
 //! the same folder and renamed, so a reader never sees half a file.
 
@@ -8,92 +8,18 @@ use std::fmt::Write as _;
 
 pub use super::atomic::write_atomic;
 
-/// Boundary polygons of each cell, oriented outwards. A face with holes is
-/// written as its triangles (no new vertices), so every polygon is simple.
+/// Boundary polygons of each cell, oriented outwards, each as a face of
+/// one loop ([`CutCellMesh::cell_polygons`]: faces with holes or with
+/// rounded vertices off their plane are written as their triangles).
 pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
-    let mut cells: Vec<Vec<Vec<Vec<u32>>>> = vec![Vec::new(); m.num_cells];
-    for f in &m.faces {
-        let polys: Vec<Vec<u32>> = if f.loops.len() == 1 {
-            f.loops.clone()
-        } else {
-            crate::cut::triangulate::triangulate(&m.vertices, &f.loops, m.support_normal(f))
-                .iter()
-                .map(|t| t.to_vec())
-                .collect()
-        };
-        // the face normal points away from cells[0] (negative side): outward for it
-        if f.cells[0] != u32::MAX {
-            cells[f.cells[0] as usize].push(polys.clone());
-        }
-        if f.cells[1] != u32::MAX {
-            let rev: Vec<Vec<u32>> = polys.iter().map(|l| l.iter().rev().copied().collect()).collect();
-            cells[f.cells[1] as usize].push(rev);
-        }
-    }
-    cells
+    m.cell_polygons().into_iter().map(|c| c.into_iter().map(|p| vec![p]).collect()).collect()
 }
 
-/// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell.
+/// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
+/// (inline base64), with cell data `cell_id` and `volume`.
 pub fn vtu(m: &CutCellMesh) -> String {
-    let cells = cell_faces(m);
-    let mut s = String::new();
-    let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>");
-    let _ = writeln!(s, "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", m.vertices.len(), m.num_cells);
-    s.push_str("<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for v in &m.vertices {
-        let _ = writeln!(s, "{:?} {:?} {:?}", v[0], v[1], v[2]);
-    }
-    s.push_str("</DataArray></Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    let mut offsets = Vec::new();
-    let mut faces_stream = Vec::new();
-    let mut face_offsets = Vec::new();
-    let mut n = 0usize;
-    for c in &cells {
-        let mut used: Vec<u32> = c.iter().flatten().flatten().copied().collect();
-        used.sort_unstable();
-        used.dedup();
-        for v in &used {
-            let _ = write!(s, "{v} ");
-        }
-        s.push('\n');
-        n += used.len();
-        offsets.push(n);
-        let nloops: usize = c.iter().map(|f| f.len()).sum();
-        faces_stream.push(nloops);
-        for f in c {
-            for l in f {
-                faces_stream.push(l.len());
-                faces_stream.extend(l.iter().map(|&v| v as usize));
-            }
-        }
-        face_offsets.push(faces_stream.len());
-    }
-    s.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    for o in &offsets {
-        let _ = write!(s, "{o} ");
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    for _ in &cells {
-        s.push_str("42 ");
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faces\" format=\"ascii\">\n");
-    for x in &faces_stream {
-        let _ = write!(s, "{x} ");
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"Int64\" Name=\"faceoffsets\" format=\"ascii\">\n");
-    for x in &face_offsets {
-        let _ = write!(s, "{x} ");
-    }
-    s.push_str("\n</DataArray>\n</Cells>\n<CellData Scalars=\"cell_id\">\n<DataArray type=\"Int32\" Name=\"cell_id\" format=\"ascii\">\n");
-    for i in 0..m.num_cells {
-        let _ = write!(s, "{i} ");
-    }
-    s.push_str("\n</DataArray>\n<DataArray type=\"Float64\" Name=\"volume\" format=\"ascii\">\n");
-    for v in &m.cell_volumes {
-        let _ = write!(s, "{v:?} ");
-    }
-    s.push_str("\n</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s
+    let ids: Vec<i64> = (0..m.num_cells as i64).collect();
+    super::cut_vtu::polyhedra_vtu(&m.vertices, &m.cell_polygons(), &[("volume", &m.cell_volumes)], &[("cell_id", &ids)])
 }
 
 /// `cells.obj`: a group `cell_<i>` per cut-cell with its faces oriented

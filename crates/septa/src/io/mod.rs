@@ -2,6 +2,7 @@
 
 mod atomic;
 pub mod cut_out;
+pub mod cut_vtu;
 pub mod functions;
 pub mod mesh;
 pub mod mesh_obj;

@@ -1,5 +1,5 @@
 //! A [`StreamSink`] writing one binary little-endian PLY, block by block,
-//! for networks larger than memory (issue 6; `septa ia|mi --stream`).
+//! for networks larger than memory (docs/sparse.md; `septa ia|mi --stream`).
 //!
 //! PLY puts the element counts in the header and all vertices before all
 //! faces, while a stream learns both counts last and produces vertices and

@@ -1,4 +1,4 @@
-//! `<stream>.topology.json`: the topology of a streamed network (issue 6),
+//! `<stream>.topology.json`: the topology of a streamed network (docs/sparse.md),
 //! in `network.json`'s names and layout for what it has (patches, chains,
 //! chain_patches, corners, shells, cells, counts; written by the same code)
 //! plus the map from each polygon's patch piece to its patch and cells; the

@@ -9,7 +9,7 @@ use smallvec::SmallVec;
 
 use super::block::{BlockOut, Ctx, Worker};
 use super::topology::{canonicalize_merged, canonicalize_topology, topology, Merged, Merger, Topology};
-use super::{CellInfo, Mode, Network, NetworkError, NetworkOptions};
+use super::{CellInfo, CellMethod, Mode, Network, NetworkError, NetworkOptions};
 use crate::complex::Options;
 use crate::grid::Grid;
 
@@ -80,6 +80,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
             o.lookup = options.lookup;
             o
         },
+        average_domination: options.mi_average_domination,
         volumes: options.volumes,
         grouping: !ray,
         sparse: None,
@@ -122,7 +123,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
     canonicalize_topology(&mut topo);
     label_free_cells(&mut topo.cells, options.mode, &values[..k]);
     let t3 = Instant::now();
-    if !ctx.grouping && topo.cells_method != "raytrace" {
+    if !ctx.grouping && topo.cells_method != CellMethod::Raytrace {
         // Cannot happen when the preconditions hold; never answer without cells.
         let mut o = options.clone();
         o.raytrace = false;

@@ -23,25 +23,55 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     if interest.curves.is_empty() {
         return Vec::new();
     }
-    // Regions around each network edge, from the cells of its polygons.
-    let mut around: FxHashMap<(u32, u32), Vec<RegionId>> = FxHashMap::default();
+    extract_with(net, region, &|around: &[RegionId]| interest.curve(around))
+}
+
+/// [`extract`] with the triple of each edge chosen by `pick` from the sorted
+/// distinct regions around it (`None`: no curve of interest there).
+pub(crate) fn extract_with(
+    net: &Network,
+    region: &[RegionId],
+    pick: &dyn Fn(&[RegionId]) -> Option<[RegionId; 3]>,
+) -> Vec<Curve> {
+    // Regions around each network edge, from the cells of its polygons:
+    // one (edge, region) entry per polygon side, sorted and deduplicated,
+    // so each edge's regions are a sorted run (no map of small vectors).
+    let mut around: Vec<((u32, u32), RegionId)> = Vec::new();
     for f in 0..net.num_faces() {
         let p = net.face(f);
+        let cells = net.face_cells[f];
         for k in 0..p.len() {
             let (a, b) = (p[k], p[(k + 1) % p.len()]);
-            let e = around.entry((a.min(b), a.max(b))).or_default();
-            for c in net.face_cells[f] {
-                if c != u32::MAX && !e.contains(&region[c as usize]) {
-                    e.push(region[c as usize]);
+            for c in cells {
+                if c != u32::MAX {
+                    around.push(((a.min(b), a.max(b)), region[c as usize]));
                 }
             }
         }
     }
+    around.sort_unstable();
+    around.dedup();
     let mut curve_edges: FxHashMap<[RegionId; 3], Vec<(u32, u32)>> = FxHashMap::default();
-    let mut keys: Vec<(u32, u32)> = around.keys().copied().collect();
-    keys.sort_unstable();
-    for e in keys {
-        if let Some(t) = interest.curve(&around[&e]) {
+    // Few distinct region sets occur: ask `pick` once per set.
+    let mut picked: FxHashMap<Vec<RegionId>, Option<[RegionId; 3]>> = FxHashMap::default();
+    let mut set: Vec<RegionId> = Vec::new();
+    let mut i = 0;
+    while i < around.len() {
+        let e = around[i].0;
+        set.clear();
+        while i < around.len() && around[i].0 == e {
+            set.push(around[i].1);
+            i += 1;
+        }
+        let t = match picked.get(&set) {
+            Some(&t) => t,
+            None => {
+                let t = pick(&set);
+                picked.insert(set.clone(), t);
+                t
+            }
+        };
+        if let Some(t) = t {
             curve_edges.entry(t).or_default().push(e);
         }
     }

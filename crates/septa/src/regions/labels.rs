@@ -5,10 +5,10 @@
 
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split};
-use crate::network::{compute, NetworkOptions};
+use crate::network::{compute, compute_sparse, BoundedField, NetworkOptions};
 use crate::scene::{Expr, Interest, RegionRule, Rule};
 
-use super::{from_network, RegionError, RegionSurfaces};
+use super::{from_network, from_network_with, RegionError, RegionSurfaces};
 
 /// Surfaces between the labels of a `shape = [nx, ny, nz]` volume given in
 /// C order (`labels[(i * ny + j) * nz + k]`), voxel `(i, j, k)` at the
@@ -16,6 +16,21 @@ use super::{from_network, RegionError, RegionSurfaces};
 /// indicator. Every pair of labels is a surface of interest; every triple a
 /// curve of interest.
 pub fn label_surfaces(labels: &[i64], shape: [usize; 3], sigma: f64) -> Result<RegionSurfaces, RegionError> {
+    surfaces_of(labels, shape, sigma, false)
+}
+
+/// [`label_surfaces`] as first written: every triple of labels listed as a
+/// curve of interest (cost k^3). Kept as the oracle the tests compare with.
+#[doc(hidden)]
+pub fn label_surfaces_listing_triples(
+    labels: &[i64],
+    shape: [usize; 3],
+    sigma: f64,
+) -> Result<RegionSurfaces, RegionError> {
+    surfaces_of(labels, shape, sigma, true)
+}
+
+fn surfaces_of(labels: &[i64], shape: [usize; 3], sigma: f64, list_triples: bool) -> Result<RegionSurfaces, RegionError> {
     let n: usize = shape.iter().product();
     if shape.iter().any(|&s| s < 2) || labels.len() != n {
         return Err(RegionError::Grid(format!(
@@ -26,40 +41,136 @@ pub fn label_surfaces(labels: &[i64], shape: [usize; 3], sigma: f64) -> Result<R
     if !(sigma >= 0.0 && sigma.is_finite()) {
         return Err(RegionError::Grid(format!("smoothing sigma must be a finite number >= 0, not {sigma}")));
     }
-    let mut ids: Vec<i64> = labels.to_vec();
+    // The distinct labels, without sorting the volume: a set fed by the
+    // runs of equal labels along the fastest axis.
+    let mut seen = rustc_hash::FxHashSet::default();
+    let mut prev = None;
+    for &l in labels {
+        if prev != Some(l) {
+            seen.insert(l);
+            prev = Some(l);
+        }
+    }
+    let mut ids: Vec<i64> = seen.into_iter().collect();
     ids.sort_unstable();
-    ids.dedup();
     let k = ids.len();
-    let grid = Grid::Box(
-        BoxGrid::new(
-            [shape[0] - 1, shape[1] - 1, shape[2] - 1],
-            [[0.0; 3], [(shape[0] - 1) as f64, (shape[1] - 1) as f64, (shape[2] - 1) as f64]],
-            Split::Five,
-        )
-        .map_err(RegionError::Grid)?,
-    );
+    let bgrid = BoxGrid::new(
+        [shape[0] - 1, shape[1] - 1, shape[2] - 1],
+        [[0.0; 3], [(shape[0] - 1) as f64, (shape[1] - 1) as f64, (shape[2] - 1) as f64]],
+        Split::Five,
+    )
+    .map_err(RegionError::Grid)?;
+    if sigma == 0.0 && !list_triples {
+        // Sampled per block from the labels (no k values per voxel held),
+        // blocks of one label skipped (sparse evaluation, docs/sparse.md).
+        let field = LabelField { labels, shape, ids: &ids };
+        let (net, _) = compute_sparse(&bgrid, &field, &NetworkOptions::new(Mode::Mi))?;
+        return Ok(regions_of(net, &ids, list_triples));
+    }
     // Grid vertex (i, j, k) has the same index as voxel (i, j, k).
     let mut values = vec![0.0; n * k];
-    for (v, l) in labels.iter().enumerate() {
-        values[v * k + ids.binary_search(l).unwrap()] = 1.0;
+    let mut last = (labels[0], ids.binary_search(&labels[0]).unwrap());
+    for (v, &l) in labels.iter().enumerate() {
+        if l != last.0 {
+            last = (l, ids.binary_search(&l).unwrap());
+        }
+        values[v * k + last.1] = 1.0;
     }
     if sigma > 0.0 {
         smooth(&mut values, shape, k, sigma);
     }
-    let net = compute(&grid, &values, k, &NetworkOptions::new(Mode::Mi))?;
+    let net = compute(&Grid::Box(bgrid), &values, k, &NetworkOptions::new(Mode::Mi))?;
+    Ok(regions_of(net, &ids, list_triples))
+}
+
+/// Regions = labels; every pair a surface, every triple a curve.
+fn regions_of(net: crate::network::Network, ids: &[i64], list_triples: bool) -> RegionSurfaces {
+    let k = ids.len();
     let rule = RegionRule::Rules {
         rules: ids.iter().enumerate().map(|(i, &l)| Rule { when: Expr::Func(i), region: l }).collect(),
         otherwise: i64::MIN,
     };
-    let mut triples = Vec::new();
-    for a in 0..k {
-        for b in a + 1..k {
-            for c in b + 1..k {
-                triples.push([ids[a], ids[b], ids[c]]);
+    if list_triples {
+        let mut triples = Vec::new();
+        for a in 0..k {
+            for b in a + 1..k {
+                for c in b + 1..k {
+                    triples.push([ids[a], ids[b], ids[c]]);
+                }
             }
         }
+        return from_network(net, &rule, &Interest::new(None, &triples));
     }
-    Ok(from_network(net, &rule, &Interest::new(None, &triples)))
+    // Every triple is of interest, listed in ascending order, and an edge's
+    // curve is the first listed triple among the regions around it: its
+    // three least regions (every cell's region is a label). Picking them
+    // directly costs nothing per label, where the list has k^3 / 6 entries
+    // (k = 512: 22 million, scanned per edge).
+    let pick = |around: &[i64]| (around.len() >= 3).then(|| [around[0], around[1], around[2]]);
+    let curves = |net: &crate::network::Network, region: &[i64]| {
+        if k < 3 {
+            return Vec::new();
+        }
+        super::curves::extract_with(net, region, &pick)
+    };
+    from_network_with(net, &rule, &Interest::all(), &curves)
+}
+
+/// The label indicators as functions: grid vertex `(i, j, k)` is voxel
+/// `(i, j, k)` (the grid spans `[0, n - 1]` per axis with unit cubes, so its
+/// vertex coordinates are those integers exactly).
+struct LabelField<'a> {
+    labels: &'a [i64],
+    shape: [usize; 3],
+    ids: &'a [i64],
+}
+
+impl LabelField<'_> {
+    fn voxel(&self, p: [f64; 3]) -> usize {
+        let c = |a: usize| (p[a].round().max(0.0) as usize).min(self.shape[a] - 1);
+        (c(0) * self.shape[1] + c(1)) * self.shape[2] + c(2)
+    }
+}
+
+impl BoundedField for LabelField<'_> {
+    fn functions(&self) -> usize {
+        self.ids.len()
+    }
+
+    fn value(&self, f: usize, p: [f64; 3]) -> f64 {
+        (self.labels[self.voxel(p)] == self.ids[f]) as u8 as f64
+    }
+
+    fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
+        let k = self.ids.len();
+        let mut out = vec![0.0; points.len() * k];
+        let mut last = (i64::MIN, 0);
+        for (i, &p) in points.iter().enumerate() {
+            let l = self.labels[self.voxel(p)];
+            if l != last.0 || i == 0 {
+                last = (l, self.ids.binary_search(&l).expect("a label of the volume"));
+            }
+            out[i * k + last.1] = 1.0;
+        }
+        out
+    }
+
+    /// MI: proven empty when every voxel of the box (widened to whole
+    /// voxels) has one label, whose indicator is then 1 against 0.
+    fn may_be_active(&self, _mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        let lo = |a: usize| (min[a].floor().max(0.0) as usize).min(self.shape[a] - 1);
+        let hi = |a: usize| (max[a].ceil().max(0.0) as usize).min(self.shape[a] - 1);
+        let first = self.labels[(lo(0) * self.shape[1] + lo(1)) * self.shape[2] + lo(2)];
+        for i in lo(0)..=hi(0) {
+            for j in lo(1)..=hi(1) {
+                let row = (i * self.shape[1] + j) * self.shape[2];
+                if self.labels[row + lo(2)..=row + hi(2)].iter().any(|&l| l != first) {
+                    return true;
+                }
+            }
+        }
+        false
+    }
 }
 
 /// Separable Gaussian blur of each of the `k` interleaved channels.

@@ -41,6 +41,8 @@ use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene
 pub use clean::{clean, CleanStats};
 pub use curves::Curve;
 pub use labels::label_surfaces;
+#[doc(hidden)]
+pub use labels::label_surfaces_listing_triples;
 pub use surfaces::Surface;
 
 /// Options of [`region_surfaces`].
@@ -49,7 +51,7 @@ pub struct RegionOptions {
     /// Compute per-vertex normals (one vertex copy per region pair) from
     /// the analytic gradients. Default value: `false`.
     pub normals: bool,
-    /// Sparse evaluation (issue 6): sample only blocks that the functions'
+    /// Sparse evaluation (docs/sparse.md): sample only blocks that the functions'
     /// bounds do not prove empty; the output is identical, because the
     /// bounds enclose the rounded samples (docs/sparse.md). Default value:
     /// `true`; `false` samples every grid vertex.
@@ -182,10 +184,21 @@ fn cell_region(net: &Network, rule: &RegionRule, c: usize) -> RegionId {
 
 /// The surfaces and curves of interest of an existing network.
 pub fn from_network(network: Network, rule: &RegionRule, interest: &Interest) -> RegionSurfaces {
+    from_network_with(network, rule, interest, &|net, region| curves::extract(net, region, interest))
+}
+
+/// [`from_network`] with the curves made by `curves` from the network and
+/// the cells' regions (label volumes pick triples without listing them).
+pub(crate) fn from_network_with(
+    network: Network,
+    rule: &RegionRule,
+    interest: &Interest,
+    curves: &dyn Fn(&Network, &[RegionId]) -> Vec<Curve>,
+) -> RegionSurfaces {
     let t0 = Instant::now();
     let cell_region: Vec<RegionId> = (0..network.cells.len()).map(|c| cell_region(&network, rule, c)).collect();
     let s = surfaces::extract(&network, &cell_region, interest);
-    let curves = curves::extract(&network, &cell_region, interest);
+    let curves = curves(&network, &cell_region);
     let t1 = Instant::now();
     let mut seconds = network.seconds.clone();
     seconds.push(("regions", (t1 - t0).as_secs_f64()));

@@ -60,18 +60,21 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     }
     let n = faces.len();
     let poly = |i: usize| &loops[loop_start[i] as usize..loop_start[i + 1] as usize];
-    // Join kept polygons of one pair across shared edges.
-    let mut by_edge: FxHashMap<((u32, u32), [RegionId; 2]), Vec<u32>> = FxHashMap::default();
+    // Join kept polygons of one pair across shared edges: (edge, pair,
+    // polygon) entries sorted, so the polygons at one edge of one pair are
+    // a run (component numbering does not depend on the union order).
+    let mut by_edge: Vec<((u32, u32), [RegionId; 2], u32)> = Vec::with_capacity(loops.len());
     for i in 0..n {
         let p = poly(i);
         for k in 0..p.len() {
-            by_edge.entry((edge(p[k], p[(k + 1) % p.len()]), pairs[i])).or_default().push(i as u32);
+            by_edge.push((edge(p[k], p[(k + 1) % p.len()]), pairs[i], i as u32));
         }
     }
+    by_edge.sort_unstable();
     let mut uf = UnionFind::new(n);
-    for list in by_edge.values() {
-        for w in list.windows(2) {
-            uf.union(w[0], w[1]);
+    for w in by_edge.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            uf.union(w[0].2, w[1].2);
         }
     }
     let (comp, count) = uf.components();

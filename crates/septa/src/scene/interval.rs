@@ -1,4 +1,4 @@
-//! Conservative interval arithmetic for primitive bounds (issue 6, sparse
+//! Conservative interval arithmetic for primitive bounds (docs/sparse.md, sparse
 //! evaluation): every operation rounds its result outward by one ulp, so the
 //! returned interval contains the exact result for any inputs inside the
 //! operand intervals, and also any value a correctly rounded `f64`

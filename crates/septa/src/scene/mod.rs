@@ -1,12 +1,12 @@
 //! # Scenes: what users write
 //!
-//! Shapes as functions, not sampled arrays (issue 7): **primitives**
+//! Shapes as functions, not sampled arrays: **primitives**
 //! ([`Primitive`]: plane, half-space, sphere, ellipsoid, box, cylinder,
 //! capped cylinder, cone, torus, capsule, line, segment, circle, point
 //! sets, triangle meshes, bicubic patches, blends, affine transforms and
 //! function combinators), each with a value, an analytic gradient (for
 //! vertex normals) and a guaranteed bound over a box (for skipping empty
-//! blocks, issue 6); **sampling** on grid vertices ([`sample_grid`]);
+//! blocks, docs/sparse.md); **sampling** on grid vertices ([`sample_grid`]);
 //! **region rules** in Bloomenthal's non-manifold model ([`RegionRule`],
 //! [`Interest`]); and **scene files** ([`Scene`]) with errors that name the
 //! file, line and field ([`SceneError`]). The reference implementation's

@@ -33,7 +33,7 @@ impl Scene {
         }
     }
 
-    /// Sparse evaluation (issue 6): false when the block of grid cubes
+    /// Sparse evaluation (docs/sparse.md): false when the block of grid cubes
     /// between grid vertices `first` and `last` (inclusive) provably holds
     /// no part of the network, by the primitives' bounds (IA: every
     /// function keeps one strict sign; MI: one material dominates).

@@ -175,7 +175,7 @@ impl Primitive {
     /// float rounding included: interval arithmetic on eval's own
     /// expression (monotone rounding), or an enclosure of the exact value
     /// padded by a stated bound on eval's rounding error (`rounding.rs`
-    /// says which and why). Used to skip empty blocks (issue 6): sparse
+    /// says which and why). Used to skip empty blocks (docs/sparse.md): sparse
     /// evaluation is identical to dense because of this. May be infinite,
     /// never NaN.
     pub fn bounds(&self, min: V3, max: V3) -> (f64, f64) {

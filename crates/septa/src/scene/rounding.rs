@@ -1,4 +1,4 @@
-//! Rounding-error bounds of [`Primitive::eval`] (issue 6, sparse evaluation).
+//! Rounding-error bounds of [`Primitive::eval`] (sparse evaluation, docs/sparse.md).
 //!
 //! Sparse evaluation skips a block when a bound proves that no grid vertex
 //! of the block changes the network; the dense path decides on the *rounded*

@@ -1,5 +1,5 @@
 //! Sampling functions at grid vertices, and the block tests of sparse
-//! evaluation (issue 6).
+//! evaluation (docs/sparse.md).
 
 use rayon::prelude::*;
 

@@ -61,7 +61,7 @@ impl GridSpec {
 
 /// A scene: what to partition and which walls to return: a grid, named
 /// functions, a mode, region rules and the surfaces and curves of interest
-/// (issue 7). Its JSON form:
+///. Its JSON form:
 ///
 /// ```json
 /// {"grid": {"resolution": 33, "bounds": [[-1,-1,-1],[1,1,1]], "split": 5},

@@ -43,10 +43,41 @@ pub(crate) fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
     l
 }
 
-/// MI active functions: those not strictly dominated at all 4 tet vertices.
+/// MI active functions: those not strictly dominated at all 4 tet vertices,
+/// by one function or (with `ctx.average_domination`) by the average of
+/// the functions maximal at some vertex (complex/dominated.rs).
 fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     let k = ctx.k;
     let v = |f: usize, i: usize| ctx.val(tet[i], f);
+    if ctx.average_domination && k >= 3 {
+        let mut max = [f64::NEG_INFINITY; 4];
+        for f in 0..k {
+            for (i, m) in max.iter_mut().enumerate() {
+                *m = m.max(v(f, i));
+            }
+        }
+        let mut winners: SmallVec<[[f64; 4]; 8]> = SmallVec::new();
+        for f in 0..k {
+            let r = [0, 1, 2, 3].map(|i| v(f, i));
+            if (0..4).any(|i| r[i] == max[i]) {
+                winners.push(r);
+            }
+        }
+        if winners.len() >= 2 {
+            for f in 0..k {
+                let r = [0, 1, 2, 3].map(|i| v(f, i));
+                let winner = (0..4).any(|i| r[i] == max[i]);
+                if winner || !crate::complex::average_dominates(&winners, &r) {
+                    // A winner is never dominated; the others still may be
+                    // by a single function, as below.
+                    if winner || !(0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > r[i])) {
+                        out.push(f as u16);
+                    }
+                }
+            }
+            return;
+        }
+    }
     // A likely dominator: the maximum at vertex 0.
     let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
     for f in 0..k {

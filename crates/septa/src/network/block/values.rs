@@ -25,8 +25,11 @@ pub(crate) struct Ctx<'a> {
     /// Join regions across tet faces (cell grouping); off when ray shooting
     /// is sure to apply.
     pub grouping: bool,
-    /// Sparse evaluation (issue 6): values come from here, not `values`.
+    /// Sparse evaluation (docs/sparse.md): values come from here, not `values`.
     pub sparse: Option<&'a dyn Values>,
+    /// MI: also drop functions below the average of the corner winners
+    /// ([`crate::network::NetworkOptions::mi_average_domination`]).
+    pub average_domination: bool,
 }
 
 impl Ctx<'_> {

@@ -165,7 +165,7 @@ impl Worker {
         let mark = super::program::Mark::of(st);
         self.complex
             .build(ctx.mode, &self.vals, &ctx.options)
-            .map_err(|e| NetworkError::Tet { tet: t, message: e.to_string() })?;
+            .map_err(|source| NetworkError::Tet { tet: t, source })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
         // Degenerate tet faces: the network contains the whole face.

@@ -1,4 +1,4 @@
-//! Continuation for functions without bounds (issue 6; Bloomenthal,
+//! Continuation for functions without bounds (docs/sparse.md; Bloomenthal,
 //! *Non-Manifold Surfaces*, Sec. 4.5.1 "Cell Propagation"): start from seed
 //! blocks and grow across the block faces the network touches, so only the
 //! blocks the network's reached components meet are ever sampled.

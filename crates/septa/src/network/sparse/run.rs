@@ -1,4 +1,4 @@
-//! Sparse evaluation (issue 6): work and memory follow the surface.
+//! Sparse evaluation (docs/sparse.md): work and memory follow the surface.
 //!
 //! Blocks of a box grid are first classified by the functions' guaranteed
 //! bounds over the block's box, before anything is sampled (IA: a block is
@@ -31,7 +31,7 @@ use crate::network::block::{BlockOut, BlockValues, Ctx, PointValues, Values, Wor
 use crate::network::dense::{assemble, label_free_cells};
 use crate::network::field::{BoundedField, ByRef};
 use crate::network::topology::{canonicalize_merged, canonicalize_topology, merge, topology, Merged, Merger};
-use crate::network::{Network, NetworkError, NetworkOptions};
+use crate::network::{CellMethod, Network, NetworkError, NetworkOptions};
 
 /// What sparse evaluation did, for the JSON summary.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -110,6 +110,7 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
             o.lookup = options.lookup;
             o
         },
+        average_domination: options.mi_average_domination,
         volumes: false,
         grouping: false,
         sparse: Some(values),
@@ -424,7 +425,7 @@ fn finish_merged(
     let g = Grid::Box(grid.clone());
     let c = ctx(&g, k, options, pv);
     let mut topo = topology(&mut m, Some(&c));
-    if topo.cells_method != "raytrace" {
+    if topo.cells_method != CellMethod::Raytrace {
         return dense_fallback(grid, stats, dense);
     }
     canonicalize_topology(&mut topo);

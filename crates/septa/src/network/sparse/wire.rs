@@ -1,4 +1,4 @@
-//! A block result as bytes (issue 6, "Beyond one machine"): what a worker
+//! A block result as bytes (docs/distributed.md): what a worker
 //! on another machine sends back for one block of a sparse job.
 //!
 //! Hand-written little-endian, versioned, with a checksum, so that the

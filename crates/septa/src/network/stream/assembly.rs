@@ -1,4 +1,4 @@
-//! Topology assembled from block summaries (issue 6; Du et al. Sec. 7):
+//! Topology assembled from block summaries (docs/sparse.md; Du et al. Sec. 7):
 //! patches, chains, corners, components, shells and cells of a network whose
 //! polygons are never held together (they stream to disk, `stream.rs`).
 //!

@@ -1,4 +1,4 @@
-//! The in-order half of a stream (issue 6): block results, in the plan's
+//! The in-order half of a stream (docs/sparse.md): block results, in the plan's
 //! order, get their vertices' streamed ids (`numbering.rs`), go to the sink,
 //! and, for topology, their summaries to the assembly (`assembly.rs`);
 //! [`StreamFeeder::finish`] shoots the rays (`rerun.rs`).

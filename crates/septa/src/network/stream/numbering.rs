@@ -1,4 +1,4 @@
-//! Global vertex ids for a stream of blocks (issue 6), given in the order
+//! Global vertex ids for a stream of blocks (docs/sparse.md), given in the order
 //! the blocks come (x slabs outermost, as `grid.blocks` lists them).
 //!
 //! A vertex inside a block is that block's alone; a vertex on a block's

@@ -1,5 +1,5 @@
 //! A block's summary: what the topology stage (Du et al. Sec. 7) needs to
-//! know about a block, without its polygons (issue 6: "topology assembled
+//! know about a block, without its polygons (docs/sparse.md: "topology assembled
 //! from block summaries without loading every block's polygons at once").
 //!
 //! Inside a block, polygons are joined into *patch pieces* across every edge

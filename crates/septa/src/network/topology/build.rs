@@ -4,7 +4,7 @@
 use super::merge::Merged;
 use crate::complex::NONE;
 use crate::network::block::Ctx;
-use crate::network::{CellInfo, Patch};
+use crate::network::{CellInfo, CellMethod, Patch};
 use crate::uf::UnionFind;
 
 /// The topology stage's results.
@@ -18,7 +18,7 @@ pub(crate) struct Topology {
     pub shells: Vec<Vec<u32>>,
     pub cells: Vec<CellInfo>,
     pub face_cells: Vec<[u32; 2]>,
-    pub cells_method: &'static str,
+    pub cells_method: CellMethod,
     pub chain_patches: Vec<Vec<u32>>,
 }
 
@@ -206,7 +206,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         shells,
         cells,
         face_cells,
-        cells_method: "grouping",
+        cells_method: CellMethod::Grouping,
         chain_patches,
     }
 }
@@ -255,7 +255,7 @@ fn ray_topology(
         shells,
         cells,
         face_cells,
-        cells_method: "raytrace",
+        cells_method: CellMethod::Raytrace,
         chain_patches: Vec::new(),
     }
 }

@@ -1,7 +1,7 @@
 //! Canonical numbering of the merged network, so the output does not depend
 //! on the thread count, the block size or the order of the functions (the
 //! same network.json for any permutation of the functions, after mapping the
-//! labels back; issue 5).
+//! labels back; invariant 2 of docs/architecture.md).
 //!
 //! Vertices are numbered by their grid element (sorted grid vertex ids, no
 //! function ids), then by the bit patterns of their coordinates, with the
