@@ -8,10 +8,13 @@
 //!   drops the lock when the process dies, however it dies.
 //! - **Stale temporaries.** While holding the lock, no other writer can be
 //!   writing: every `.NAME.tmpPID` left by a killed run is removed.
-//! - **Manifest last.** The previous `manifest.json` and the files of its
-//!   set are removed first; each new file is written atomically; the new
-//!   `manifest.json` (job, files and sizes) is renamed in last. A folder
-//!   with a lock file but no manifest is an interrupted run
+//! - **Staged, then swapped, manifest last.** Each new file is written to a
+//!   hidden staging name (`.NAME.stagedPID`); a run that fails or is killed
+//!   while writing leaves the old set whole (its manifest too). Only
+//!   [`OutputDir::finish`] removes the old manifest and the old set's other
+//!   files, renames the staged files in, and renames the new
+//!   `manifest.json` (job, files and sizes) in last. A folder with a lock
+//!   file but no manifest is a run killed inside that short swap
 //!   ([`check_complete`]); readers refuse it.
 
 use std::fs::File;
@@ -53,13 +56,25 @@ fn ctx(path: &Path, what: &str, e: std::io::Error) -> std::io::Error {
     std::io::Error::new(e.kind(), format!("{}: {what}: {e}", path.display()))
 }
 
-/// Whether `name` is a temporary file of [`write_atomic_with`]: `.X.tmpPID`.
+/// Whether `name` is a temporary file of [`write_atomic_with`]
+/// (`.X.tmpPID`) or a staged file of this module (`.X.stagedPID`).
 fn is_temp(name: &str) -> bool {
-    name.starts_with('.')
-        && name.rfind(".tmp").is_some_and(|i| {
-            let pid = &name[i + 4..];
+    let digits_after = |tag: &str| {
+        name.rfind(tag).is_some_and(|i| {
+            let pid = &name[i + tag.len()..];
             !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit())
         })
+    };
+    name.starts_with('.') && (digits_after(".tmp") || digits_after(".staged"))
+}
+
+/// The hidden staging name of `name` (kept in the same folder, so the
+/// final rename is atomic).
+fn staged(name: &str) -> String {
+    match name.rsplit_once('/') {
+        Some((dir, file)) => format!("{dir}/.{file}.staged{}", std::process::id()),
+        None => format!(".{name}.staged{}", std::process::id()),
+    }
 }
 
 impl OutputDir {
@@ -94,13 +109,12 @@ impl OutputDir {
             }
             Err(std::fs::TryLockError::Error(e)) => return Err(ctx(&lock_path, "cannot lock", e)),
         }
-        let _ = (&lock).write_all(format!("{}\n", std::process::id()).as_bytes());
         let out = OutputDir { dir: dir.to_path_buf(), job: job.to_string(), files: Vec::new(), _lock: lock };
         out.clean()?;
         Ok(out)
     }
 
-    /// Removes stale temporaries, the manifest, then the old result set.
+    /// Removes stale temporaries and staged files of killed runs.
     fn clean(&self) -> std::io::Result<()> {
         for sub in [self.dir.clone(), self.dir.join("viewer")] {
             let Ok(entries) = std::fs::read_dir(&sub) else { continue };
@@ -110,9 +124,13 @@ impl OutputDir {
                 }
             }
         }
-        let manifest = self.dir.join(MANIFEST);
+        Ok(())
+    }
+
+    /// The old set's files: the previous manifest's and the known result names.
+    fn old_set(&self) -> Vec<String> {
         let mut old: Vec<String> = RESULT_FILES.iter().map(|s| s.to_string()).collect();
-        if let Ok(text) = std::fs::read_to_string(&manifest) {
+        if let Ok(text) = std::fs::read_to_string(self.dir.join(MANIFEST)) {
             if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
                 for f in v["files"].as_array().into_iter().flatten() {
                     if let Some(name) = f["name"].as_str().filter(|n| safe_name(n)) {
@@ -121,17 +139,7 @@ impl OutputDir {
                 }
             }
         }
-        // The manifest goes first: from here on the folder reads as incomplete.
-        match std::fs::remove_file(&manifest) {
-            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
-                return Err(ctx(&manifest, "cannot remove the old manifest", e))
-            }
-            _ => {}
-        }
-        for name in old {
-            let _ = std::fs::remove_file(self.dir.join(name));
-        }
-        Ok(())
+        old
     }
 
     /// The folder.
@@ -146,8 +154,8 @@ impl OutputDir {
         name: &str,
         write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
     ) -> std::io::Result<()> {
-        let path = self.dir.join(name);
-        write_atomic_with(&path, write).map_err(|e| ctx(&path, "cannot write", e))?;
+        let path = self.dir.join(staged(name));
+        write_atomic_with(&path, write)?;
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
         Ok(())
@@ -156,8 +164,12 @@ impl OutputDir {
     /// Runs a path-based writer (which must write atomically, as every
     /// `io` writer does) for `name` and adds the file to the set.
     pub fn write_path(&mut self, name: &str, write: impl FnOnce(&Path) -> std::io::Result<()>) -> std::io::Result<()> {
-        let path = self.dir.join(name);
-        write(&path).map_err(|e| ctx(&path, "cannot write", e))?;
+        let path = self.dir.join(staged(name));
+        let result = write(&path);
+        if result.is_err() {
+            let _ = std::fs::remove_file(&path);
+        }
+        result?;
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
         Ok(())
@@ -168,8 +180,25 @@ impl OutputDir {
         self.write_with(name, |w| w.write_all(bytes))
     }
 
-    /// Writes the manifest (last) and releases the lock.
+    /// Swaps the new set in: removes the old manifest (from here the folder
+    /// reads as incomplete), the old set's files, renames the staged files
+    /// to their names, writes the manifest last and releases the lock.
     pub fn finish(self) -> std::io::Result<()> {
+        let manifest = self.dir.join(MANIFEST);
+        let old = self.old_set();
+        match std::fs::remove_file(&manifest) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(ctx(&manifest, "cannot remove the old manifest", e))
+            }
+            _ => {}
+        }
+        for name in old.iter().filter(|o| !self.files.iter().any(|(n, _)| n == *o)) {
+            let _ = std::fs::remove_file(self.dir.join(name));
+        }
+        for (name, _) in &self.files {
+            let (from, to) = (self.dir.join(staged(name)), self.dir.join(name));
+            std::fs::rename(&from, &to).map_err(|e| ctx(&to, "cannot move the new file in", e))?;
+        }
         let files: Vec<_> =
             self.files.iter().map(|(n, s)| serde_json::json!({ "name": n, "bytes": s })).collect();
         let doc = serde_json::json!({
@@ -177,9 +206,19 @@ impl OutputDir {
             "job": self.job,
             "files": files,
         });
-        let path = self.dir.join(MANIFEST);
+        let path = manifest;
         let text = serde_json::to_string_pretty(&doc).map_err(std::io::Error::other)?;
         write_atomic_with(&path, |w| w.write_all(text.as_bytes())).map_err(|e| ctx(&path, "cannot write", e))
+    }
+}
+
+impl Drop for OutputDir {
+    /// A run that stops before [`OutputDir::finish`] (an error) removes what
+    /// it staged: the old set stays whole and nothing hidden is left.
+    fn drop(&mut self) {
+        for (name, _) in &self.files {
+            let _ = std::fs::remove_file(self.dir.join(staged(name)));
+        }
     }
 }
 
@@ -228,7 +267,8 @@ mod tests {
 
     #[test]
     fn temp_names() {
-        assert!(is_temp(".network.ply.tmp1234"));
+        assert!(is_temp(".network.ply.tmp1234") && is_temp(".network.ply.staged77"));
+        assert_eq!(staged("viewer/data.js"), format!("viewer/.data.js.staged{}", std::process::id()));
         assert!(!is_temp("network.ply"));
         assert!(!is_temp(".network.tmp"));
         assert!(!is_temp(".x.tmp12a"));
