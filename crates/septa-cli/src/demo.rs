@@ -42,7 +42,11 @@ pub struct Job {
 /// The demo jobs: one per job Septa does.
 pub fn jobs() -> Vec<Job> {
     vec![
-        Job { name: "cad-part", about: "a CAD part from half-spaces and cylinders: faces and sharp edges", run: cad_part },
+        Job {
+            name: "cad-part",
+            about: "a CAD part from half-spaces and cylinders: faces and sharp edges",
+            run: cad_part,
+        },
         Job { name: "apollonius-18", about: "Apollonius diagram of 18 spheres (MI)", run: apollonius },
         Job {
             name: "sphere-plane-hole",

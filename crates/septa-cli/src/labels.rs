@@ -43,8 +43,9 @@ pub fn run(a: Args) -> CliResult {
         Array::Str(_) => return Err(format!("{file}: labels must be a numeric array, not a string").into()),
     };
     let quiet = a.out.json || a.out.quiet;
-    let r = crate::progress::during(quiet, "label surfaces", || a.out.install(|| label_surfaces(&labels, shape, a.sigma)))?
-        .map_err(|e| format!("{file}: {e}"))?;
+    let r =
+        crate::progress::during(quiet, "label surfaces", || a.out.install(|| label_surfaces(&labels, shape, a.sigma)))?
+            .map_err(|e| format!("{file}: {e}"))?;
     crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
         regions_out::write_formats(&r, &a.out.output, &a.out.format.0)
     })?;

@@ -100,4 +100,3 @@ pub fn run(a: Args) -> CliResult {
     }
     Ok(())
 }
-

@@ -79,8 +79,13 @@ fn load_network(outdir: &Path) -> Result<serde_json::Value, Box<dyn std::error::
     let net_path = outdir.join("network.json");
     if current("network.json") {
         if let Some(bytes) = read_if_exists(&net_path)? {
-            let text = String::from_utf8(bytes)
-                .map_err(|e| format!("{}: not a septa network (not UTF-8 text: byte {})", net_path.display(), e.utf8_error().valid_up_to()))?;
+            let text = String::from_utf8(bytes).map_err(|e| {
+                format!(
+                    "{}: not a septa network (not UTF-8 text: byte {})",
+                    net_path.display(),
+                    e.utf8_error().valid_up_to()
+                )
+            })?;
             let value = parse_json(&net_path, &text)?;
             check_network(&net_path, &value)?;
             return Ok(value);
@@ -117,7 +122,8 @@ fn read_if_exists(path: &Path) -> Result<Option<Vec<u8>>, String> {
 /// face index -1 or 99999999 produced a viewer that fails in the browser).
 fn check_network(path: &Path, v: &serde_json::Value) -> Result<(), String> {
     let bad = |what: String| format!("{}: {what}", path.display());
-    let points = v.get("points").and_then(|p| p.as_array()).ok_or_else(|| bad("missing array field \"points\"".into()))?;
+    let points =
+        v.get("points").and_then(|p| p.as_array()).ok_or_else(|| bad("missing array field \"points\"".into()))?;
     for (i, p) in points.iter().enumerate() {
         let ok = p.as_array().is_some_and(|c| c.len() == 3 && c.iter().all(|x| x.as_f64().is_some_and(f64::is_finite)));
         if !ok {

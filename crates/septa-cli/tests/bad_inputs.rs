@@ -50,7 +50,10 @@ fn succeeds(dir: &Path, args: &[&str]) -> String {
 fn npy(descr: &str, fortran: bool, shape: &[usize], data: &[u8]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(|s| s.to_string()).collect();
     let shape = if dims.len() == 1 { format!("({},)", dims[0]) } else { format!("({})", dims.join(", ")) };
-    let mut h = format!("{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}", if fortran { "True" } else { "False" });
+    let mut h = format!(
+        "{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}",
+        if fortran { "True" } else { "False" }
+    );
     while (10 + h.len() + 1) % 64 != 0 {
         h.push(' ');
     }
@@ -136,11 +139,8 @@ fn grid_readers_name_file_and_element() {
     refused(&d, &["ia", "f.json", "--mesh", "m1.json", "-o", "o"], &["m1.json", "tet 0", "vertex 7"]);
     std::fs::write(d.join("m2.json"), "[[[0,0,0],[1,0,0],[0,1,0],[0,0,1]],[[0,1,2,2.5]]]").unwrap();
     refused(&d, &["ia", "f.json", "--mesh", "m2.json", "-o", "o"], &["m2.json", "tet 0"]);
-    std::fs::write(
-        d.join("m3.json"),
-        "[[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0.1,0.1,0.1]],[[0,1,2,3],[4,1,2,3]]]",
-    )
-    .unwrap();
+    std::fs::write(d.join("m3.json"), "[[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0.1,0.1,0.1]],[[0,1,2,3],[4,1,2,3]]]")
+        .unwrap();
     refused(&d, &["ia", "f.json", "--mesh", "m3.json", "-o", "o"], &["m3.json", "face"]);
     // Gmsh: an element referring to a missing node.
     let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 0 1 2 3 9\n$EndElements\n";
@@ -169,14 +169,18 @@ fn mesh_and_plane_readers() {
         match t.first() {
             Some(&"v") => v.push(format!("{} {} {} 255 0 0 255", t[1], t[2], t[3])),
             Some(&"f") => {
-                let ids: Vec<usize> = t[1..].iter().map(|s| s.split('/').next().unwrap().parse::<usize>().unwrap() - 1).collect();
+                let ids: Vec<usize> =
+                    t[1..].iter().map(|s| s.split('/').next().unwrap().parse::<usize>().unwrap() - 1).collect();
                 f.push(format!("3 {} {} {} 255 255 0", ids[0], ids[1], ids[2]));
             }
             _ => {}
         }
     }
-    std::fs::write(d.join("cube.off"), format!("COFF\n{} {} 0\n{}\n{}\n", v.len(), f.len(), v.join("\n"), f.join("\n")))
-        .unwrap();
+    std::fs::write(
+        d.join("cube.off"),
+        format!("COFF\n{} {} 0\n{}\n{}\n", v.len(), f.len(), v.join("\n"), f.join("\n")),
+    )
+    .unwrap();
     std::fs::write(d.join("cube.obj"), &cube).unwrap();
     let a = succeeds(&d, &["cut", "cube.off", "--grid", "2", "-o", "a", "--json"]);
     let b = succeeds(&d, &["cut", "cube.obj", "--grid", "2", "-o", "b", "--json"]);
@@ -205,7 +209,8 @@ fn mesh_and_plane_readers() {
     refused(&d, &["cut", "bad.obj", "--grid", "2", "-o", "x"], &["bad.obj"]);
     std::fs::write(d.join("bad.stl"), [0u8; 90]).unwrap();
     refused(&d, &["cut", "bad.stl", "--grid", "2", "-o", "x"], &["bad.stl"]);
-    std::fs::write(d.join("bad.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n").unwrap();
+    std::fs::write(d.join("bad.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n")
+        .unwrap();
     refused(&d, &["cut", "bad.ply", "--grid", "2", "-o", "x"], &["bad.ply"]);
     std::fs::write(d.join("p.txt"), "1 0 0 -0.5\n0 1 0\n").unwrap();
     refused(&d, &["cut", "cube.obj", "--planes", "p.txt", "-o", "x"], &["p.txt", "2"]);

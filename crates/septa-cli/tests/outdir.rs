@@ -22,7 +22,12 @@ fn spheres(dir: &Path, n: usize) -> PathBuf {
     let list: Vec<String> = (0..n)
         .map(|i| {
             let t = i as f64 / n as f64;
-            format!(r#"{{"type":"sphere","center":[{},{},{}],"radius":0.45}}"#, 0.3 * t - 0.15, 0.2 * t - 0.1, 0.1 - 0.2 * t)
+            format!(
+                r#"{{"type":"sphere","center":[{},{},{}],"radius":0.45}}"#,
+                0.3 * t - 0.15,
+                0.2 * t - 0.1,
+                0.1 - 0.2 * t
+            )
         })
         .collect();
     let p = dir.join(format!("spheres{n}.json"));

@@ -116,8 +116,7 @@ fn every_interval_operation_contains_the_exact_range() {
             if q(prod.lo) == exact && q(prod.hi) == exact {
                 narrow += 1;
                 let sig = |v: f64| 53 - ((v.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
-                if m.is_normal() && x.lo.abs().is_normal() && y.lo.abs().is_normal() && sig(x.lo) + sig(y.lo) == 54
-                {
+                if m.is_normal() && x.lo.abs().is_normal() && y.lo.abs().is_normal() && sig(x.lo) + sig(y.lo) == 54 {
                     two_prod_path += 1;
                 }
             } else if prod.lo < prod.hi {
@@ -276,7 +275,9 @@ fn plane_point_sign_is_the_rational_sign_everywhere() {
             }
         }
     }
-    eprintln!("signs (-, 0, +) {tally:?}; static-filter error up to {worst:.2} u S; {static_near} near cases decided by it");
+    eprintln!(
+        "signs (-, 0, +) {tally:?}; static-filter error up to {worst:.2} u S; {static_near} near cases decided by it"
+    );
     assert!(tally.iter().all(|&n| n > 2_000), "sign classes {tally:?}");
     assert!(static_near > 500, "the static filter decided only {static_near} near cases");
 }

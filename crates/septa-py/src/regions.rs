@@ -1,8 +1,8 @@
 //! `septa.region_surfaces`: the surfaces and curves of interest of a scene's
 //! region rule (Bloomenthal's non-manifold model on the exact network).
 use crate::InputError;
-use pyo3::prelude::*;
 use numpy::{IntoPyArray, PyArrayMethods};
+use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use septa::io::result::ResultView;
 use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
@@ -20,12 +20,7 @@ use septa::scene::Scene;
 /// computed.
 #[pyfunction]
 #[pyo3(signature = (scene, normals = false, clean = None))]
-pub fn regions<'py>(
-    py: Python<'py>,
-    scene: &str,
-    normals: bool,
-    clean: Option<f64>,
-) -> PyResult<Bound<'py, PyDict>> {
+pub fn regions<'py>(py: Python<'py>, scene: &str, normals: bool, clean: Option<f64>) -> PyResult<Bound<'py, PyDict>> {
     if let Some(f) = clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(InputError::new_err(format!("clean: expected a factor >= 0, not {f}")));

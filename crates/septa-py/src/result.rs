@@ -34,7 +34,9 @@ pub(crate) fn view_dict<'py>(py: Python<'py>, r: &ResultView) -> PyResult<Bound<
         }
     }
     d.set_item("patch_faces", per_patch.into_pyarray(py))?;
-    let lists = |ls: &[Vec<u32>]| -> PyResult<Bound<'py, PyList>> { PyList::new(py, ls.iter().map(|l| i64s(l).into_pyarray(py))) };
+    let lists = |ls: &[Vec<u32>]| -> PyResult<Bound<'py, PyList>> {
+        PyList::new(py, ls.iter().map(|l| i64s(l).into_pyarray(py)))
+    };
     d.set_item("chains", lists(&r.chains)?)?;
     d.set_item("chain_patches", lists(&r.chain_patches)?)?;
     d.set_item("corners", i64s(&r.corners).into_pyarray(py))?;
@@ -156,7 +158,12 @@ pub fn write_result(
         labels: pairs("face_label", &labels)?,
         cells: pairs("face_cells", &cells)?,
         patch_labels: pairs("patch_labels", &patch_labels)?,
-        chains: Cow::Owned(ragged("chain", slice("chain_offsets", &chain_offsets)?, slice("chain_indices", &chain_indices)?, np)?),
+        chains: Cow::Owned(ragged(
+            "chain",
+            slice("chain_offsets", &chain_offsets)?,
+            slice("chain_indices", &chain_indices)?,
+            np,
+        )?),
         chain_patches: Cow::Owned(ragged(
             "chain_patches",
             slice("chain_patch_offsets", &chain_patch_offsets)?,
@@ -164,14 +171,23 @@ pub fn write_result(
             any,
         )?),
         corners: Cow::Owned(to_u32("corners", slice("corners", &corners)?, np)?),
-        shells: Cow::Owned(ragged("shell", slice("shell_offsets", &shell_offsets)?, slice("shell_indices", &shell_indices)?, any)?),
+        shells: Cow::Owned(ragged(
+            "shell",
+            slice("shell_offsets", &shell_offsets)?,
+            slice("shell_indices", &shell_indices)?,
+            any,
+        )?),
         cell_shells: ragged(
             "cell_shells",
             slice("cell_shell_offsets", &cell_shell_offsets)?,
             slice("cell_shell_indices", &cell_shell_indices)?,
             any,
         )?,
-        cell_labels: if width == 0 { vec![Vec::new(); cell_labels.shape()[0]] } else { cl.chunks_exact(width).map(|c| c.to_vec()).collect() },
+        cell_labels: if width == 0 {
+            vec![Vec::new(); cell_labels.shape()[0]]
+        } else {
+            cl.chunks_exact(width).map(|c| c.to_vec()).collect()
+        },
         points: Cow::Owned(pts),
     };
     view.validate().map_err(InputError::new_err)?;

@@ -12,7 +12,10 @@ use septa::io::npz::{parse_npy, Array};
 fn npy(descr: &str, fortran: bool, shape: &[usize], data: &[u8]) -> Vec<u8> {
     let dims: Vec<String> = shape.iter().map(|s| s.to_string()).collect();
     let shape = if dims.len() == 1 { format!("({},)", dims[0]) } else { format!("({})", dims.join(", ")) };
-    let mut h = format!("{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}", if fortran { "True" } else { "False" });
+    let mut h = format!(
+        "{{'descr': '{descr}', 'fortran_order': {}, 'shape': {shape}, }}",
+        if fortran { "True" } else { "False" }
+    );
     while (10 + h.len() + 1) % 64 != 0 {
         h.push(' ');
     }
@@ -91,7 +94,8 @@ const OBJ: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3
 const PLY: &str = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 const MSH: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 0 1 2 3 4\n$EndElements\n";
 const PLANES: &str = "2 4\n1 0 0 -0.5\n0 1 0 -0.25\n";
-const FUNCS: &str = r#"[{"type":"sphere","center":[0,0,0],"radius":0.5},{"type":"plane","point":[0,0,0],"normal":[0,0,1]}]"#;
+const FUNCS: &str =
+    r#"[{"type":"sphere","center":[0,0,0],"radius":0.5},{"type":"plane","point":[0,0,0],"normal":[0,0,1]}]"#;
 const SCENE: &str = r#"{"grid":{"resolution":4,"bounds":[[-1,-1,-1],[1,1,1]]},"functions":[{"name":"a","type":"sphere","center":[0,0,0],"radius":0.5}],"regions":"a"}"#;
 
 /// Every reader on the same bytes: values or errors, never a panic.
@@ -112,17 +116,10 @@ fn all_readers(b: &[u8]) {
 
 /// A valid file with a few bytes replaced, inserted or removed.
 fn mutated() -> impl Strategy<Value = Vec<u8>> {
-    let npy_ok = npy("<i4", true, &SHAPE, &f_order().iter().flat_map(|x| (*x as i32).to_le_bytes()).collect::<Vec<_>>());
-    let seeds: Vec<Vec<u8>> = vec![
-        npy_ok,
-        OFF.into(),
-        OBJ.into(),
-        PLY.into(),
-        MSH.into(),
-        PLANES.into(),
-        FUNCS.into(),
-        SCENE.into(),
-    ];
+    let npy_ok =
+        npy("<i4", true, &SHAPE, &f_order().iter().flat_map(|x| (*x as i32).to_le_bytes()).collect::<Vec<_>>());
+    let seeds: Vec<Vec<u8>> =
+        vec![npy_ok, OFF.into(), OBJ.into(), PLY.into(), MSH.into(), PLANES.into(), FUNCS.into(), SCENE.into()];
     (0..seeds.len(), prop::collection::vec((any::<usize>(), any::<u8>(), 0u8..3), 1..6)).prop_map(move |(s, edits)| {
         let mut b = seeds[s].clone();
         for (at, byte, op) in edits {

@@ -82,7 +82,8 @@ fn fast_label_path_writes_the_same_bytes_as_listing_every_triple() {
     let shape = [36, 20, 18];
     let big: Vec<i64> = (0..shape.iter().product::<usize>())
         .map(|v| {
-            let (i, j, k) = ((v / (shape[1] * shape[2])) as f64, (v / shape[2] % shape[1]) as f64, (v % shape[2]) as f64);
+            let (i, j, k) =
+                ((v / (shape[1] * shape[2])) as f64, (v / shape[2] % shape[1]) as f64, (v % shape[2]) as f64);
             let ball = |c: [f64; 3], r: f64| (i - c[0]).powi(2) + (j - c[1]).powi(2) + (k - c[2]).powi(2) < r * r;
             if ball([14.0, 9.0, 8.0], 6.5) {
                 4

@@ -52,8 +52,7 @@ fn region_at(scene: &Scene, grid: &BoxGrid, p: [f64; 3]) -> RegionId {
         }
     }
     let (_, b, q) = best;
-    let v: Vec<f64> =
-        scene.functions.iter().map(|f| (0..4).map(|i| b[i] * f.eval(q[i])).sum::<f64>()).collect();
+    let v: Vec<f64> = scene.functions.iter().map(|f| (0..4).map(|i| b[i] * f.eval(q[i])).sum::<f64>()).collect();
     match scene.mode {
         Mode::Ia => scene.regions.region_ia(&v.iter().map(|&x| x > 0.0).collect::<Vec<_>>()),
         Mode::Mi => {

@@ -39,8 +39,8 @@ mod canonical;
 mod check;
 mod coords;
 mod dominated;
-pub(crate) use dominated::average_dominates;
 pub(crate) use coords::barycentric;
+pub(crate) use dominated::average_dominates;
 mod lookup;
 #[doc(hidden)]
 pub mod lookup_gen;

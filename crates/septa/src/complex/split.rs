@@ -358,7 +358,8 @@ impl Complex {
             }
         }
         let old = &self.cells[c as usize];
-        let mut neg_cell = super::types::Cell { faces: SmallVec::new(), positive: old.positive.clone(), material: old.material };
+        let mut neg_cell =
+            super::types::Cell { faces: SmallVec::new(), positive: old.positive.clone(), material: old.material };
         neg_cell.faces.extend_from_slice(&neg_faces);
         neg_cell.faces.push(nf);
         let cell = &mut self.cells[c as usize];

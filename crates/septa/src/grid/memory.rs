@@ -93,7 +93,11 @@ pub fn dense_bytes(vertices: usize, k: usize) -> u64 {
 /// [`check`] for sampling every vertex of a grid of `vertices` vertices with
 /// `k` functions (the dense path).
 pub fn check_dense(vertices: usize, k: usize, way_out: &str) -> Result<(), MemoryError> {
-    check(dense_bytes(vertices, k), || format!("sampling {k} function(s) at every one of {vertices} grid vertices"), way_out)
+    check(
+        dense_bytes(vertices, k),
+        || format!("sampling {k} function(s) at every one of {vertices} grid vertices"),
+        way_out,
+    )
 }
 
 #[cfg(test)]

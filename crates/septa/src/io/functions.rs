@@ -64,4 +64,3 @@ pub fn read_tet_mesh_json(path: &Path) -> Result<MeshData, RefError> {
     }
     Ok((vertices, tets))
 }
-

@@ -60,8 +60,9 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
         poly.clear();
         for _ in 0..n {
             let tok = t.next().ok_or_else(|| ReadError::new(path, l, format!("face {f}: fewer than {n} indices")))?;
-            let k: usize =
-                tok.parse().map_err(|_| ReadError::new(path, l, format!("face {f}: index '{tok}' is not an integer")))?;
+            let k: usize = tok
+                .parse()
+                .map_err(|_| ReadError::new(path, l, format!("face {f}: index '{tok}' is not an integer")))?;
             if k >= nv {
                 return Err(ReadError::new(path, l, format!("face {f}: index {k} out of range (have {nv} vertices)")));
             }

@@ -118,15 +118,31 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
     let descr = file.dtype().descr();
     let arr = match (ts.type_char(), size) {
         (TypeChar::Float, 8) => Array::F64(shape, file.into_vec::<f64>().map_err(io)?),
-        (TypeChar::Float, 4) => Array::F64(shape, file.into_vec::<f32>().map_err(io)?.into_iter().map(f64::from).collect()),
-        (TypeChar::Bool, 1) => Array::I64(shape, file.into_vec::<bool>().map_err(io)?.into_iter().map(i64::from).collect()),
-        (TypeChar::Int, 1) => Array::I64(shape, file.into_vec::<i8>().map_err(io)?.into_iter().map(i64::from).collect()),
-        (TypeChar::Int, 2) => Array::I64(shape, file.into_vec::<i16>().map_err(io)?.into_iter().map(i64::from).collect()),
-        (TypeChar::Int, 4) => Array::I64(shape, file.into_vec::<i32>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Float, 4) => {
+            Array::F64(shape, file.into_vec::<f32>().map_err(io)?.into_iter().map(f64::from).collect())
+        }
+        (TypeChar::Bool, 1) => {
+            Array::I64(shape, file.into_vec::<bool>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
+        (TypeChar::Int, 1) => {
+            Array::I64(shape, file.into_vec::<i8>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
+        (TypeChar::Int, 2) => {
+            Array::I64(shape, file.into_vec::<i16>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
+        (TypeChar::Int, 4) => {
+            Array::I64(shape, file.into_vec::<i32>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
         (TypeChar::Int, 8) => Array::I64(shape, file.into_vec::<i64>().map_err(io)?),
-        (TypeChar::Uint, 1) => Array::I64(shape, file.into_vec::<u8>().map_err(io)?.into_iter().map(i64::from).collect()),
-        (TypeChar::Uint, 2) => Array::I64(shape, file.into_vec::<u16>().map_err(io)?.into_iter().map(i64::from).collect()),
-        (TypeChar::Uint, 4) => Array::I64(shape, file.into_vec::<u32>().map_err(io)?.into_iter().map(i64::from).collect()),
+        (TypeChar::Uint, 1) => {
+            Array::I64(shape, file.into_vec::<u8>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
+        (TypeChar::Uint, 2) => {
+            Array::I64(shape, file.into_vec::<u16>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
+        (TypeChar::Uint, 4) => {
+            Array::I64(shape, file.into_vec::<u32>().map_err(io)?.into_iter().map(i64::from).collect())
+        }
         (TypeChar::Uint, 8) => {
             let v = file.into_vec::<u64>().map_err(io)?;
             let mut out = Vec::with_capacity(v.len());
@@ -135,9 +151,9 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
             }
             Array::I64(shape, out)
         }
-        (TypeChar::UnicodeStr | TypeChar::ByteStr, _) if count == 1 => {
-            Array::Str(file.into_vec::<String>().map_err(io)?.pop().unwrap_or_default().trim_end_matches('\0').to_string())
-        }
+        (TypeChar::UnicodeStr | TypeChar::ByteStr, _) if count == 1 => Array::Str(
+            file.into_vec::<String>().map_err(io)?.pop().unwrap_or_default().trim_end_matches('\0').to_string(),
+        ),
         _ => return Err(format!("unsupported dtype {descr}")),
     };
     Ok(if fortran { to_c_order(arr) } else { arr })

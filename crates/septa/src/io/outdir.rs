@@ -199,8 +199,7 @@ impl OutputDir {
             let (from, to) = (self.dir.join(staged(name)), self.dir.join(name));
             std::fs::rename(&from, &to).map_err(|e| ctx(&to, "cannot move the new file in", e))?;
         }
-        let files: Vec<_> =
-            self.files.iter().map(|(n, s)| serde_json::json!({ "name": n, "bytes": s })).collect();
+        let files: Vec<_> = self.files.iter().map(|(n, s)| serde_json::json!({ "name": n, "bytes": s })).collect();
         let doc = serde_json::json!({
             "septa": env!("CARGO_PKG_VERSION"),
             "job": self.job,

@@ -131,7 +131,8 @@ impl<'a> ResultView<'a> {
     /// its region, so `cells` per polygon are indices into that list.
     pub fn of_regions(r: &'a RegionSurfaces) -> ResultView<'a> {
         let net = &r.network;
-        let regions: Vec<i64> = r.cell_region.iter().copied().collect::<std::collections::BTreeSet<_>>().into_iter().collect();
+        let regions: Vec<i64> =
+            r.cell_region.iter().copied().collect::<std::collections::BTreeSet<_>>().into_iter().collect();
         let index = |g: i64| regions.binary_search(&g).map_or(-1, |i| i as i32);
         let mut labels = Vec::with_capacity(r.faces.len());
         let mut cells = Vec::with_capacity(r.faces.len());
@@ -297,7 +298,12 @@ pub fn write_view(
 
 /// Writes one file of `r` in `format` (JSON is refused: its document
 /// depends on the kind of result).
-pub fn write_file(r: &ResultView, path: &std::path::Path, format: Format, meta: &serde_json::Value) -> std::io::Result<()> {
+pub fn write_file(
+    r: &ResultView,
+    path: &std::path::Path,
+    format: Format,
+    meta: &serde_json::Value,
+) -> std::io::Result<()> {
     use super::{result_mesh, result_npz, result_vtk};
     match format {
         Format::Json => Err(std::io::Error::other("JSON is written by the result's own writer")),

@@ -30,7 +30,12 @@ pub fn label_surfaces_listing_triples(
     surfaces_of(labels, shape, sigma, true)
 }
 
-fn surfaces_of(labels: &[i64], shape: [usize; 3], sigma: f64, list_triples: bool) -> Result<RegionSurfaces, RegionError> {
+fn surfaces_of(
+    labels: &[i64],
+    shape: [usize; 3],
+    sigma: f64,
+    list_triples: bool,
+) -> Result<RegionSurfaces, RegionError> {
     let n: usize = shape.iter().product();
     if shape.iter().any(|&s| s < 2) || labels.len() != n {
         return Err(RegionError::Grid(format!(

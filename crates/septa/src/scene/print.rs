@@ -15,10 +15,7 @@ use super::shapes::SphereKind;
 /// JSON form here (a triangle mesh given by its arrays).
 pub fn scene_json(s: &Scene) -> Result<Value, String> {
     let mut doc = Map::new();
-    doc.insert(
-        "grid".into(),
-        json!({"resolution": s.grid.resolution, "bounds": s.grid.bounds, "split": s.grid.split}),
-    );
+    doc.insert("grid".into(), json!({"resolution": s.grid.resolution, "bounds": s.grid.bounds, "split": s.grid.split}));
     doc.insert("mode".into(), json!(if s.mode == Mode::Mi { "mi" } else { "ia" }));
     let mut functions = Vec::new();
     for (i, f) in s.functions.iter().enumerate() {
