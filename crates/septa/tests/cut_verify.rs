@@ -113,39 +113,6 @@ fn random_plane_sets_verify_exactly() {
     assert!(failures.is_empty(), "cases with violations: {failures:?}");
 }
 
-/// `SEPTA_CASE=name cargo test ... explain -- --ignored --nocapture`: the
-/// faces, supports and vertex definitions behind the first violations.
-#[test]
-#[ignore]
-fn explain() {
-    let data = common::shared_data();
-    let name = std::env::var("SEPTA_CASE").unwrap_or("cube.R10".into());
-    let (stem, set) = name.split_once('.').unwrap();
-    let mesh = read_mesh(&data.join("meshes").join(format!("{stem}.obj"))).unwrap();
-    let planes = read_planes(&data.join("topocut").join(format!("{stem}.{set}.plane"))).unwrap();
-    let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &CutOptions::default()).unwrap();
-    let r = out.verify();
-    eprintln!("{:?}", r.examples);
-    for ex in r.examples.iter().take(2) {
-        let ids: Vec<u32> =
-            ex.split(|c: char| !c.is_ascii_digit()).filter(|s| !s.is_empty()).map(|s| s.parse().unwrap()).collect();
-        for (i, f) in out.faces.iter().enumerate() {
-            let hits = ids.iter().filter(|v| f.loops.iter().flatten().any(|w| w == *v)).count();
-            if hits >= 2 {
-                eprintln!(
-                    "face {i} {:?} cells {:?} split {} loops {:?}",
-                    f.support, f.cells, out.face_split[i], f.loops
-                );
-            }
-        }
-        for v in ids {
-            if (v as usize) < out.vertices.len() {
-                eprintln!("  v{v} {:?} {:?}", out.vertex_defs[v as usize], out.vertices[v as usize]);
-            }
-        }
-    }
-}
-
 /// Mutations the exact check must catch on a clean case: a reversed
 /// polygon, a cell turned inside out, a vertex moved across its cell,
 /// two vertices at one point, a non-planar polygon.

@@ -29,15 +29,15 @@ impl BoundedField for [Primitive] {
 
 impl BoundedField for Vec<Primitive> {
     fn functions(&self) -> usize {
-        self.len()
+        self.as_slice().functions()
     }
 
     fn value(&self, f: usize, p: [f64; 3]) -> f64 {
-        self[f].eval(p)
+        self.as_slice().value(f, p)
     }
 
     fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
-        sample_grid(self, points)
+        self.as_slice().sample(points)
     }
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
