@@ -139,7 +139,7 @@ pub fn run(a: Args) -> CliResult {
     } else if a.no_mesh_output {
         Some(out.verify())
     } else {
-        let (points, cells) = septa::io::cut_vtu::read_polyhedra(&out_dir.join("cells.vtu"))?;
+        let (points, cells) = septa::io::cut_vtu::read_polyhedra(&dir.staged_path("cells.vtu"))?;
         Some(septa::cut::verify::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();

@@ -175,6 +175,12 @@ impl OutputDir {
         Ok(())
     }
 
+    /// Where file `name` of this set is before [`OutputDir::finish`] moves
+    /// it in (to read back what was written, e.g. `septa cut --verify`).
+    pub fn staged_path(&self, name: &str) -> PathBuf {
+        self.dir.join(staged(name))
+    }
+
     /// [`OutputDir::write_with`] for bytes.
     pub fn write(&mut self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
         self.write_with(name, |w| w.write_all(bytes))

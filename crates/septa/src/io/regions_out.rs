@@ -115,6 +115,12 @@ pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std:
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
     let view = ResultView::of_regions(r);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        if f == Format::Vtm {
+            // A multiblock names its pieces by its own file name: written in
+            // place (each file atomically), outside the staged set.
+            super::result::write_file(&view, &out.path().join("network.vtm"), f, &meta)?;
+            continue;
+        }
         out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;
     }
     if !formats.contains(&Format::Json) {
