@@ -4,7 +4,7 @@
 Until the grid pipeline writes real outputs, the viewer, `septa view` and the
 Python loaders are tested on this fixture: the implicit arrangement (IA) of the
 two planes f0 = x - 1/2 and f1 = y - 1/2 in the unit box. Its topology is known
-by hand (issue 5): 4 patches (each plane is split in two by the other),
+by hand: 4 patches (each plane is split in two by the other),
 1 chain (the line x = y = 1/2), 2 corners (where the chain meets the box),
 4 cells (the quadrants), each cell bounded by one shell of two half-patches.
 

@@ -2,7 +2,7 @@
 dtype the Rust core reads, and a value that the conversion would change
 (a fractional index, a label 2.5, NaN) is an :class:`septa.InputError`
 naming the array and the element instead of being truncated silently
-(issue 14: ``septa.arrangement(V, T + 0.7, F)`` ran on ``T``)."""
+(before: ``septa.arrangement(V, T + 0.7, F)`` ran on ``T``)."""
 from __future__ import annotations
 
 import numpy as np

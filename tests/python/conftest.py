@@ -19,7 +19,7 @@ ISN = SHARED / "isn"
 sys.path.insert(0, str(ROOT / "scripts"))
 
 # In CI (CI=true, set by .ci/run) nothing may be skipped: a skip there means
-# a test silently did not run (issue 18).
+# a test silently did not run.
 IN_CI = os.environ.get("CI", "").lower() in ("1", "true", "yes")
 
 

@@ -1,4 +1,4 @@
-"""Inputs as users have them (issue 14): coercion that never truncates,
+"""Inputs as users have them: coercion that never truncates,
 thread counts checked, unreadable results as InputError, label volumes of
 any dtype and order, and NIfTI / NRRD files placed where nibabel says,
 with flips (negative determinant) keeping every polygon's orientation."""

@@ -34,7 +34,7 @@ def test_bad_tets_named():
 
 
 def test_arrangement_two_planes_matches_hand_count():
-    # Two coordinate planes through grid nodes (exactly degenerate), issue 5:
+    # Two coordinate planes through grid nodes (exactly degenerate):
     # 4 patches, 1 chain, 2 corners where it meets the boundary, 4 cells.
     g = septa.grid.box(4)
     vals = shapes.sample([shapes.plane([0.5] * 3, [1, 0, 0]), shapes.plane([0.5] * 3, [0, 1, 0])], g)

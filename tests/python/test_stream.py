@@ -1,4 +1,4 @@
-"""`septa ia|mi --stream OUT.ply` (issue 6): the streamed PLY loads with
+"""`septa ia|mi --stream OUT.ply`: the streamed PLY loads with
 plyfile (a general PLY reader) and holds exactly the faces and vertices of
 the in-memory run, with per-face labels and block indices.
 

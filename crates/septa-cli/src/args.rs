@@ -1,5 +1,5 @@
 //! Argument checks run by clap while parsing, so that every argument is
-//! validated before any work starts (issue 14: `septa demo --grid 0` ran
+//! validated before any work starts (before: `septa demo --grid 0` ran
 //! its first job before failing; `--block 0` panicked; `--explode nan`
 //! wrote `v NaN NaN NaN`; `--threads 1000000` tried to start a million
 //! threads). A bad value exits with code 2 and clap's message, which names

@@ -2,7 +2,7 @@
 //! how much more work `n` busy threads get done together than one alone.
 //! On a shared machine (or cores that share caches and memory bandwidth)
 //! this is well below `n`; a program's `n`-thread speed-up is bounded by it,
-//! so `septa bench` prints the two side by side (issue 17).
+//! so `septa bench` prints the two side by side.
 use std::time::Instant;
 
 /// Throughput gain of `n` concurrent copies of `work` over one copy:

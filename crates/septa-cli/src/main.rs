@@ -48,7 +48,7 @@ enum Command {
 
 fn main() {
     // `septa ... --json | head`: a closed pipe ends the process quietly, as
-    // for any Unix filter, instead of a panic in println! (issue 14).
+    // for any Unix filter, instead of a panic in println!.
     #[cfg(unix)]
     // SAFETY: restoring the default action of SIGPIPE before any thread starts.
     unsafe {

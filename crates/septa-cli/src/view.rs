@@ -118,7 +118,7 @@ fn read_if_exists(path: &Path) -> Result<Option<Vec<u8>>, String> {
 }
 
 /// The network contract the viewer relies on: `points` rows of 3 finite
-/// numbers, `faces` lists of at least 3 indices into `points` (issue 14: a
+/// numbers, `faces` lists of at least 3 indices into `points` (before: a
 /// face index -1 or 99999999 produced a viewer that fails in the browser).
 fn check_network(path: &Path, v: &serde_json::Value) -> Result<(), String> {
     let bad = |what: String| format!("{}: {what}", path.display());

@@ -1,4 +1,4 @@
-//! The bad-input corpus of issue 14, generated here: every case either
+//! The bad-input corpus, generated here: every case either
 //! exits with code 2 and a message naming the file (or argument) and the
 //! element, or succeeds with a correct result. None may panic (101), abort
 //! (134) or leave a partial output folder.

@@ -42,7 +42,7 @@ pub(crate) fn on_threads<T: Send>(
 ) -> Result<T, String> {
     match threads {
         // Checked here as well as in Python: `threads=10**6` must not try
-        // to start a million threads (issue 14).
+        // to start a million threads.
         Some(t) if t == 0 || t > 1024 => Err(format!("threads: {t} is out of range 1..=1024")),
         Some(t) => {
             rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(work)

@@ -302,7 +302,7 @@ impl Job {
             Some((g, f)) if !dense => compute_sparse(g, f, options).map(|(n, s)| (n, Some(s))),
             _ => {
                 if let Some((g, f)) = self.box_formulas() {
-                    // Estimated before sampling every vertex (issue 14: `--grid 1000 --dense`).
+                    // Estimated before sampling every vertex (before: `--grid 1000 --dense`).
                     crate::grid::memory::check_dense(g.num_vertices(), f.len(), DENSE_WAY_OUT)?;
                 }
                 compute(&self.grid, &self.values(), self.k(), options).map(|n| (n, None))

@@ -1,4 +1,4 @@
-//! Readers on the arrays users have (issue 14: Fortran order, big-endian,
+//! Readers on the arrays users have (which used to fail: Fortran order, big-endian,
 //! bool and float `.npy`) and fuzzed with arbitrary bytes and mutated valid
 //! files (bounded: a fixed number of proptest cases per reader, no timing):
 //! each returns a value or an error, never panics, and a header claiming

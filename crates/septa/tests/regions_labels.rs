@@ -1,6 +1,6 @@
 //! Label volumes: the fast path (curve triples picked per edge, no list of
 //! every label triple) writes the same files, byte for byte, as the path
-//! that lists every triple as a curve of interest (issue 17).
+//! that lists every triple as a curve of interest.
 
 mod common;
 

@@ -123,7 +123,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
     // positive volume (outward orientation), computed on coordinates scaled
     // by a power of two (exact) so that the largest is about 1: a closed
     // cube scaled by 1e-200 has a volume of 1e-600, which underflows to 0
-    // and was rejected as inward (issue 14).
+    // and was rejected as inward.
     let big = tris.iter().flatten().fold(0.0f64, |m, &i| verts[i as usize].iter().fold(m, |m, x| m.max(x.abs())));
     let pow2 =
         if big > 0.0 && big.is_finite() { 2f64.powi(-(big.log2().ceil() as i32).clamp(-1000, 1000)) } else { 1.0 };

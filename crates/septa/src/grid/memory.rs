@@ -1,6 +1,6 @@
 //! Memory estimates made before a large allocation, so that a job too big
 //! for the machine is refused with the estimate and the way out instead of
-//! aborting inside the allocator (issue 14: `--grid 1000 --dense`, regions
+//! aborting inside the allocator (before: `--grid 1000 --dense`, regions
 //! at resolution 1600, `labels --sigma 1e9` all aborted with exit 134).
 //!
 //! The budget is the machine's available memory (`MemAvailable` of

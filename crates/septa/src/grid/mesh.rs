@@ -80,7 +80,7 @@ impl TetMesh {
     /// last two vertices.
     pub fn new(vertices: Vec<[f64; 3]>, tets: &[[i64; 4]]) -> Result<TetMesh, MeshError> {
         if tets.is_empty() || vertices.is_empty() {
-            // Issue 14: an .npz of 0 vertices and 0 tets panicked in the network.
+            // Before: an .npz of 0 vertices and 0 tets panicked in the network.
             return Err(MeshError::Empty { vertices: vertices.len(), tets: tets.len() });
         }
         if vertices.len() >= u32::MAX as usize {

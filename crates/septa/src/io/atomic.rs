@@ -49,7 +49,7 @@ fn pending() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
 
 /// Removes the temporary files of writes in progress and returns how many:
 /// called by a Ctrl-C handler before exiting, so an interrupted run leaves
-/// no hidden partial files (issue 14).
+/// no hidden partial files.
 pub fn remove_pending_temps() -> usize {
     let list = std::mem::take(&mut *pending());
     list.iter().filter(|p| std::fs::remove_file(p).is_ok()).count()

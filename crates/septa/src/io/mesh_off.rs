@@ -7,7 +7,7 @@ use std::path::Path;
 /// or texture coordinates (`COFF`, `NOFF`, `CNOFF`, `STOFF`, ...: the first
 /// three numbers of a vertex line are its position) and per-face colours (a
 /// face line is `n i1 .. in` followed by optional colour numbers, ignored).
-/// Issue 14: COFF face colours were read as indices ("face index 255").
+/// Before: COFF face colours were read as indices ("face index 255").
 pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
     // Non-empty lines with their numbers, comments stripped.

@@ -90,7 +90,7 @@ pub fn read_npz(path: &Path) -> Result<BTreeMap<String, Array>, NpzError> {
 /// 1-3, either byte order, C or Fortran order (numpy writes Fortran order
 /// for transposed arrays; nibabel returns them), bool, signed and unsigned
 /// integers, f32/f64 and string scalars. The data is returned in C order
-/// (Fortran arrays are transposed here). Issue 14: the hand-written parser
+/// (Fortran arrays are transposed here). Before: the hand-written parser
 /// refused Fortran order, bool and big-endian arrays.
 pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
     use npyz::{DType, TypeChar};

@@ -1,6 +1,6 @@
 //! An output folder written as one set: a reader never sees a mix of two
 //! runs, a half-written file, or a killed run's leftovers as a result
-//! (issue 14: a SIGKILL left ~80 MB of hidden temp files that no later run
+//! (before: a SIGKILL left ~80 MB of hidden temp files that no later run
 //! removed; two runs into one folder could end with files from both).
 //!
 //! - **Lock.** `DIR/.septa.lock` is locked (`flock`) for the whole write; a

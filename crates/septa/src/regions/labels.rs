@@ -182,7 +182,7 @@ impl BoundedField for LabelField<'_> {
 fn smooth(values: &mut [f64], shape: [usize; 3], k: usize, sigma: f64) {
     // Taps beyond the volume never contribute (they are skipped below), so
     // the radius stops at the longest axis: `sigma 1e9` on 8^3 asked for a
-    // 6e9-tap kernel (48 GB, issue 14). The centre tap is 1 even when
+    // 6e9-tap kernel (48 GB). The centre tap is 1 even when
     // 2 sigma^2 underflows (sigma 1e-300 gave 0/0 = NaN).
     let longest = shape.iter().copied().max().unwrap_or(1) as f64;
     let r = (3.0 * sigma).ceil().min(longest) as isize;

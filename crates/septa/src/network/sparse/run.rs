@@ -396,7 +396,7 @@ fn dense_fallback(
     stats.sampled = stats.blocks;
     stats.sampled_vertices = grid.num_vertices();
     // The dense path holds every vertex: refuse with the estimate rather
-    // than abort in the allocator (issue 14: regions at resolution 1600).
+    // than abort in the allocator (before: regions at resolution 1600).
     crate::grid::memory::check_dense(
         grid.num_vertices(),
         1,
