@@ -100,7 +100,8 @@ fn apollonius(dir: &Path, a: &Args) -> JobResult {
 /// The reference's 18 spheres (IA) streamed block by block: `stream.ply`
 /// (faces with patch and cells) and `stream.topology.json`, in bounded memory.
 fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
-    use septa::network::{stream_topology, Mode, NetworkOptions};
+    use septa::network::{stream_topology, NetworkOptions};
+use septa::complex::Mode;
     let spec = include_str!("../../../data/specs/ia18.json");
     let functions = septa::scene::load_function_list(spec, "data/specs/ia18.json", None)?;
     let n = 2 * a.grid;
@@ -154,7 +155,7 @@ fn torus_obj(major: f64, minor: f64, nu: usize, nv: usize) -> String {
 
 fn cut_torus(dir: &Path, _: &Args) -> JobResult {
     let mesh = dir.join("torus.obj");
-    septa::io::cut_out::write_atomic(&mesh, torus_obj(1.0, 0.4, 48, 24).as_bytes())?;
+    septa::io::write_atomic(&mesh, torus_obj(1.0, 0.4, 48, 24).as_bytes())?;
     crate::cut::run(crate::cut::Args {
         mesh,
         grid: Some(6),

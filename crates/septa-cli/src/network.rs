@@ -110,8 +110,8 @@ fn job(args: &Args) -> Result<Job, Box<dyn std::error::Error>> {
 pub fn run(args: Args, mode: Mode) -> CliResult {
     let t0 = Instant::now();
     let mode = match mode {
-        Mode::Ia => network::Mode::Ia,
-        Mode::Mi => network::Mode::Mi,
+        Mode::Ia => septa::complex::Mode::Ia,
+        Mode::Mi => septa::complex::Mode::Mi,
     };
     let mut opts = NetworkOptions::new(mode);
     opts.float = args.float;
@@ -186,7 +186,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
 fn run_stream(
     args: &Args,
     out: &std::path::Path,
-    mode: network::Mode,
+    mode: septa::complex::Mode,
     opts: &NetworkOptions,
     pool: &rayon::ThreadPool,
     bar: Option<indicatif::ProgressBar>,

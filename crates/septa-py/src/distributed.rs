@@ -13,10 +13,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
 use septa::grid::BoxGrid;
-use septa::network::{
-    compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Mode, Network, NetworkOptions,
-    SparsePlan, SparseStats,
-};
+use septa::network::{compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Network, NetworkOptions, SparsePlan, SparseStats};
+use septa::complex::Mode;
 use septa::scene::{sample_grid, Primitive, Scene};
 
 /// A parsed job.

@@ -26,11 +26,11 @@ pyo3::create_exception!(
     "Bad input: the message names what is wrong and where (array, vertex, function, file, line)."
 );
 
-/// `"ia"` or `"mi"` as a [`septa::network::Mode`].
-pub(crate) fn parse_mode(m: &str) -> Result<septa::network::Mode, String> {
+/// `"ia"` or `"mi"` as a [`septa::complex::Mode`].
+pub(crate) fn parse_mode(m: &str) -> Result<septa::complex::Mode, String> {
     match m {
-        "ia" => Ok(septa::network::Mode::Ia),
-        "mi" => Ok(septa::network::Mode::Mi),
+        "ia" => Ok(septa::complex::Mode::Ia),
+        "mi" => Ok(septa::complex::Mode::Mi),
         m => Err(format!("mode must be \"ia\" or \"mi\", not {m:?}")),
     }
 }

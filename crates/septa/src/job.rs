@@ -10,7 +10,8 @@
 //!
 //! ```
 //! use septa::job::{GridOverride, Job};
-//! use septa::network::{Mode, NetworkOptions};
+//! use septa::network::NetworkOptions;
+//! use septa::complex::Mode;
 //! let job = Job::load("builtin:sphere-with-hole", &GridOverride { resolution: Some(8), ..Default::default() }).unwrap();
 //! let (net, sparse) = job.run(&NetworkOptions::new(job.mode.unwrap_or(Mode::Ia)), false).unwrap();
 //! assert!(sparse.is_some() && net.num_faces() > 0);
@@ -21,7 +22,8 @@ use std::path::{Path, PathBuf};
 use serde_json::Value;
 
 use crate::grid::{BoxGrid, Grid, Split, TetMesh};
-use crate::network::{compute, compute_sparse, Mode, Network, NetworkError, NetworkOptions, SparseStats};
+use crate::network::{compute, compute_sparse, Network, NetworkError, NetworkOptions, SparseStats};
+use crate::complex::Mode;
 use crate::scene::{load_function_list, sample_grid, Primitive, Scene, SceneError};
 
 /// The functions of a job.

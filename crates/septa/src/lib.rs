@@ -22,6 +22,7 @@
 //! coordinates, computed only for output.
 #![warn(missing_docs)]
 
+#[cfg(feature = "tools")]
 pub mod baseline;
 pub mod complex;
 pub mod cut;

@@ -6,7 +6,8 @@
 use std::collections::HashMap;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::network::{compute, Mode, Network, NetworkOptions};
+use septa::network::{compute, Network, NetworkOptions};
+use septa::complex::Mode;
 use septa::scene::{sample_grid, Primitive};
 
 fn network(functions: &[Primitive], n: usize, mode: Mode, split: Split, raytrace: bool) -> Network {

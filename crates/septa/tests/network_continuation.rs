@@ -5,7 +5,8 @@
 mod common;
 
 use septa::grid::{BoxGrid, Grid};
-use septa::network::{compute, Mode, Network, NetworkError, NetworkOptions};
+use septa::network::{compute, Network, NetworkError, NetworkOptions};
+use septa::complex::Mode;
 use septa::network::{compute_continuation, Field, Seeds};
 use septa::scene::Primitives;
 use septa::scene::{sample_grid, Primitive};

@@ -7,7 +7,8 @@ mod common;
 
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::npz::read_grid_input;
-use septa::network::{compute, Mode, Network, NetworkOptions};
+use septa::network::{compute, Network, NetworkOptions};
+use septa::complex::Mode;
 
 fn json(net: &Network, tag: &str) -> String {
     common::network_json(net, tag)

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::network_out::write_all;
-use septa::network::{compute, Mode, NetworkOptions};
+use septa::network::{compute, NetworkOptions};
+use septa::complex::Mode;
 use septa::scene::{sample_grid as sample, Primitive};
 
 #[test]

@@ -9,7 +9,8 @@ mod common;
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::io::npz::read_grid_input;
-use septa::network::{compute, Mode, Network, NetworkOptions};
+use septa::network::{compute, Network, NetworkOptions};
+use septa::complex::Mode;
 
 fn data_dir() -> Option<PathBuf> {
     Some(common::shared_data().join("isn"))

@@ -6,7 +6,8 @@ mod common;
 use std::path::Path;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::network::{compute, Mode, Network, NetworkOptions};
+use septa::network::{compute, Network, NetworkOptions};
+use septa::complex::Mode;
 use septa::network::{compute_sparse, SparseStats};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{sample_grid, Primitive, Scene};

@@ -11,7 +11,8 @@ use std::path::{Path, PathBuf};
 use septa::io::ply_stream::PlyStreamSink;
 use septa::network::compute_sparse;
 use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamError, StreamSink};
-use septa::network::{Mode, Network, NetworkError, NetworkOptions, VKey};
+use septa::network::{Network, NetworkError, NetworkOptions, VKey};
+use septa::complex::Mode;
 use septa::scene::load_function_list;
 
 use common::{cube_grid, spec};

@@ -14,7 +14,8 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 use septa::grid::{BoxGrid, Split};
 use septa::network::compute_sparse;
 use septa::network::{stream_topology, StreamBlock, StreamSink};
-use septa::network::{Mode, Network, NetworkOptions, NetworkSummary, VKey};
+use septa::network::{Network, NetworkOptions, NetworkSummary, VKey};
+use septa::complex::Mode;
 use septa::scene::{Primitive, Scene};
 
 use common::{cube_grid, spec};

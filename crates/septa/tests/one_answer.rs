@@ -10,7 +10,8 @@
 mod common;
 
 use septa::job::{GridOverride, Job};
-use septa::network::{stream_topology, Mode, Network, NetworkOptions, StreamBlock, StreamSink};
+use septa::network::{stream_topology, Network, NetworkOptions, StreamBlock, StreamSink};
+use septa::complex::Mode;
 
 use common::assert_same_network;
 

@@ -7,7 +7,8 @@ mod common;
 use std::path::PathBuf;
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::network::{compute, Mode, NetworkOptions};
+use septa::network::{compute, NetworkOptions};
+use septa::complex::Mode;
 
 use septa::io::regions_out;
 use septa::regions::{label_surfaces, label_surfaces_listing_triples, RegionSurfaces};

@@ -300,7 +300,8 @@ fn open_meshes_get_no_bound_closed_ones_do() {
 fn every_primitive_sparse_equals_dense() {
     use septa::grid::{BoxGrid, Grid, Split};
     use septa::network::compute_sparse;
-    use septa::network::{compute, Mode, NetworkOptions};
+    use septa::network::{compute, NetworkOptions};
+use septa::complex::Mode;
     use septa::scene::sample_grid;
     let mut skipped = 0;
     for (name, f) in primitives() {

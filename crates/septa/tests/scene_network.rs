@@ -13,7 +13,8 @@
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::network::{compute, Mode as NetMode, Network, NetworkOptions};
+use septa::complex::Mode as NetMode;
+use septa::network::{compute, Network, NetworkOptions};
 use septa::scene::{builtin, Mode, RegionId, Scene};
 
 fn network(s: &Scene) -> (Network, Grid) {

@@ -112,6 +112,8 @@ pub(crate) fn find(table: &Table, preds: &Predicates, k: usize) -> Option<u32> {
     (t != NONE).then_some(t)
 }
 
+// Encoding is for the table generator (feature `tools`) and its tests.
+#[cfg(any(test, feature = "tools"))]
 fn plane_code(p: Plane) -> u32 {
     match p {
         Plane::TetFace(t) => t as u32,
@@ -134,6 +136,7 @@ fn plane_decode(c: u32) -> Plane {
 impl Complex {
     /// Appends this complex, encoded, to `out` (tables only hold complexes
     /// of at most 3 functions, so bit fields are small).
+    #[cfg(any(test, feature = "tools"))]
     pub(crate) fn encode(&self, out: &mut Vec<u32>) {
         out.push(self.vertices.len() as u32);
         for v in &self.vertices {

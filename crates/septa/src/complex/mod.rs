@@ -43,12 +43,14 @@ pub(crate) use coords::barycentric;
 pub(crate) use dominated::average_dominates;
 mod lookup;
 #[doc(hidden)]
+#[cfg(feature = "tools")]
 pub mod lookup_gen;
 #[rustfmt::skip]
 mod lookup_table;
 mod merge;
 mod predicate;
 mod split;
+#[cfg(feature = "tools")]
 pub mod stress;
 mod types;
 

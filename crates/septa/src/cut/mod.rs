@@ -49,6 +49,7 @@
 //! Voids (a mesh component inside one open arrangement cell) are attached
 //! to their enclosing cell by exact plane-side signatures ([`voids`]).
 
+#[cfg(feature = "tools")]
 pub mod bench;
 pub mod cells;
 pub mod clip;

@@ -6,8 +6,6 @@
 use crate::cut::CutCellMesh;
 use std::fmt::Write as _;
 
-pub use super::atomic::write_atomic;
-
 /// Boundary polygons of each cell, oriented outwards, each as a face of
 /// one loop ([`CutCellMesh::cell_polygons`]: faces with holes or with
 /// rounded vertices off their plane are written as their triangles).

@@ -35,7 +35,8 @@ use std::path::{Path, PathBuf};
 use std::io::{BufReader, Read};
 
 use crate::grid::BoxGrid;
-use crate::network::{Mode, NetworkSummary};
+use crate::network::NetworkSummary;
+use crate::complex::Mode;
 use crate::network::{StreamBlock, StreamSink};
 
 /// Writes streamed blocks to one PLY (module doc).

@@ -21,7 +21,8 @@
 use std::borrow::Cow;
 
 use crate::complex::NONE;
-use crate::network::{Mode, Network};
+use crate::network::Network;
+use crate::complex::Mode;
 use crate::regions::RegionSurfaces;
 
 /// A result as the writers see it: polygons with per-polygon `patch`,

@@ -28,7 +28,7 @@ pub use stream::{
 
 use smallvec::SmallVec;
 
-pub use crate::complex::Mode;
+use crate::complex::Mode;
 
 /// Global key of a network vertex: the sorted grid vertices of the grid
 /// element it lies in (padded with `u32::MAX`), and the sorted global ids of
