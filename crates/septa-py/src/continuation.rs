@@ -88,7 +88,7 @@ pub fn continuation<'py>(
         6 => Split::Six,
         s => return Err(InputError::new_err(format!("split must be 5 or 6, not {s}"))),
     };
-    let grid = BoxGrid::new(resolution, bounds, split).map_err(InputError::new_err)?;
+    let grid = BoxGrid::new(resolution, bounds, split).map_err(crate::failure)?;
     let field = PyField { f, k };
     let mut options = NetworkOptions::new(mode);
     options.block = block.max(1);
@@ -152,7 +152,7 @@ fn job_of(job: &JobTuple) -> Result<(BoxGrid, NetworkOptions), String> {
         6 => Split::Six,
         s => return Err(format!("split must be 5 or 6, not {s}")),
     };
-    let grid = BoxGrid::new(job.1, job.2, split)?;
+    let grid = BoxGrid::new(job.1, job.2, split).map_err(|e| e.to_string())?;
     let mut options = NetworkOptions::new(mode);
     options.block = job.4.max(1);
     Ok((grid, options))

@@ -8,7 +8,7 @@
 //! (a reference-format primitive list), or `{"scene": {..} or
 //! "builtin:NAME", "block": 16}` where mode and grid come from the scene
 //! unless given. `"base_dir"` resolves relative mesh paths.
-use crate::InputError;
+use crate::{failure, Failure, InputError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
@@ -101,14 +101,14 @@ pub fn sparse_blocks<'py>(py: Python<'py>, job: &str, indices: Vec<usize>) -> Py
     Ok(r.map_err(InputError::new_err)?.iter().map(|b| PyBytes::new(py, b)).collect())
 }
 
-fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, SparseStats), String> {
+fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, SparseStats), Failure> {
     // Decoded in parallel: the client's share of the work besides the merge.
     let blocks = results
         .par_iter()
         .enumerate()
         .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
-        .collect::<Result<Vec<_>, _>>()?;
-    finish_sparse(&job.grid, &job.functions, &job.options, &plan, blocks).map_err(|e| e.to_string())
+        .collect::<Result<Vec<_>, String>>()?;
+    finish_sparse(&job.grid, &job.functions, &job.options, &plan, blocks).map_err(failure)
 }
 
 /// sparse_finish(job, plan, results)
@@ -125,11 +125,11 @@ pub fn sparse_finish<'py>(
     results: Vec<Bound<'py, PyBytes>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
-    let r = py.detach(|| {
+    let r = py.detach(|| -> Result<_, Failure> {
         let j = parse_job(job)?;
         finish(&j, plan_of(plan), &slices)
     });
-    let (net, stats) = r.map_err(InputError::new_err)?;
+    let (net, stats) = r?;
     network_dict(py, &net, Some(&stats))
 }
 
@@ -150,9 +150,9 @@ pub fn sparse_finish_regions<'py>(
     normals: bool,
 ) -> PyResult<Bound<'py, pyo3::types::PyDict>> {
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
-    let r: Result<septa::regions::RegionSurfaces, String> = py.detach(|| {
+    let r: Result<septa::regions::RegionSurfaces, Failure> = py.detach(|| {
         let j = parse_job(job)?;
-        let scene = j.scene.as_ref().ok_or("region surfaces need a scene (with its region rule)")?;
+        let scene = j.scene.as_ref().ok_or_else(|| "region surfaces need a scene (with its region rule)".to_string())?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
         if normals {
@@ -161,7 +161,7 @@ pub fn sparse_finish_regions<'py>(
         out.sparse = Some(stats);
         Ok(out)
     });
-    crate::regions::region_dict(py, &r.map_err(InputError::new_err)?)
+    crate::regions::region_dict(py, &r?)
 }
 
 /// sparse_network(job, dense=False, threads=None)
@@ -179,21 +179,21 @@ pub fn sparse_network<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let r: Result<(Network, Option<SparseStats>), String> = crate::interrupt::run_interruptible(py, &cancel, || {
+    let r: Result<(Network, Option<SparseStats>), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
-        let run = || -> Result<(Network, Option<SparseStats>), String> {
+        let run = || -> Result<(Network, Option<SparseStats>), Failure> {
             if dense {
                 let g = septa::grid::Grid::Box(j.grid.clone());
                 let values = sample_grid(&j.functions, &g.vertices());
-                let net = compute(&g, &values, j.functions.len(), &j.options).map_err(|e| e.to_string())?;
+                let net = compute(&g, &values, j.functions.len(), &j.options).map_err(failure)?;
                 Ok((net, None))
             } else {
-                compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(|e| e.to_string())
+                compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
             }
         };
         crate::on_threads(threads, run)
     })?;
-    let (net, stats) = r.map_err(InputError::new_err)?;
+    let (net, stats) = r?;
     network_dict(py, &net, stats.as_ref())
 }

@@ -2,7 +2,8 @@
 //!
 //! A thin layer (STYLE.md habit 12): one Rust file per idea, inputs coerced
 //! once to contiguous numpy arrays of fixed dtype, the GIL released around
-//! work, Rust errors raised as `septa.InputError` (a `ValueError`). The
+//! work, Rust errors raised as `septa.InputError` (a `ValueError`), internal
+//! failures of the library as `RuntimeError` ([`Failure`]). The
 //! user-facing API, docstrings and result classes live in `python/septa/`.
 #![warn(missing_docs)]
 
@@ -26,6 +27,48 @@ pyo3::create_exception!(
     "Bad input: the message names what is wrong and where (array, vertex, function, file, line)."
 );
 
+/// Why a call failed: bad input (raised as `septa.InputError`) or an
+/// internal failure of the library that checked input cannot cause (raised
+/// as `RuntimeError`, so that callers catching `ValueError` for their own
+/// mistakes do not swallow a bug).
+#[derive(Debug)]
+pub(crate) enum Failure {
+    /// Bad input; the message names it.
+    Input(String),
+    /// An internal failure.
+    Internal(String),
+}
+
+impl From<String> for Failure {
+    fn from(m: String) -> Failure {
+        Failure::Input(m)
+    }
+}
+
+impl From<Failure> for PyErr {
+    fn from(f: Failure) -> PyErr {
+        match f {
+            Failure::Input(m) => InputError::new_err(m),
+            Failure::Internal(m) => pyo3::exceptions::PyRuntimeError::new_err(m),
+        }
+    }
+}
+
+/// A library error as a [`Failure`]: the network's internal variant (and a
+/// region or job error wrapping it) is internal, everything else input.
+pub(crate) fn failure<E: std::error::Error + 'static>(e: E) -> Failure {
+    let any: &dyn std::any::Any = &e;
+    let net = any.downcast_ref::<septa::network::NetworkError>().or_else(|| match any.downcast_ref() {
+        Some(septa::regions::RegionError::Network(n)) => Some(n),
+        _ => None,
+    });
+    if net.is_some_and(|n| n.is_internal()) {
+        Failure::Internal(e.to_string())
+    } else {
+        Failure::Input(e.to_string())
+    }
+}
+
 /// `"ia"` or `"mi"` as a [`septa::complex::Mode`].
 pub(crate) fn parse_mode(m: &str) -> Result<septa::complex::Mode, String> {
     match m {
@@ -36,17 +79,19 @@ pub(crate) fn parse_mode(m: &str) -> Result<septa::complex::Mode, String> {
 }
 
 /// Runs `work` on a pool of `threads` threads, or on rayon's global pool.
-pub(crate) fn on_threads<T: Send>(
+pub(crate) fn on_threads<T: Send, E: From<String> + Send>(
     threads: Option<usize>,
-    work: impl FnOnce() -> Result<T, String> + Send,
-) -> Result<T, String> {
+    work: impl FnOnce() -> Result<T, E> + Send,
+) -> Result<T, E> {
     match threads {
         // Checked here as well as in Python: `threads=10**6` must not try
         // to start a million threads.
-        Some(t) if t == 0 || t > 1024 => Err(format!("threads: {t} is out of range 1..=1024")),
-        Some(t) => {
-            rayon::ThreadPoolBuilder::new().num_threads(t.max(1)).build().map_err(|e| e.to_string())?.install(work)
-        }
+        Some(t) if t == 0 || t > 1024 => Err(format!("threads: {t} is out of range 1..=1024").into()),
+        Some(t) => rayon::ThreadPoolBuilder::new()
+            .num_threads(t.max(1))
+            .build()
+            .map_err(|e| E::from(e.to_string()))?
+            .install(work),
         None => work(),
     }
 }

@@ -1,7 +1,7 @@
 //! `septa.arrangement` / `septa.material_interface`: the grid surface
 //! network (Du et al. 2022) computed by `septa::network::compute`, handed
 //! back as numpy arrays (no file round trip).
-use crate::InputError;
+use crate::{failure, Failure, InputError};
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -62,26 +62,26 @@ pub fn network<'py>(
     }
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     options.cancel = Some(cancel.clone());
-    let result: Result<Network, String> = crate::interrupt::run_interruptible(py, &cancel, || {
+    let result: Result<Network, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let grid = match r#box {
             Some((res, bounds, split)) => {
                 let split = match split {
                     5 => Split::Five,
                     6 => Split::Six,
-                    s => return Err(format!("split must be 5 or 6, not {s}")),
+                    s => return Err(format!("split must be 5 or 6, not {s}").into()),
                 };
-                Grid::Box(BoxGrid::new(res, bounds, split)?)
+                Grid::Box(BoxGrid::new(res, bounds, split).map_err(failure)?)
             }
             None => {
                 let pts: Vec<[f64; 3]> = vs.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
                 let tt: Vec<[i64; 4]> = ts.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
-                Grid::Mesh(TetMesh::new(pts, &tt).map_err(|e| e.to_string())?)
+                Grid::Mesh(TetMesh::new(pts, &tt).map_err(failure)?)
             }
         };
-        let run = || compute(&grid, fs, k, &options).map_err(|e| e.to_string());
+        let run = || compute(&grid, fs, k, &options).map_err(failure);
         crate::on_threads(threads, run)
     })?;
-    let net = result.map_err(InputError::new_err)?;
+    let net = result?;
     to_dict(py, &net)
 }
 

@@ -6,6 +6,7 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
+use crate::Failure;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
@@ -31,19 +32,19 @@ pub fn stream_ply<'py>(
     let cancel = Arc::new(AtomicBool::new(false));
     type Out = (StreamStats, PlyStreamStats, Option<NetworkSummary>);
     let topo_path = Path::new(path).with_extension("topology.json");
-    let r: Result<Out, String> = crate::interrupt::run_interruptible(py, &cancel, || {
+    let r: Result<Out, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = crate::distributed::parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
-        let run = || -> Result<Out, String> {
+        let run = || -> Result<Out, Failure> {
             let mut sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
                 .map_err(|e| format!("{path}: {e}"))?
                 .triangulated(triangles);
             let (stats, summary) = if topology {
                 let (s, t) =
-                    stream_topology(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(|e| e.to_string())?;
+                    stream_topology(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(crate::failure)?;
                 (s, Some(t))
             } else {
-                (stream_sparse(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(|e| e.to_string())?, None)
+                (stream_sparse(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(crate::failure)?, None)
             };
             let ply = sink.finish_with(summary.as_ref()).map_err(|e| format!("{path}: {e}"))?;
             if let Some(t) = &summary {
@@ -54,7 +55,7 @@ pub fn stream_ply<'py>(
         };
         crate::on_threads(threads, run)
     })?;
-    let (stats, ply, summary) = r.map_err(InputError::new_err)?;
+    let (stats, ply, summary) = r?;
     result_dict(py, path, &stats, &ply, summary.as_ref(), &topo_path)
 }
 

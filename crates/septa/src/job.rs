@@ -121,7 +121,7 @@ fn read_text(path: &Path) -> Result<String, JobError> {
 /// A box grid of `n^3` cubes over `bounds` (default `[-1, 1]^3`, 5 tets per cube).
 fn cube_grid(file: &str, n: usize, over: &GridOverride) -> Result<BoxGrid, JobError> {
     let bounds = over.bounds.unwrap_or([[-1.0; 3], [1.0; 3]]);
-    BoxGrid::new([n; 3], bounds, over.split.unwrap_or(Split::Five)).map_err(|m| input(file, m))
+    BoxGrid::new([n; 3], bounds, over.split.unwrap_or(Split::Five)).map_err(|e| input(file, e.to_string()))
 }
 
 /// Reads a tet mesh file (`.msh`, or the reference's tet-mesh `.json`).
@@ -191,7 +191,7 @@ impl Job {
             job.scene = Some(scene);
             return Ok(job);
         }
-        let grid = scene.grid.box_grid().map_err(|m| input(file, m))?;
+        let grid = scene.grid.box_grid().map_err(|e| input(file, e.to_string()))?;
         Ok(Job {
             grid: Grid::Box(grid),
             functions: Functions::Formulas(scene.functions.clone()),
@@ -336,7 +336,7 @@ fn grid_of(v: &Value) -> Result<BoxGrid, JobError> {
             .map_err(|_| input(file, "grid.bounds: expected [[x0, y0, z0], [x1, y1, z1]]"))?,
     };
     let split = match v.get("split").and_then(Value::as_u64).unwrap_or(5) {
-        s @ (5 | 6) => Split::try_from(s as u8).map_err(|m| input(file, m))?,
+        s @ (5 | 6) => Split::try_from(s as u8).map_err(|e| input(file, e.to_string()))?,
         s => return Err(input(file, format!("grid.split: must be 5 or 6, not {s}"))),
     };
     BoxGrid::new(res, bounds, split).map_err(|m| input(file, format!("grid: {m}")))

@@ -23,16 +23,46 @@ impl Split {
 }
 
 impl TryFrom<u8> for Split {
-    type Error = String;
+    type Error = GridError;
 
     /// 5 or 6 tets per cube; any other number is an error naming it.
-    fn try_from(n: u8) -> Result<Split, String> {
+    fn try_from(n: u8) -> Result<Split, GridError> {
         match n {
             5 => Ok(Split::Five),
             6 => Ok(Split::Six),
-            n => Err(format!("a cube splits into 5 or 6 tets, not {n}")),
+            n => Err(GridError::Split(n)),
         }
     }
+}
+
+/// Why a box grid cannot be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum GridError {
+    /// A resolution entry is 0.
+    #[error("grid resolution along axis {axis} is 0")]
+    ZeroResolution {
+        /// 0, 1 or 2.
+        axis: usize,
+    },
+    /// Min and max of an axis are not finite with min < max.
+    #[error("grid bounds along axis {axis} are not increasing finite numbers: {lo} .. {hi}")]
+    Bounds {
+        /// 0, 1 or 2.
+        axis: usize,
+        /// The given min.
+        lo: f64,
+        /// The given max.
+        hi: f64,
+    },
+    /// `(nx + 1) (ny + 1) (nz + 1)` does not fit 32-bit vertex ids.
+    #[error("grid {res:?} has too many vertices for 32-bit ids")]
+    TooManyVertices {
+        /// The resolution asked for.
+        res: [usize; 3],
+    },
+    /// A cube split other than 5 or 6.
+    #[error("a cube splits into 5 or 6 tets, not {0}")]
+    Split(u8),
 }
 
 /// Coordinate of grid line `i` of `n` cubes over `[lo, hi]`: `lo + (hi - lo)
@@ -96,17 +126,14 @@ pub struct BoxGrid {
 
 impl BoxGrid {
     /// A box grid; `res` entries must be at least 1 and the bounds increasing.
-    pub fn new(res: [usize; 3], bounds: [[f64; 3]; 2], split: Split) -> Result<BoxGrid, String> {
+    pub fn new(res: [usize; 3], bounds: [[f64; 3]; 2], split: Split) -> Result<BoxGrid, GridError> {
         for a in 0..3 {
             if res[a] == 0 {
-                return Err(format!("grid resolution along axis {a} is 0"));
+                return Err(GridError::ZeroResolution { axis: a });
             }
             let increasing = bounds[0][a].partial_cmp(&bounds[1][a]) == Some(std::cmp::Ordering::Less);
             if !increasing || !bounds[0][a].is_finite() || !bounds[1][a].is_finite() {
-                return Err(format!(
-                    "grid bounds along axis {a} are not increasing finite numbers: {} .. {}",
-                    bounds[0][a], bounds[1][a]
-                ));
+                return Err(GridError::Bounds { axis: a, lo: bounds[0][a], hi: bounds[1][a] });
             }
         }
         // Checked: `--grid 18446744073709551615` must not wrap to a small grid.
@@ -115,7 +142,7 @@ impl BoxGrid {
             .and_then(|x| x.checked_mul(res[2].checked_add(1)?))
             .filter(|&x| x < u32::MAX as usize);
         if n.is_none() {
-            return Err(format!("grid {res:?} has too many vertices for 32-bit ids"));
+            return Err(GridError::TooManyVertices { res });
         }
         Ok(BoxGrid { res, bounds, split })
     }
@@ -249,5 +276,21 @@ mod tests {
             assert!(faces.values().all(|&n| n <= 2));
             assert_eq!(boundary, 6 * 9 * 2, "{split:?}");
         }
+    }
+
+    #[test]
+    fn invalid_grids_are_typed_errors_naming_the_axis() {
+        let unit = [[0.0; 3], [1.0; 3]];
+        assert_eq!(BoxGrid::new([2, 0, 2], unit, Split::Five), Err(GridError::ZeroResolution { axis: 1 }));
+        let flat = [[0.0, 0.0, 1.0], [1.0, 1.0, 1.0]];
+        let e = BoxGrid::new([2; 3], flat, Split::Five).unwrap_err();
+        assert_eq!(e, GridError::Bounds { axis: 2, lo: 1.0, hi: 1.0 });
+        assert_eq!(e.to_string(), "grid bounds along axis 2 are not increasing finite numbers: 1 .. 1");
+        let nan = [[0.0, f64::NAN, 0.0], [1.0; 3]];
+        assert!(matches!(BoxGrid::new([2; 3], nan, Split::Six), Err(GridError::Bounds { axis: 1, .. })));
+        let huge = [usize::MAX, 1, 1];
+        assert_eq!(BoxGrid::new(huge, unit, Split::Five), Err(GridError::TooManyVertices { res: huge }));
+        assert_eq!(Split::try_from(7), Err(GridError::Split(7)));
+        assert_eq!(Split::try_from(6), Ok(Split::Six));
     }
 }

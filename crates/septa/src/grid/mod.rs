@@ -10,7 +10,7 @@ mod boxgrid;
 pub mod memory;
 mod mesh;
 
-pub use boxgrid::{grid_coordinate, BoxGrid, Split};
+pub use boxgrid::{grid_coordinate, BoxGrid, GridError, Split};
 pub use mesh::{MeshError, TetMesh};
 
 /// A tetrahedral grid.

@@ -105,6 +105,14 @@ pub enum NetworkError {
     },
 }
 
+impl NetworkError {
+    /// Whether this is a failure of the library itself, which checked input
+    /// cannot cause (front ends report it as a bug, not as bad input).
+    pub fn is_internal(&self) -> bool {
+        matches!(self, NetworkError::Tet { .. })
+    }
+}
+
 /// How to compute the network.
 #[derive(Clone, Debug)]
 pub struct NetworkOptions {

@@ -38,13 +38,10 @@ fn surfaces_of(
 ) -> Result<RegionSurfaces, RegionError> {
     let n: usize = shape.iter().product();
     if shape.iter().any(|&s| s < 2) || labels.len() != n {
-        return Err(RegionError::Grid(format!(
-            "a label volume needs at least 2 voxels per axis and shape {shape:?} must match its {} labels",
-            labels.len()
-        )));
+        return Err(RegionError::LabelShape { shape, labels: labels.len() });
     }
     if !(sigma >= 0.0 && sigma.is_finite()) {
-        return Err(RegionError::Grid(format!("smoothing sigma must be a finite number >= 0, not {sigma}")));
+        return Err(RegionError::Sigma(sigma));
     }
     // The distinct labels, without sorting the volume: a set fed by the
     // runs of equal labels along the fastest axis.
@@ -63,8 +60,7 @@ fn surfaces_of(
         [shape[0] - 1, shape[1] - 1, shape[2] - 1],
         [[0.0; 3], [(shape[0] - 1) as f64, (shape[1] - 1) as f64, (shape[2] - 1) as f64]],
         Split::Five,
-    )
-    .map_err(RegionError::Grid)?;
+    )?;
     if sigma == 0.0 && !list_triples {
         // Sampled per block from the labels (no k values per voxel held),
         // blocks of one label skipped (sparse evaluation, docs/sparse.md).

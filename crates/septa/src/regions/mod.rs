@@ -135,7 +135,21 @@ impl RegionSurfaces {
 pub enum RegionError {
     /// The grid of the scene is invalid.
     #[error("grid: {0}")]
-    Grid(String),
+    Grid(#[from] crate::grid::GridError),
+    /// The dense path would need more memory than the machine has.
+    #[error("grid: {0}")]
+    Memory(#[from] crate::grid::memory::MemoryError),
+    /// A label volume's shape is too small or does not match its labels.
+    #[error("grid: a label volume needs at least 2 voxels per axis and shape {shape:?} must match its {labels} labels")]
+    LabelShape {
+        /// The shape given.
+        shape: [usize; 3],
+        /// Number of labels given.
+        labels: usize,
+    },
+    /// The smoothing width is negative or not finite.
+    #[error("grid: smoothing sigma must be a finite number >= 0, not {0}")]
+    Sigma(f64),
     /// The network failed.
     #[error(transparent)]
     Network(#[from] NetworkError),
@@ -145,7 +159,7 @@ pub enum RegionError {
 /// and extracts the surfaces and curves of interest.
 pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionSurfaces, RegionError> {
     let t0 = Instant::now();
-    let bgrid = scene.grid.box_grid().map_err(RegionError::Grid)?;
+    let bgrid = scene.grid.box_grid()?;
     let mode = scene.mode;
     if options.sparse {
         let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
@@ -157,8 +171,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
         bgrid.num_vertices(),
         scene.functions.len(),
         "drop --dense (sparse evaluation samples only the blocks near the surfaces) or use a coarser grid",
-    )
-    .map_err(|e| RegionError::Grid(e.to_string()))?;
+    )?;
     let grid = Grid::Box(bgrid);
     let points = grid.vertices();
     let values = sample_grid(&scene.functions, &points);

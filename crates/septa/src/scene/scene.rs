@@ -39,7 +39,7 @@ impl GridSpec {
     }
 
     /// The box grid this spec describes (the one builder every front end uses).
-    pub fn box_grid(&self) -> Result<BoxGrid, String> {
+    pub fn box_grid(&self) -> Result<BoxGrid, crate::grid::GridError> {
         BoxGrid::new(self.resolution, self.bounds, Split::try_from(self.split)?)
     }
 
