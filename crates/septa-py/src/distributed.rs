@@ -12,9 +12,12 @@ use crate::{failure, Failure, InputError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
-use septa::grid::BoxGrid;
-use septa::network::{compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Network, NetworkOptions, SparsePlan, SparseStats};
 use septa::complex::Mode;
+use septa::grid::BoxGrid;
+use septa::network::{
+    compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Network, NetworkOptions, SparsePlan,
+    SparseStats,
+};
 use septa::scene::{sample_grid, Primitive, Scene};
 
 /// A parsed job.
@@ -152,7 +155,8 @@ pub fn sparse_finish_regions<'py>(
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let r: Result<septa::regions::RegionSurfaces, Failure> = py.detach(|| {
         let j = parse_job(job)?;
-        let scene = j.scene.as_ref().ok_or_else(|| "region surfaces need a scene (with its region rule)".to_string())?;
+        let scene =
+            j.scene.as_ref().ok_or_else(|| "region surfaces need a scene (with its region rule)".to_string())?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
         if normals {

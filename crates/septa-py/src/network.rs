@@ -5,9 +5,9 @@ use crate::{failure, Failure, InputError};
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::network::{compute, Network, NetworkOptions};
-use septa::complex::Mode;
 
 fn id(x: u32) -> i64 {
     if x == u32::MAX {

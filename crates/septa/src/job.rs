@@ -141,7 +141,7 @@ impl Job {
         }
         let path = Path::new(input_path);
         if path.extension().and_then(|e| e.to_str()) == Some("npz") {
-            return Job::from_npz(path, over);
+            return Job::from_npz(path);
         }
         let text = read_text(path)?;
         let v = value_of(&text, path)?;
@@ -208,7 +208,7 @@ impl Job {
     /// An `.npz` of samples (`vertices`, `tets`, `values`): a reference box
     /// grid when `grid_res` and `bbox` describe exactly the stored tets,
     /// a tet mesh otherwise.
-    fn from_npz(path: &Path, _over: &GridOverride) -> Result<Job, JobError> {
+    fn from_npz(path: &Path) -> Result<Job, JobError> {
         let data = crate::io::npz::read_grid_input(path)?;
         let samples = |values, k| Functions::Samples { values, k };
         if let (Some(r), Some(bbox)) = (data.grid_res, data.bbox) {

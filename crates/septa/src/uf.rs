@@ -40,6 +40,22 @@ impl UnionFind {
         x
     }
 
+    /// Joins the sets of `a` and `b`; of the two roots, the one for which
+    /// `keep_first(ra, rb)` holds stays the root (callers order roots by
+    /// something other than their index, e.g. the cut's point definitions,
+    /// so that the representative does not depend on the order of unions).
+    pub fn union_by(&mut self, a: u32, b: u32, keep_first: impl FnOnce(u32, u32) -> bool) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra == rb {
+            return;
+        }
+        if keep_first(ra, rb) {
+            self.parent[rb as usize] = ra;
+        } else {
+            self.parent[ra as usize] = rb;
+        }
+    }
+
     /// Joins the sets of `a` and `b`.
     pub fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));

@@ -140,7 +140,9 @@ pub enum RegionError {
     #[error("grid: {0}")]
     Memory(#[from] crate::grid::memory::MemoryError),
     /// A label volume's shape is too small or does not match its labels.
-    #[error("grid: a label volume needs at least 2 voxels per axis and shape {shape:?} must match its {labels} labels")]
+    #[error(
+        "grid: a label volume needs at least 2 voxels per axis and shape {shape:?} must match its {labels} labels"
+    )]
     LabelShape {
         /// The shape given.
         shape: [usize; 3],
