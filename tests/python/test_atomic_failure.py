@@ -4,7 +4,7 @@
 process under a real I/O error, a file-size limit (RLIMIT_FSIZE, SIGXFSZ
 ignored so that write(2) fails with EFBIG instead of killing the process).
 Each must raise, leave the old file byte for byte, and leave no temporary
-file. The Rust writers' own test is crates/septa/tests/io_atomic_failure.rs,
+file. The Rust writers' own test is crates/septa/tests/io/atomic_failure.rs,
 the CLI's crates/septa-cli/tests/atomic_failure.rs."""
 
 import json

@@ -17,7 +17,7 @@ pub fn write_atomic_with(
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
     pending().push(tmp.clone());
     // Removes the temporary file on every way out but a successful rename,
-    // a panic inside `write` included (tests/io_atomic_failure.rs), and
+    // a panic inside `write` included (tests/io/atomic_failure.rs), and
     // takes it off the list a Ctrl-C handler cleans.
     struct Cleanup<'a>(&'a Path, bool);
     impl Drop for Cleanup<'_> {

@@ -31,7 +31,7 @@
 //! `u` goes to `v`'s position (a network vertex): no new coordinates are
 //! made. Floating point only chooses which short edges to collapse; which
 //! collapses are allowed is decided combinatorially. The result is checked
-//! (`tests/regions_clean.rs`): surface Euler characteristics and boundary
+//! (`tests/regions/clean.rs`): surface Euler characteristics and boundary
 //! loops, curve corners, and consistent orientation are unchanged.
 
 use std::cmp::Reverse;

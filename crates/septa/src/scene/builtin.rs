@@ -8,7 +8,7 @@
 //! then never exactly zero and the examples stay in general position.
 //! Each default grid is small enough for a fast demo.
 //!
-//! `tests/scene_network.rs` runs every scene through the exact network and
+//! `tests/scene/network.rs` runs every scene through the exact network and
 //! checks the promised topology ([`expected`]); `tests/scene_topology_probe.rs`
 //! cross-checks it independently on voxels.
 
@@ -365,7 +365,7 @@ pub fn apollonius_18() -> Scene {
 /// star-shaped from the line, so connected); every material pair that
 /// touches gives a surface. On the default 33^3 grid the exact network has
 /// 16 patches, 17 chains, 19 corners, 5 cells, 1 component (recorded in
-/// `tests/scene_network.rs`).
+/// `tests/scene/network.rs`).
 pub fn voronoi_lines_5() -> Scene {
     let t = 0.3;
     let lines: [(V3, V3); 5] = [

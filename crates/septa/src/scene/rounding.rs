@@ -29,7 +29,7 @@
 //!    roundings on quantities of magnitude at most `S` errs by about `n u S`;
 //!    each bound below is such an estimate times a safety factor of at least
 //!    4 (the constant [`K`]), over the largest magnitudes in the box.
-//!    `tests/scene_bounds_float.rs` checks the result on boxes of a few ulps
+//!    `tests/scene/bounds_float.rs` checks the result on boxes of a few ulps
 //!    around sign changes, far from the origin, and on grid vertices exactly
 //!    on the surface.
 

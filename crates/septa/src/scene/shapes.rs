@@ -7,7 +7,7 @@
 //! Where a shape is also a primitive of the reference implementation
 //! (plane, sphere, cylinder, line, cone, torus, circle) its value is computed
 //! with the same sequence of `f64` operations, so sampled values agree to
-//! the bit (checked against `ia4_R20.npz` in `tests/scene_reference.rs`).
+//! the bit (checked against `ia4_R20.npz` in `tests/scene/reference.rs`).
 
 use super::interval::{dot3, norm3, offset_box, Interval};
 use super::rounding::box_mag;

@@ -1,7 +1,7 @@
 //! Sparse evaluation (docs/sparse.md) gives exactly the dense network: every
 //! count, every array, and the same network.json bytes apart from timings.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

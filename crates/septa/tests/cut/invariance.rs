@@ -1,7 +1,7 @@
 //! The cut does not depend on plane order, plane scaling, duplicate planes
 //! or thread count; bad input gives typed errors naming the element.
 
-mod common;
+use crate::common;
 
 use septa::cut::{cut_mesh, CutCellMesh, CutError, CutOptions};
 use septa::io::{mesh::read_mesh, planes::read_planes};

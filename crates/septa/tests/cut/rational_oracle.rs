@@ -6,7 +6,7 @@
 //! and every cell's exact volume is positive; and it must fail on the
 //! unrepaired output (non-planar polygons written as such).
 
-mod common;
+use crate::common;
 
 use num_bigint::BigInt;
 use num_rational::BigRational;

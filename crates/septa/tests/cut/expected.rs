@@ -3,7 +3,7 @@
 //! Small meshes by default; all meshes with `SEPTA_FULL=1`; one case with
 //! `SEPTA_CASE=name`.
 
-mod common;
+use crate::common;
 
 use septa::cut::{cut_mesh, CutOptions};
 use septa::io::{mesh::read_mesh, planes::read_planes};

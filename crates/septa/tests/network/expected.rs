@@ -2,7 +2,7 @@
 //! implementation's (expected.json), on the built-in box grid, and the box
 //! grid's tets equal to the input's.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

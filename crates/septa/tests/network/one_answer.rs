@@ -7,7 +7,7 @@
 //! where the geometry gives them; and each case says which path must run
 //! (no silent dense fallback where the sparse path applies).
 
-mod common;
+use crate::common;
 
 use septa::job::{GridOverride, Job};
 use septa::network::{stream_topology, Network, NetworkOptions, StreamBlock, StreamSink};

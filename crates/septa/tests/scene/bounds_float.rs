@@ -14,7 +14,7 @@ use septa::scene::{load_function_list, Primitive, TriMesh};
 use serde_json::{json, Value};
 
 /// One of every primitive type (and combinator), through the JSON reader.
-const ALL: &str = include_str!("common/all_primitives.json");
+const ALL: &str = include_str!("../common/all_primitives.json");
 
 /// Extremes beyond the shared list: a torus whose tube is thinner than its
 /// formula's rounding near the centre circle, and a nearly singular transform.

@@ -2,7 +2,7 @@
 //! every label triple) writes the same files, byte for byte, as the path
 //! that lists every triple as a curve of interest.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 

@@ -3,7 +3,7 @@
 //! as the incremental construction in every tet: the fast paths change the
 //! speed, never the output.
 
-mod common;
+use crate::common;
 
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::npz::read_grid_input;

@@ -1,7 +1,7 @@
 //! Invariants of every output, determinism across thread counts, function
 //! permutations, tet-mesh input, and exactly degenerate hand-derived cases.
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

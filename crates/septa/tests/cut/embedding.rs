@@ -5,7 +5,7 @@
 //! counts, which these tests pin down. The embedding must not change the
 //! combinatorics: counts still equal the reference.
 
-mod common;
+use crate::common;
 
 use septa::cut::{cut_mesh, CutCellMesh, CutOptions};
 use septa::io::{mesh::read_mesh, planes::read_planes};

@@ -7,7 +7,7 @@
 //! chains. For many block and window sizes, thread counts, and every
 //! built-in scene where the in-memory path shoots rays.
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 

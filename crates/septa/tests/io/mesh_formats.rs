@@ -1,7 +1,7 @@
 //! Mesh and plane readers: the same mesh in every format, and errors that
 //! name file and line.
 
-mod common;
+use crate::common;
 
 use septa::io::mesh::read_mesh;
 use septa::io::planes::{grid_planes, parse_planes, random_planes};

@@ -2,7 +2,7 @@
 //! network when the seeds reach every component, and (by design) misses a
 //! separate component that no seed reaches.
 
-mod common;
+use crate::common;
 
 use septa::grid::{BoxGrid, Grid};
 use septa::network::{compute, Network, NetworkError, NetworkOptions};

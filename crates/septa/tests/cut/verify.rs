@@ -4,7 +4,7 @@
 //! Small meshes by default; all 57 cases and the seeded random plane sets
 //! with `SEPTA_FULL=1`; one case with `SEPTA_CASE=name`.
 
-mod common;
+use crate::common;
 
 use septa::cut::verify::{polygon_planar, verify_cells};
 use septa::cut::{cut_mesh, CutOptions};

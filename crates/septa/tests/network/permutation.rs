@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};

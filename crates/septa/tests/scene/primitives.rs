@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use septa::scene::{load_function_list, Primitive, Scene, TriMesh};
 
 /// One of every primitive type, through the JSON reader.
-const ALL: &str = include_str!("common/all_primitives.json");
+const ALL: &str = include_str!("../common/all_primitives.json");
 
 fn all() -> Vec<Primitive> {
     load_function_list(ALL, "all.json", None).unwrap()

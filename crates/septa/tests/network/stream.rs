@@ -3,7 +3,7 @@
 //! lists, same labels), for several block and window sizes, and the
 //! streamed PLY holds them with every vertex once.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -1,0 +1,12 @@
+//! The cut tests as one test binary (one link step per area).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod embedding;
+mod expected;
+mod invariance;
+mod rational_oracle;
+mod side_filter_oracle;
+mod small;
+mod verify;

@@ -1,0 +1,8 @@
+//! The io tests as one test binary (one link step per area).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod atomic_failure;
+mod mesh_formats;
+mod readers_fuzz;

@@ -1,0 +1,9 @@
+//! The scene tests as one test binary (one link step per area).
+
+mod bounds_float;
+mod files;
+mod network;
+mod primitives;
+mod print;
+mod reference;
+mod regions;
