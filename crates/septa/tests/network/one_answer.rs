@@ -63,13 +63,13 @@ fn cases() -> Vec<Case> {
             ],
         },
         // Their bisector planes (x, y, z = 0.25) are grid planes: the
-        // interface lies in tet faces and rays run along it.
+        // interface lies in tet faces, and rays start at grid vertices.
         Case {
             name: "round spheres MI",
             functions: ROUND_SPHERES,
             mode: Mode::Mi,
             n: 16,
-            sparse_holds: false,
+            sparse_holds: true,
             streams: false,
             counts: &[("patches", 6), ("chains", 4), ("corners", 5), ("cells", 4), ("components", 1)],
         },
@@ -82,8 +82,8 @@ fn cases() -> Vec<Case> {
             functions: PLANES_AND_SPHERE,
             mode: Mode::Ia,
             n: 8,
-            sparse_holds: false, // rays run along the planes: grouping, in memory
-            streams: false,      // faces lie in tet faces
+            sparse_holds: true,
+            streams: false, // faces lie in tet faces
             counts: &[("patches", 32), ("chains", 24), ("corners", 13), ("cells", 16)],
         },
         // The same sphere twice, and scaled by 2 (the reference's sphere is
@@ -132,7 +132,7 @@ fn cases() -> Vec<Case> {
  {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}]"#,
             mode: Mode::Mi,
             n: 16,
-            sparse_holds: false,
+            sparse_holds: true,
             streams: false,
             counts: &[("patches", 6), ("chains", 4), ("corners", 5), ("cells", 4), ("components", 1)],
         },
@@ -142,7 +142,7 @@ fn cases() -> Vec<Case> {
             functions: r#"[{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]}]"#,
             mode: Mode::Ia,
             n: 6,
-            sparse_holds: false,
+            sparse_holds: true,
             streams: false,
             counts: &[("patches", 1), ("cells", 2), ("chains", 0)],
         },

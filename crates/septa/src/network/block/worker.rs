@@ -56,7 +56,7 @@ pub(crate) struct State {
     pub block_box: Option<([usize; 3], [usize; 3])>,
 }
 
-const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+pub(crate) const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
 
 /// The sorted grid vertices of face `i` (opposite corner `i`) of `tet`.
 pub(super) fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
@@ -448,7 +448,7 @@ pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
 /// Whether tet face `corners` lies in the network: IA, the smallest active
 /// function vanishing at its 3 corners; MI, two active functions tied for
 /// the maximum at all 3 corners (returns the first of them).
-fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
+pub(crate) fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
     match mode {
         Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
         Mode::Mi => {

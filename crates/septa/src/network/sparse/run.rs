@@ -16,10 +16,12 @@
 //! the dense samples. Values exactly 0 (IA) or tied (MI) at grid vertices
 //! need nothing special: polygons lying in tet faces pair by key in the
 //! merge on both paths, and ray shooting works on the merged network
-//! either way. Only where ray shooting declines (a ray running along the
-//! network, components touching at points) or cell volumes are asked for,
-//! which need cell grouping across every tet face, does the sparse path
-//! fall back to the dense one, and it says so (`dense_fallback`).
+//! either way (network vertices at grid vertices start and stop rays like
+//! edge-points: `topology/raytrace.rs`). Only where ray shooting declines
+//! (pieces of one component touching only at points, as tangent spheres)
+//! or cell volumes are asked for, which need cell grouping across every tet
+//! face, does the sparse path fall back to the dense one, and it says so
+//! (`dense_fallback`).
 
 use std::time::Instant;
 

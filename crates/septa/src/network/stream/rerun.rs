@@ -15,7 +15,7 @@ use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{BlockOut, Worker};
 use crate::network::field::BoundedField;
 use crate::network::sparse::run_block_with;
-use crate::network::topology::{faces_at_vertices, RayIndex};
+use crate::network::topology::{faces_at_vertices, FaceSide, RayIndex};
 use crate::network::{NetworkOptions, VKey};
 
 /// A block run again, indexed for lookups.
@@ -119,7 +119,10 @@ impl RayIndex for RerunIndex<'_> {
         Some(assembled.piece_comp[piece as usize])
     }
 
-    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32> {
+    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: FaceSide) -> Option<u32> {
+        // The stream refuses faces lying in tet faces, the only ones whose
+        // side depends on the merged face.
+        let FaceSide::Of(side) = side else { return None };
         let assembled = self.assembled;
         let r = self.block_of(tet)?;
         let mut ids: SmallVec<[u32; 8]> = SmallVec::new();

@@ -144,6 +144,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
             face_start: &m.face_start,
             face_verts: &m.face_verts,
             face_patch: &face_patch,
+            face_label: &m.face_label,
             shell_of_hp: &shell_of_hp,
             vertex_comp: &vertex_comp,
             num_comps: components,

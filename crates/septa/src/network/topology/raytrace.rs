@@ -9,18 +9,32 @@
 //! shells and rays. Every step is combinatorial: points along a grid edge
 //! come in order from the per-tet complex.
 //!
+//! Degenerate inputs (values exactly 0 or tied at grid vertices) put
+//! network vertices at grid vertices and network faces in tet faces. The
+//! ordering vector is extended to them: a network vertex at grid vertex `w`
+//! orders as `{w, 0}`, before every edge-point `{w, u, i}` (`u > w`). A ray
+//! leaves from its component's smallest point in this order, along a grid
+//! edge towards a smaller vertex; every point it meets is smaller still,
+//! so it never meets its own component, and no ray segment lies in the
+//! network: a segment of the network below the start would hold smaller
+//! points of the same component, and a ray walking from a vertex off the
+//! network meets the network first at a point. At a network vertex on a
+//! grid vertex the shell facing the ray is read from whichever tet around
+//! the grid edge has a network face there (a tet may touch the network
+//! only at that corner).
+//!
 //! Preconditions, checked: a box grid (convex boundary, no cavities or
-//! handles). Network vertices at grid vertices are points a ray can hit
-//! too; where the local picture is ambiguous (a ray segment lying in the
-//! network, a ray returning to its own component) the answer is `None` and
-//! the caller falls back to cell grouping.
+//! handles), and components whose faces connect across edges (pieces
+//! touching only at points make the caller group cells instead). Where the
+//! local picture is still ambiguous the answer is `None` and the caller
+//! falls back to cell grouping.
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use crate::complex::{Complex, Mode, NONE};
+use crate::complex::{Complex, Mode, Plane, NONE};
 use crate::grid::{BoxGrid, Grid};
-use crate::network::block::{active_functions, vertex_key, Ctx};
+use crate::network::block::{active_functions, degenerate_face, vertex_key, Ctx, FACE_OF};
 use crate::network::VKey;
 use crate::uf::UnionFind;
 
@@ -35,7 +49,31 @@ pub(crate) trait RayIndex {
 
     /// The shell of side `side` (0 positive, 1 negative) of the network
     /// face of `tet` whose vertices have the keys `keys`.
-    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32>;
+    fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: FaceSide) -> Option<u32>;
+}
+
+/// Which side of a network face a cell of a tet lies on.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FaceSide {
+    /// Side 0 (positive) or 1, read from the tet's own face.
+    Of(usize),
+    /// A face lying in a tet face (its halves paired in the merge): IA, the
+    /// cell is on the vanishing function's positive side (side 0) or not.
+    Positive(bool),
+    /// MI, the cell's material; side 0 is the face's smaller material.
+    Material(u16),
+}
+
+impl FaceSide {
+    /// The side, given the face's two labels (`[f, f]` in IA, the sorted
+    /// material pair in MI), as the merge orients faces in tet faces.
+    pub(crate) fn of(self, label: [u16; 2]) -> usize {
+        match self {
+            FaceSide::Of(s) => s,
+            FaceSide::Positive(p) => usize::from(!p),
+            FaceSide::Material(m) => usize::from(m != label[0]),
+        }
+    }
 }
 
 /// The in-memory network as ray shooting sees it.
@@ -44,6 +82,7 @@ pub(crate) struct RayInput<'a> {
     pub face_start: &'a [u32],
     pub face_verts: &'a [u32],
     pub face_patch: &'a [u32],
+    pub face_label: &'a [[u16; 2]],
     pub shell_of_hp: &'a [u32],
     /// Connected component of each vertex.
     pub vertex_comp: &'a [u32],
@@ -51,18 +90,32 @@ pub(crate) struct RayInput<'a> {
 }
 
 impl RayInput<'_> {
-    /// Per component, the smallest grid edge `(v, u)` carrying one of its
-    /// edge-points (where its ray starts), or `None` if a component touches
-    /// no grid edge (cannot happen on a proper network).
+    /// Per component, where its ray starts (see [`ray_start`]), or `None`
+    /// if a component touches no grid edge or vertex (cannot happen on a
+    /// proper network).
     pub(crate) fn starts(&self) -> Option<Vec<(u32, u32)>> {
         let mut best: Vec<(u32, u32)> = vec![(u32::MAX, u32::MAX); self.num_comps];
         for (v, k) in self.keys.iter().enumerate() {
-            if k.grid[2] == u32::MAX {
+            if let Some(s) = ray_start(k) {
                 let c = self.vertex_comp[v] as usize;
-                best[c] = best[c].min((k.grid[0], k.grid[1]));
+                best[c] = best[c].min(s);
             }
         }
         best.iter().all(|b| b.0 != u32::MAX).then_some(best)
+    }
+}
+
+/// The ordering vector's first two entries for a network vertex on the grid's
+/// edges: `(v, u)` for an edge-point on grid edge `v < u`, `(w, 0)` for a
+/// vertex at grid vertex `w` (before every edge-point of edges from `w`,
+/// as `u > w >= 0`); `None` for vertices inside grid faces or tets.
+pub(crate) fn ray_start(k: &VKey) -> Option<(u32, u32)> {
+    if k.grid[1] == u32::MAX {
+        Some((k.grid[0], 0))
+    } else if k.grid[2] == u32::MAX {
+        Some((k.grid[0], k.grid[1]))
+    } else {
+        None
     }
 }
 
@@ -110,7 +163,7 @@ impl RayIndex for MergedIndex<'_> {
         self.vmap.get(key).map(|id| self.inp.vertex_comp[id as usize])
     }
 
-    fn shell(&mut self, _tet: &[u32; 4], keys: &[VKey], side: usize) -> Option<u32> {
+    fn shell(&mut self, _tet: &[u32; 4], keys: &[VKey], side: FaceSide) -> Option<u32> {
         let mut ids: SmallVec<[u32; 8]> = SmallVec::new();
         for &k in keys {
             ids.push(self.vmap.get(k)?);
@@ -123,6 +176,7 @@ impl RayIndex for MergedIndex<'_> {
                 inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
             vs.sort_unstable();
             if vs == ids {
+                let side = side.of(inp.face_label[gf as usize]);
                 let s = inp.shell_of_hp[2 * inp.face_patch[gf as usize] as usize + side];
                 return (s != NONE).then_some(s);
             }
@@ -164,6 +218,8 @@ impl<'a> KeyIndex<'a> {
 struct TetView {
     tet: [u32; 4],
     active: Vec<u16>,
+    /// Values of the active functions at the tet's corners.
+    vals: Vec<[f64; 4]>,
     complex: Complex,
 }
 
@@ -181,17 +237,25 @@ pub(crate) fn ray_cells(
     let mut uf = UnionFind::new(num_shells + 1);
     for (c, &(v, u)) in starts.iter().enumerate() {
         let c = c as u32;
+        // A start at grid vertex `w = v` runs along the edge to w's lowest
+        // neighbour; an edge-point start along its own edge towards `v`.
+        let (v, u, at_corner) = if u == 0 { (lowest_neighbour(g, v), v, true) } else { (v, u, false) };
         let view = tet_view(ctx, g, v, u)?;
         let pts = edge_points(ctx, &view, v, u, index);
-        // The component's point closest to v on this edge (never a corner).
-        let j = (1..pts.len().saturating_sub(1)).find(|&j| pts[j] == Some(c))?;
-        let start_shell = facing_shell(ctx, index, &view, v, u, j, true)?;
+        // The component's point closest to v on this edge (the corner `u`
+        // itself for a start at a grid vertex).
+        let j = if at_corner {
+            (pts.last() == Some(&Some(c))).then(|| pts.len() - 1)?
+        } else {
+            (1..pts.len().saturating_sub(1)).find(|&j| pts[j] == Some(c))?
+        };
+        let start_shell = facing_shell_around(ctx, g, index, &view, v, u, j, true)?;
         let end_shell = match (0..j).rev().find(|&k| pts[k].is_some()) {
             Some(k) => {
                 if pts[k] == Some(c) {
                     return None;
                 }
-                facing_shell(ctx, index, &view, v, u, k, false)?
+                facing_shell_around(ctx, g, index, &view, v, u, k, false)?
             }
             None => walk(ctx, g, index, num_shells, v, c)?,
         };
@@ -220,7 +284,7 @@ fn walk(ctx: &Ctx, g: &BoxGrid, index: &mut dyn RayIndex, num_shells: usize, fro
                 if pts[k] == Some(comp) {
                     return None;
                 }
-                return facing_shell(ctx, index, &view, w, cur, k, false);
+                return facing_shell_around(ctx, g, index, &view, w, cur, k, false);
             }
         }
         cur = w;
@@ -302,7 +366,11 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
             false
         }
     });
-    let tet = found?;
+    view_of(ctx, found?)
+}
+
+/// The complex of grid tet `tet`.
+fn view_of(ctx: &Ctx, tet: [u32; 4]) -> Option<TetView> {
     let mut active = Vec::new();
     active_functions(ctx, 0, &tet, &mut active).ok()?;
     let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.val(v, f as usize))).collect();
@@ -314,7 +382,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
     if !empty {
         complex.build(ctx.mode, &vals, &ctx.options).ok()?;
     }
-    Some(TetView { tet, active, complex })
+    Some(TetView { tet, active, vals, complex })
 }
 
 /// The vertices of grid edge `a b` in the tet's complex, ordered from `a`
@@ -330,6 +398,145 @@ fn edge_points(ctx: &Ctx, view: &TetView, a: u32, b: u32, index: &mut dyn RayInd
         .iter()
         .map(|&cv| index.component(&view.tet, vertex_key(ctx.mode, &view.complex, cv, &view.tet, &view.active)))
         .collect()
+}
+
+/// [`facing_shell`] in `view`, or, at a corner of the edge (a network vertex
+/// at a grid vertex), in any other tet around grid edge `a b`: a tet may
+/// touch the network only at that corner, with the faces there in its
+/// neighbours. Every tet around the edge has the same points on it.
+#[allow(clippy::too_many_arguments)]
+fn facing_shell_around(
+    ctx: &Ctx,
+    g: &BoxGrid,
+    index: &mut dyn RayIndex,
+    view: &TetView,
+    a: u32,
+    b: u32,
+    j: usize,
+    towards_a: bool,
+) -> Option<u32> {
+    if let Some(s) = facing_shell(ctx, index, view, a, b, j, towards_a) {
+        return Some(s);
+    }
+    let mut tets: SmallVec<[[u32; 4]; 8]> = SmallVec::new();
+    for_tets_at(g, a, |tet| {
+        if tet.contains(&b) && tet != view.tet {
+            tets.push(tet);
+        }
+        false
+    });
+    if let Some(s) = tets.into_iter().find_map(|tet| {
+        let other = view_of(ctx, tet)?;
+        facing_shell(ctx, index, &other, a, b, j, towards_a)
+    }) {
+        return Some(s);
+    }
+    // No tet around the edge has a network face at the corner: look for
+    // one in the region's other tet cells around that grid vertex.
+    let w = if j == 0 { a } else { b };
+    let c = &view.complex;
+    let list = c.tet_edge_points(local(view, a)?, local(view, b)?);
+    if j != 0 && j + 1 != list.len() {
+        return None;
+    }
+    let q = if towards_a { list[j - 1] } else { *list.get(j + 1)? };
+    let cell = cell_at_edge(c, list[j], q)?;
+    shell_around_vertex(ctx, g, index, view.tet, cell, w)
+}
+
+/// Local index of grid vertex `v` in the tet of `view`.
+fn local(view: &TetView, v: u32) -> Option<u8> {
+    view.tet.iter().position(|&x| x == v).map(|i| i as u8)
+}
+
+/// The cell of complex `c` along complex edge `p q`, if that edge is in no
+/// network face (a segment of a ray off the network lies in one cell).
+fn cell_at_edge(c: &Complex, p: u32, q: u32) -> Option<u32> {
+    let edge = c.edges().iter().position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
+    if c.faces().iter().any(|f| f.plane.is_network() && f.edges.contains(&edge)) {
+        return None;
+    }
+    c.cells()
+        .iter()
+        .position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))
+        .map(|i| i as u32)
+}
+
+/// The shell of a network face at grid vertex `w` that bounds the region of
+/// cell `cell` of tet `tet`'s complex near `w`: a search over the cells of
+/// the tets around `w` that have `w` as a corner, crossing tet-face pieces
+/// at `w` that are no part of the network (paired across tets by their
+/// vertex keys, as the merge pairs them), until a cell has a network face
+/// at `w`. A tet may touch the network only at `w`, with the faces there in
+/// its neighbours (a plane through grid vertices).
+fn shell_around_vertex(
+    ctx: &Ctx,
+    g: &BoxGrid,
+    index: &mut dyn RayIndex,
+    tet: [u32; 4],
+    cell: u32,
+    w: u32,
+) -> Option<u32> {
+    let mut tets: SmallVec<[[u32; 4]; 32]> = SmallVec::new();
+    for_tets_at(g, w, |t| {
+        tets.push(t);
+        false
+    });
+    let views: Vec<TetView> = tets.iter().map(|&t| view_of(ctx, t)).collect::<Option<_>>()?;
+    // The complex vertex at corner w of each tet (none in an empty complex).
+    let corner: Vec<Option<u32>> = views
+        .iter()
+        .map(|v| {
+            let lw = local(v, w)?;
+            v.complex.vertices().iter().position(|x| x.simplex() == 1 << lw).map(|i| i as u32)
+        })
+        .collect();
+    let key_set = |v: &TetView, face: &crate::complex::Face| -> SmallVec<[VKey; 8]> {
+        let mut k: SmallVec<[VKey; 8]> =
+            face.vertices.iter().map(|&x| vertex_key(ctx.mode, &v.complex, x, &v.tet, &v.active)).collect();
+        k.sort_unstable();
+        k
+    };
+    let t0 = tets.iter().position(|&t| t == tet)?;
+    let mut seen: rustc_hash::FxHashSet<(usize, u32)> = Default::default();
+    seen.insert((t0, cell));
+    let mut queue = vec![(t0, cell)];
+    while let Some((t, cell)) = queue.pop() {
+        let v = &views[t];
+        let Some(p) = corner[t] else { continue };
+        for &fi in &v.complex.cells()[cell as usize].faces {
+            let face = &v.complex.faces()[fi as usize];
+            if !face.vertices.contains(&p) {
+                continue;
+            }
+            if let Some(side) = face_side(ctx, v, face, cell) {
+                let keys: SmallVec<[VKey; 8]> =
+                    face.vertices.iter().map(|&x| vertex_key(ctx.mode, &v.complex, x, &v.tet, &v.active)).collect();
+                if let Some(s) = index.shell(&v.tet, &keys, side) {
+                    return Some(s);
+                }
+                continue;
+            }
+            // A piece of a tet face off the network: the same piece in the
+            // tet on its other side (none on the grid's boundary).
+            let keys = key_set(v, face);
+            for (t2, v2) in views.iter().enumerate() {
+                if t2 == t {
+                    continue;
+                }
+                for f2 in v2.complex.faces() {
+                    if matches!(f2.plane, Plane::TetFace(_))
+                        && f2.vertices.len() == keys.len()
+                        && key_set(v2, f2) == keys
+                        && seen.insert((t2, f2.cells[0]))
+                    {
+                        queue.push((t2, f2.cells[0]));
+                    }
+                }
+            }
+        }
+    }
+    None
 }
 
 /// The shell on the side of the network, at the `j`-th point of the list
@@ -362,15 +569,33 @@ fn facing_shell(
         c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
     for &fi in &c.cells()[cell as usize].faces {
         let face = &c.faces()[fi as usize];
-        if !face.plane.is_network() || !face.vertices.contains(&p) {
+        if !face.vertices.contains(&p) {
             continue;
         }
+        let Some(side) = face_side(ctx, view, face, cell) else { continue };
         let keys: SmallVec<[VKey; 8]> =
             face.vertices.iter().map(|&v| vertex_key(ctx.mode, c, v, &view.tet, &view.active)).collect();
-        let side = if face.cells[0] == cell { 0 } else { 1 };
         if let Some(s) = index.shell(&view.tet, &keys, side) {
             return Some(s);
         }
     }
     None
+}
+
+/// The side of network face `face` of the tet's complex that cell `cell`
+/// is on, or `None` if the face is no part of the network (a tet face the
+/// network does not contain).
+fn face_side(ctx: &Ctx, view: &TetView, face: &crate::complex::Face, cell: u32) -> Option<FaceSide> {
+    let Plane::TetFace(i) = face.plane else {
+        return Some(FaceSide::Of(if face.cells[0] == cell { 0 } else { 1 }));
+    };
+    let z = degenerate_face(ctx.mode, &view.vals, &view.active, FACE_OF[i as usize])?;
+    let c = &view.complex.cells()[cell as usize];
+    Some(match ctx.mode {
+        Mode::Ia => {
+            let local = view.active.iter().position(|&f| f == z)? as u16;
+            FaceSide::Positive(c.is_positive(local))
+        }
+        Mode::Mi => FaceSide::Material(view.active[c.material() as usize]),
+    })
 }
