@@ -59,6 +59,7 @@ pub mod holes;
 pub mod input;
 pub mod lines;
 pub mod nodes;
+pub mod nudge;
 pub mod output;
 pub mod plane_graph;
 pub mod repair;
