@@ -6,6 +6,7 @@
 use super::geom::{cross3, dot3, neg3, Ctx, LineDir, V3};
 use super::nodes::FxMap;
 use super::plane_graph::dir_vec;
+use crate::uf::UnionFind;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 /// The input face a cut-face lies in.
@@ -56,15 +57,6 @@ pub struct Cells {
     pub ordered_edges: usize,
 }
 
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let g = parent[parent[i as usize] as usize];
-        parent[i as usize] = g;
-        i = g;
-    }
-    i
-}
-
 /// Joins half-faces into cells.
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
     // incident (edge key, face loop, traverses min -> max, its own direction
@@ -80,7 +72,8 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
     }
     inc.sort_unstable_by_key(|x| (x.0, x.1));
     let nf = faces.iter().map(|f| f.face + 1).max().unwrap_or(0) as usize;
-    let mut parent: Vec<u32> = (0..2 * nf as u32).collect();
+    // half-faces (2 f + side) of one cell
+    let mut half = UnionFind::new(2 * nf);
     let fid = |f: u32| faces[f as usize].face;
     let is_plane = |f: u32| matches!(faces[f as usize].support, Support::Plane(_));
     let mut ordered = 0usize;
@@ -205,10 +198,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let (na, nb) =
                 if k == 2 { (2 * fid(fa) + 1, 2 * fid(fb) + 1) } else { (2 * fid(fa) + side_a, 2 * fid(fb) + side_b) };
             if inside {
-                let (ra, rb) = (find(&mut parent, na), find(&mut parent, nb));
-                if ra != rb {
-                    parent[ra.max(rb) as usize] = ra.min(rb);
-                }
+                half.union(na, nb);
             }
         }
     }
@@ -220,7 +210,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 continue;
             }
             let n = 2 * fl.face + side;
-            let r = find(&mut parent, n);
+            let r = half.find(n);
             let len = ids.len() as u32;
             let id = *ids.entry(r).or_insert(len);
             cell_of[n as usize] = id;

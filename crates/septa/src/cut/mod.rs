@@ -62,6 +62,7 @@ pub mod nodes;
 pub mod nudge;
 pub mod output;
 pub mod plane_graph;
+pub mod rational;
 pub mod repair;
 pub mod selfx;
 pub mod side_filter;

@@ -3,6 +3,7 @@
 //! share (TopoCut Sec. 3.1, "equivalent" points) and united here.
 
 use super::geom::Def;
+use crate::uf::UnionFind;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
@@ -49,7 +50,9 @@ pub struct Nodes {
     /// Definition of each node.
     pub defs: Vec<Def>,
     index: FxMap<Def, u32>,
-    parent: Vec<u32>,
+    same: UnionFind,
+    /// Per union-find root: the node of the smallest definition in its set.
+    least: Vec<u32>,
 }
 
 impl Nodes {
@@ -60,31 +63,31 @@ impl Nodes {
         }
         let i = self.defs.len() as u32;
         self.defs.push(d);
-        self.parent.push(i);
+        self.same.push();
+        self.least.push(i);
         self.index.insert(d, i);
         i
     }
 
-    /// Representative of a node.
-    pub fn find(&mut self, mut i: u32) -> u32 {
-        while self.parent[i as usize] != i {
-            let g = self.parent[self.parent[i as usize] as usize];
-            self.parent[i as usize] = g;
-            i = g;
-        }
-        i
+    /// Representative of a node: the node of the smallest definition of
+    /// its point.
+    pub fn find(&mut self, i: u32) -> u32 {
+        self.least[self.same.find(i) as usize]
     }
 
     /// Records that two triples are the same point. The smaller definition
     /// becomes the representative, so the result does not depend on the
     /// order of merges.
     pub fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
+        let (ra, rb) = (self.same.find(a), self.same.find(b));
         if ra == rb {
             return;
         }
-        let (keep, drop) = if self.defs[ra as usize] <= self.defs[rb as usize] { (ra, rb) } else { (rb, ra) };
-        self.parent[drop as usize] = keep;
+        let (la, lb) = (self.least[ra as usize], self.least[rb as usize]);
+        let keep = if self.defs[la as usize] <= self.defs[lb as usize] { la } else { lb };
+        self.same.union(ra, rb);
+        let r = self.same.find(ra);
+        self.least[r as usize] = keep;
     }
 
     /// Number of nodes.

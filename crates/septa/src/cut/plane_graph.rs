@@ -9,6 +9,7 @@
 
 use super::geom::{cross3, dot3, neg3, sub3, v3, Ctx, LineDir, V3};
 use super::nodes::FxMap;
+use crate::uf::UnionFind;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 /// An edge of a plane graph or a face: end points (compact ids), the line
@@ -204,15 +205,6 @@ pub(crate) fn mesh_status(c: &Ctx, p: u32, e: u32, h: (LineDir, bool)) -> Status
     }
 }
 
-fn find(parent: &mut [u32], mut i: u32) -> u32 {
-    while parent[i as usize] != i {
-        let g = parent[parent[i as usize] as usize];
-        parent[i as usize] = g;
-        i = g;
-    }
-    i
-}
-
 /// Builds `H(p)` from its edges and returns the inside loops (cut-faces).
 pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassified: &mut u64) -> Vec<PlaneLoop> {
     // dedup edges by end points
@@ -279,7 +271,8 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     // status of loops
     let mut status: Vec<Option<Status>> = vec![None; loops.len()];
     let mut line_edge = vec![false; loops.len()];
-    let mut parent: Vec<u32> = (0..loops.len() as u32).collect();
+    // loops joined across plane-plane edges (no boundary there) share a status
+    let mut joined = UnionFind::new(loops.len());
     for h in 0..nh {
         let e = &es[h / 2];
         let k = (e.a.min(e.b), e.a.max(e.b));
@@ -300,10 +293,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
             None => {
                 line_edge[l] = true;
                 if h % 2 == 0 {
-                    let (a, b) = (find(&mut parent, loop_of[h]), find(&mut parent, loop_of[h ^ 1]));
-                    if a != b {
-                        parent[a.max(b) as usize] = a.min(b);
-                    }
+                    joined.union(loop_of[h], loop_of[h ^ 1]);
                 }
             }
         }
@@ -311,7 +301,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     let mut comp_status: Vec<Option<Status>> = vec![None; loops.len()];
     for l in 0..loops.len() {
         if let Some(s) = status[l] {
-            let r = find(&mut parent, l as u32) as usize;
+            let r = joined.find(l as u32) as usize;
             if comp_status[r].is_none() {
                 comp_status[r] = Some(s);
             }
@@ -331,7 +321,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
         let s = match status[l] {
             Some(s) => s,
             None => {
-                let r = find(&mut parent, l as u32) as usize;
+                let r = joined.find(l as u32) as usize;
                 match comp_status[r] {
                     Some(s) => s,
                     None => {
