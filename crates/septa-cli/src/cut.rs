@@ -55,7 +55,8 @@ pub struct Args {
     pub verify: bool,
     /// Also write `vertices_exact.json`: each cut-vertex's defining triple
     /// of input elements (mesh vertex, mesh edge and plane, triangle and two
-    /// planes, or three planes), from which its exact rational position follows.
+    /// planes, or three planes) and its exact rational coordinates
+    /// (`"numerator/denominator"` strings).
     #[arg(long)]
     pub exact_vertices: bool,
 }
