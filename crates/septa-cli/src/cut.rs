@@ -55,7 +55,8 @@ pub struct Args {
     pub verify: bool,
     /// Also write `vertices_exact.json`: each cut-vertex's defining triple
     /// of input elements (mesh vertex, mesh edge and plane, triangle and two
-    /// planes, or three planes), from which its exact rational position follows.
+    /// planes, or three planes) and its exact rational coordinates
+    /// (`"numerator/denominator"` strings).
     #[arg(long)]
     pub exact_vertices: bool,
 }
@@ -125,9 +126,14 @@ pub fn run(a: Args) -> CliResult {
     }
     if a.exact_vertices {
         let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
+        let exact =
+            septa::cut::rational::exact_coordinates(&mesh.vertices, &mesh.triangles, &out.planes, &out.vertex_defs)?;
+        let coords: Vec<[String; 3]> =
+            exact.iter().map(|p| p.each_ref().map(septa::cut::rational::fraction_string)).collect();
         let j = serde_json::json!({
-            "about": "cut-vertex i of cells.vtu is defined by defs[i]: V(v) mesh vertex v; EP(e, p) mesh edge e (edges[e] = [u, v]) and plane p; TPP(t, p, q) triangle t and planes p, q; PPP(p, q, r) three planes. Planes index `planes` (a x + b y + c z + d = 0, the doubles used); the exact position is the rational intersection of these input elements.",
+            "about": "cut-vertex i of cells.vtu is defined by defs[i]: V(v) mesh vertex v; EP(e, p) mesh edge e (edges[e] = [u, v]) and plane p; TPP(t, p, q) triangle t and planes p, q; PPP(p, q, r) three planes. Planes index `planes` (a x + b y + c z + d = 0, the doubles used). coordinates[i] is its exact position, the rational intersection of these input elements: x, y, z as reduced fractions \"numerator/denominator\" (or an integer). Points of cells.vtu after the cut-vertices are face centres added by the certified embedding (not cut-vertices).",
             "defs": defs,
+            "coordinates": coords,
             "planes": out.planes,
         });
         dir.write("vertices_exact.json", serde_json::to_string(&j)?.as_bytes())?;

@@ -6,17 +6,23 @@
 //!    triangles of its own vertices (ear clipping with exact orientations,
 //!    `triangulate`); faces with holes likewise (bridged);
 //! 2. then the exact check ([`super::verify`]) runs on what would be
-//!    written; every face holding an offending polygon (a triangle meeting
-//!    another, a degenerate or non-planar polygon) is written instead as a
-//!    fan of triangles around a new point, the mean of its vertices. Each
-//!    fan triangle joins two consecutive boundary vertices, so no diagonal
-//!    runs along a rounded chain of exactly collinear cut-vertices (where
-//!    ear-clipped slivers poke into the neighbouring face). The round is
-//!    kept only if the exact check counts fewer violations, and repeated.
+//!    written, and the faces holding an offending polygon (a triangle
+//!    meeting another, a degenerate or non-planar polygon) are re-written,
+//!    each step kept only if the exact check counts fewer violations:
+//!    a. as their best-shaped triangulation (`triangulate_shaped`): ear
+//!       clipping along a rounded, nearly straight chain of cut-vertices
+//!       leaves slivers whose long side crosses the neighbouring face; the
+//!       shaped one fans the chain from a vertex off it;
+//!    b. as a fan of triangles around a new point, the mean of its
+//!       vertices (each fan triangle joins two consecutive boundary
+//!       vertices, so no diagonal runs along a chain);
+//!    c. by certified vertex moves of a few ulps ([`super::nudge`]).
 //!
 //! The final exact report is kept in [`RepairStats`]: the guarantee is that
 //! report, not this heuristic.
 
+use super::nudge::nudge;
+use super::triangulate::triangulate_shaped;
 use super::verify::VerifyReport;
 use super::CutCellMesh;
 use rustc_hash::FxHashMap;
@@ -26,8 +32,14 @@ use rustc_hash::FxHashMap;
 pub struct RepairStats {
     /// Violations of the exact check before the fans.
     pub violations_before: usize,
+    /// Faces written as their best-shaped triangulation
+    /// ([`triangulate_shaped`]) instead of ear clipping or one polygon.
+    pub faces_reshaped: usize,
     /// Faces written as a fan around a new centre point.
     pub faces_fanned: usize,
+    /// Vertices moved by a few ulps where the exact local check improved
+    /// ([`nudge`]; cut-vertices and face centres, never input vertices).
+    pub vertices_nudged: usize,
     /// Rounds kept.
     pub rounds: usize,
     /// The exact check of the result (what `cells.vtu` holds).
@@ -40,38 +52,84 @@ fn sorted(p: &[u32]) -> Vec<u32> {
     s
 }
 
-/// Re-writes offending faces as fans until the exact check is clean or stops
-/// improving (at most 4 rounds).
+/// The cut-faces holding an offending polygon of `r` (each written
+/// polygon, as a vertex set, names its cut-face).
+fn offending_faces(out: &CutCellMesh, r: &VerifyReport) -> Vec<u32> {
+    let mut of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
+    for (i, f) in out.faces.iter().enumerate() {
+        if out.face_split[i] {
+            for t in &out.face_triangles[i] {
+                of.insert(sorted(t), i as u32);
+            }
+        } else {
+            of.insert(sorted(&f.loops[0]), i as u32);
+        }
+    }
+    let mut faces: Vec<u32> = r.offending_polygons.iter().filter_map(|p| of.get(&sorted(p)).copied()).collect();
+    faces.sort_unstable();
+    faces.dedup();
+    faces
+}
+
+/// Re-writes offending faces (shaped triangulations, then fans) until the
+/// exact check is clean or stops improving (at most 8 rounds).
 pub fn repair(out: &mut CutCellMesh) -> RepairStats {
     let mut st = RepairStats::default();
     let mut r = out.verify();
     st.violations_before = r.violations();
     let mut fanned = vec![false; out.faces.len()];
-    for _ in 0..4 {
+    let mut shaped = vec![false; out.faces.len()];
+    for _ in 0..8 {
         if r.violations() == 0 {
             break;
         }
-        // written polygon (as a vertex set) -> cut-face
-        let mut of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
-        for (i, f) in out.faces.iter().enumerate() {
-            if out.face_split[i] {
-                for t in &out.face_triangles[i] {
-                    of.insert(sorted(t), i as u32);
+        let offending = offending_faces(out, &r);
+        // 1. the offending faces' best-shaped triangulation (no new vertices)
+        let faces: Vec<(u32, Vec<[u32; 3]>)> = offending
+            .iter()
+            .filter(|&&f| !shaped[f as usize] && !fanned[f as usize])
+            .filter_map(|&f| {
+                let cf = &out.faces[f as usize];
+                let t = triangulate_shaped(&out.vertices, &cf.loops, out.support_normal(cf))?;
+                Some((f, t))
+            })
+            .filter(|(f, t)| !out.face_split[*f as usize] || out.face_triangles[*f as usize] != *t)
+            .collect();
+        if !faces.is_empty() {
+            let saved: Vec<(bool, Vec<[u32; 3]>)> = faces
+                .iter()
+                .map(|(f, _)| (out.face_split[*f as usize], out.face_triangles[*f as usize].clone()))
+                .collect();
+            for (f, t) in &faces {
+                out.face_triangles[*f as usize] = t.clone();
+                out.face_split[*f as usize] = true;
+            }
+            let r2 = out.verify();
+            if r2.violations() < r.violations() {
+                for (f, _) in &faces {
+                    shaped[*f as usize] = true;
                 }
-            } else {
-                of.insert(sorted(&f.loops[0]), i as u32);
+                st.faces_reshaped += faces.len();
+                st.rounds += 1;
+                r = r2;
+                continue;
+            }
+            for ((f, _), (s, t)) in faces.iter().zip(saved) {
+                out.face_split[*f as usize] = s;
+                out.face_triangles[*f as usize] = t;
             }
         }
-        let mut faces: Vec<u32> = r
-            .offending_polygons
+        // 2. fans around a new centre point
+        let faces: Vec<u32> = offending
             .iter()
-            .filter_map(|p| of.get(&sorted(p)).copied())
+            .copied()
             .filter(|&f| out.faces[f as usize].loops.len() == 1 && !fanned[f as usize])
             .collect();
-        faces.sort_unstable();
-        faces.dedup();
         if faces.is_empty() {
-            break;
+            if !nudge_round(out, &mut r, &offending, &mut st) {
+                break;
+            }
+            continue;
         }
         let nv = out.vertices.len();
         let saved: Vec<(bool, Vec<[u32; 3]>)> =
@@ -100,9 +158,32 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
                 out.face_split[f as usize] = s;
                 out.face_triangles[f as usize] = t;
             }
-            break;
+            if !nudge_round(out, &mut r, &offending, &mut st) {
+                break;
+            }
         }
     }
     st.report = r;
     st
+}
+
+/// 3. certified vertex moves ([`nudge`]) on the offending faces; kept only
+/// if the exact check of the whole result improves.
+fn nudge_round(out: &mut CutCellMesh, r: &mut VerifyReport, offending: &[u32], st: &mut RepairStats) -> bool {
+    let saved = (out.vertices.clone(), out.face_split.clone(), out.face_triangles.clone());
+    let moved = nudge(out, offending);
+    if moved == 0 {
+        (out.vertices, out.face_split, out.face_triangles) = saved;
+        return false;
+    }
+    let r2 = out.verify();
+    if r2.violations() < r.violations() {
+        st.vertices_nudged += moved;
+        st.rounds += 1;
+        *r = r2;
+        true
+    } else {
+        (out.vertices, out.face_split, out.face_triangles) = saved;
+        false
+    }
 }

@@ -16,6 +16,153 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
         let l = &loops[0];
         return vec![[l[0], l[1], l[2]]];
     }
+    let (k, poly) = bridged(x, loops, normal);
+    ear_clip(x, k, normal[k] < 0.0, &poly)
+}
+
+/// Largest polygon (after bridging holes) given to [`triangulate_shaped`]:
+/// its dynamic programme costs `O(n^3)` exact orientations.
+pub const SHAPED_MAX: usize = 160;
+
+/// Triangles covering a face like [`triangulate`], chosen among all
+/// triangulations without new vertices to maximise the sum of the
+/// logarithms of each triangle's smallest corner sine (dynamic programming
+/// over the polygon's diagonals, each admitted by exact 2D orientations).
+/// Ear clipping must cut some ear even where every ear is a sliver; along a
+/// rounded chain of nearly collinear cut-vertices (a plane meeting a nearly
+/// flat part of the surface) such a sliver's long side leaves the chain and
+/// crosses the neighbouring face. The optimum fans the chain from a vertex
+/// off it whenever one sees it. `None` when the polygon is larger than
+/// [`SHAPED_MAX`] or has no triangulation in projection (not simple).
+pub fn triangulate_shaped(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Option<Vec<[u32; 3]>> {
+    let (k, poly) = bridged(x, loops, normal);
+    let n = poly.len();
+    if !(3..=SHAPED_MAX).contains(&n) {
+        return None;
+    }
+    let flip = normal[k] < 0.0;
+    let o2 = |a: u32, b: u32, c: u32| {
+        let s = orient2(x, k, a, b, c);
+        if flip {
+            s.flip()
+        } else {
+            s
+        }
+    };
+    let (i2, j2) = ((k + 1) % 3, (k + 2) % 3);
+    let between = |v: u32, a: u32, b: u32| {
+        // v on the line a b (known): inside the closed segment, exactly
+        let (pv, pa, pb) = (x[v as usize], x[a as usize], x[b as usize]);
+        [i2, j2].iter().all(|&c| pv[c] >= pa[c].min(pb[c]) && pv[c] <= pa[c].max(pb[c]))
+    };
+    // closed segment intersection in projection
+    let meets = |p: u32, q: u32, a: u32, b: u32| {
+        let (s1, s2) = (o2(p, q, a), o2(p, q, b));
+        let (s3, s4) = (o2(a, b, p), o2(a, b, q));
+        if s1 != Sign::Zero && s1 == s2 || s3 != Sign::Zero && s3 == s4 {
+            return false;
+        }
+        if s1 != Sign::Zero && s2 != Sign::Zero && s3 != Sign::Zero && s4 != Sign::Zero {
+            return true;
+        }
+        (s1 == Sign::Zero && between(a, p, q))
+            || (s2 == Sign::Zero && between(b, p, q))
+            || (s3 == Sign::Zero && between(p, a, b))
+            || (s4 == Sign::Zero && between(q, a, b))
+    };
+    // diagonal i-j strictly inside the polygon: in the cone of the corner
+    // at i (O'Rourke, Computational Geometry in C, 1.6) and meeting no
+    // boundary edge away from its own endpoints
+    let diag = |i: usize, j: usize| -> bool {
+        let (a, b) = (poly[i], poly[j]);
+        if a == b {
+            return false;
+        }
+        let (a0, a1) = (poly[(i + n - 1) % n], poly[(i + 1) % n]);
+        let cone = if o2(a0, a, a1) != Sign::Negative {
+            o2(a, b, a0) == Sign::Positive && o2(b, a, a1) == Sign::Positive
+        } else {
+            !(o2(a, b, a1) != Sign::Negative && o2(b, a, a0) != Sign::Negative)
+        };
+        cone && (0..n).all(|e| {
+            let (c, d) = (poly[e], poly[(e + 1) % n]);
+            c == a || c == b || d == a || d == b || !meets(a, b, c, d)
+        })
+    };
+    let mut ok = vec![false; n * n];
+    for i in 0..n {
+        ok[i * n + (i + 1) % n] = true;
+        ok[((i + 1) % n) * n + i] = true;
+        for j in i + 2..n {
+            if i == 0 && j == n - 1 {
+                continue;
+            }
+            let v = diag(i, j);
+            ok[i * n + j] = v;
+            ok[j * n + i] = v;
+        }
+    }
+    let quality = |u: u32, v: u32, w: u32| {
+        let p = [x[u as usize], x[v as usize], x[w as usize]];
+        let e = |a: usize, b: usize| -> [f64; 3] { std::array::from_fn(|c| p[b][c] - p[a][c]) };
+        let (ab, ac) = (e(0, 1), e(0, 2));
+        let cr = [ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]];
+        let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let twice_area = len(cr);
+        let l = [len(ab), len(e(1, 2)), len(ac)];
+        // smallest corner sine: 2A / (product of the two longest sides)
+        let mut s = l;
+        s.sort_by(f64::total_cmp);
+        (twice_area / (s[1] * s[2]).max(f64::MIN_POSITIVE)).max(1e-300).ln()
+    };
+    // best[i][j]: best triangulation of the chain i..=j closed by i-j
+    let mut best = vec![f64::NEG_INFINITY; n * n];
+    let mut arg = vec![usize::MAX; n * n];
+    for i in 0..n - 1 {
+        best[i * n + i + 1] = 0.0;
+    }
+    for d in 2..n {
+        for i in 0..n - d {
+            let j = i + d;
+            if !ok[i * n + j] {
+                continue;
+            }
+            for m in i + 1..j {
+                let (l, r) = (best[i * n + m], best[m * n + j]);
+                if l == f64::NEG_INFINITY || r == f64::NEG_INFINITY {
+                    continue;
+                }
+                if o2(poly[i], poly[m], poly[j]) != Sign::Positive {
+                    continue;
+                }
+                let v = l + r + quality(poly[i], poly[m], poly[j]);
+                if v > best[i * n + j] {
+                    best[i * n + j] = v;
+                    arg[i * n + j] = m;
+                }
+            }
+        }
+    }
+    if best[n - 1] == f64::NEG_INFINITY {
+        return None;
+    }
+    let mut out = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0usize, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j - i < 2 {
+            continue;
+        }
+        let m = arg[i * n + j];
+        out.push([poly[i], poly[m], poly[j]]);
+        stack.push((i, m));
+        stack.push((m, j));
+    }
+    Some(out)
+}
+
+/// The projection axis (dropping the dominant normal component) and the
+/// outer loop with every hole joined to it by a bridge edge.
+fn bridged(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> (usize, Vec<u32>) {
     // project dropping the dominant normal axis, keeping orientation
     let k = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs())).unwrap();
     let (i, j) = if normal[k] >= 0.0 { ((k + 1) % 3, (k + 2) % 3) } else { ((k + 2) % 3, (k + 1) % 3) };
@@ -55,7 +202,7 @@ pub fn triangulate(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> Vec<
         merged.extend_from_slice(&poly[c..]);
         poly = merged;
     }
-    ear_clip(x, k, normal[k] < 0.0, &poly)
+    (k, poly)
 }
 
 fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -163,5 +310,36 @@ mod tests {
             })
             .sum();
         assert!((area - 12.0).abs() < 1e-12, "{area}");
+    }
+
+    /// A nearly straight chain of five corners (bulging out by 1e-12) under
+    /// one apex: every triangulation without slivers fans the chain from
+    /// the apex, and the shaped one finds it (ear clipping cuts the apex
+    /// first and must then clip slivers along the chain).
+    #[test]
+    fn shaped_fans_a_nearly_straight_chain() {
+        let x = [
+            [0.0, 0.0, 0.0],
+            [1.0, -1e-12, 0.0],
+            [2.0, -2e-12, 0.0],
+            [3.0, -1e-12, 0.0],
+            [4.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+        ];
+        let loops = [vec![0, 1, 2, 3, 4, 5]];
+        let t = triangulate_shaped(&x, &loops, [0.0, 0.0, 1.0]).unwrap();
+        assert_eq!(t.len(), 4);
+        assert!(t.iter().all(|f| f.contains(&5)), "{t:?}");
+        let area: f64 = t
+            .iter()
+            .map(|f| {
+                let p = |v: u32| [x[v as usize][0], x[v as usize][1]];
+                cross(p(f[0]), p(f[1]), p(f[2])) / 2.0
+            })
+            .sum();
+        assert!((area - 2.0).abs() < 1e-9, "{area}");
+        // a polygon that is not simple in projection has no triangulation
+        let bow = [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        assert!(triangulate_shaped(&bow, &[vec![0, 1, 2, 3]], [0.0, 0.0, 1.0]).is_none());
     }
 }

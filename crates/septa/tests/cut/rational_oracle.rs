@@ -133,3 +133,65 @@ fn rational_oracle_catches_broken_output() {
     eprintln!("unsplit knight.R10: {o:?}");
     assert!(o.nonplanar > 100, "{o:?}");
 }
+
+/// `septa::cut::rational::exact_coordinates` (the coordinates of
+/// `vertices_exact.json`): each cut-vertex lies exactly on every plane its
+/// triple names, an input vertex is itself, the written double is its exact
+/// position up to rounding and the embedding's moves of a few hundred ulps,
+/// and the fraction strings read back to the same rationals.
+#[test]
+fn exact_coordinates_lie_on_their_defining_planes() {
+    use septa::cut::geom::Def;
+    use septa::cut::rational::{exact_coordinates, fraction_string};
+    let data = common::shared_data();
+    let mut total = [0usize; 4];
+    for (mesh, set) in [("cube", "A5"), ("knight", "R10"), ("staircase", "A5"), ("plate_genus9", "R10")] {
+        let m = read_mesh(&data.join(format!("meshes/{mesh}.obj"))).unwrap();
+        let planes = read_planes(&data.join(format!("topocut/{mesh}.{set}.plane"))).unwrap();
+        let out = cut_mesh(&m.vertices, &m.triangles, &planes, &CutOptions::default()).unwrap();
+        let ex = exact_coordinates(&m.vertices, &m.triangles, &out.planes, &out.vertex_defs).unwrap();
+        assert_eq!(ex.len(), out.vertex_defs.len());
+        let on = |p: u32, x: &P| {
+            let pl = out.planes[p as usize];
+            (q(pl[0]) * &x[0] + q(pl[1]) * &x[1] + q(pl[2]) * &x[2] + q(pl[3])).is_zero()
+        };
+        let mut checked = [0usize; 4];
+        for (i, (d, x)) in out.vertex_defs.iter().zip(&ex).enumerate() {
+            let ok = match *d {
+                Def::V(v) => {
+                    checked[0] += 1;
+                    m.vertices[v as usize].iter().zip(x).all(|(a, b)| q(*a) == *b)
+                }
+                Def::EP(_, p) => {
+                    checked[1] += 1;
+                    on(p, x)
+                }
+                Def::TPP(_, p, r) => {
+                    checked[2] += 1;
+                    on(p, x) && on(r, x)
+                }
+                Def::PPP(p, r, s) => {
+                    checked[3] += 1;
+                    on(p, x) && on(r, x) && on(s, x)
+                }
+            };
+            assert!(ok, "{mesh}.{set}: vertex {i} {d:?} off its elements");
+            for k in 0..3 {
+                let w = out.vertices[i][k];
+                let err = (&q(w) - &x[k]).abs();
+                let tol = q(w.abs().max(1.0) * 1e-12);
+                assert!(err <= tol, "{mesh}.{set}: vertex {i} coordinate {k}: {w} vs {}", x[k]);
+                let s = fraction_string(&x[k]);
+                let back: Q = match s.split_once('/') {
+                    Some((n, d)) => Q::new(n.parse::<BigInt>().unwrap(), d.parse::<BigInt>().unwrap()),
+                    None => Q::from_integer(s.parse::<BigInt>().unwrap()),
+                };
+                assert_eq!(back, x[k]);
+            }
+        }
+        eprintln!("{mesh}.{set}: V/EP/TPP/PPP checked {checked:?}");
+        (0..4).for_each(|k| total[k] += checked[k]);
+    }
+    // every kind of triple was checked
+    assert!(total.iter().all(|&n| n > 0), "{total:?}");
+}

@@ -1,7 +1,7 @@
 //! The written embedding of every reference case passes the exact check
 //! (`septa::cut::verify`): closed, consistently oriented, planar-faced,
 //! non-self-intersecting cells of positive volume on the written doubles.
-//! Small meshes by default; all 57 cases and the seeded random plane sets
+//! Small meshes by default; all 57 cases and more seeded random plane sets
 //! with `SEPTA_FULL=1`; one case with `SEPTA_CASE=name`.
 
 use crate::common;
@@ -12,28 +12,16 @@ use septa::io::{mesh::read_mesh, planes::read_planes};
 
 const SMALL: &[&str] = &["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"];
 
-/// Cases whose written embedding still has violations of the exact check
-/// (counted in cut.json `embedding`; docs/performance.md): nearly coplanar
-/// input triangles whose rounded cut-vertices cross each other's pieces.
-/// Every other case must be proven clean; a case leaving this list is
-/// progress (remove it), one joining it a regression.
-const KNOWN: &[&str] = &[
-    "plate_genus9.R10",
-    "plate_genus9.R20",
-    "staircase.R20",
-    "plate_genus9.r7s11",
-    "plate_genus9.r13s5",
-    "staircase.r13s5",
-];
-
 fn report_line(name: &str, out: &septa::cut::CutCellMesh, r: &septa::cut::verify::VerifyReport) -> String {
     let e = out.stats.embedding.as_ref().unwrap();
     format!(
-        "{name:22} split nonplanar {:5} holes {:3} before {:4} fanned {:4} faces {:6} tris {:7} violations {} {:?}",
+        "{name:22} split nonplanar {:5} holes {:3} before {:4} reshaped {:4} fanned {:4} nudged {:4} faces {:6} tris {:7} violations {} {:?}",
         out.stats.faces_split_nonplanar,
         out.stats.faces_split_holes,
         e.violations_before,
+        e.faces_reshaped,
         e.faces_fanned,
+        e.vertices_nudged,
         r.faces,
         r.triangles,
         r.violations(),
@@ -68,10 +56,7 @@ fn reference_cases_verify_exactly() {
         eprintln!("{}", report_line(name, &out, &r));
         ran += 1;
         let before = out.stats.embedding.as_ref().unwrap().violations_before;
-        if (r.violations() != 0 && !KNOWN.contains(&name.as_str()))
-            || r.cells != out.num_cells
-            || r.violations() > before
-        {
+        if r.violations() != 0 || r.cells != out.num_cells || r.violations() > before {
             failures.push(name.clone());
         }
     }
@@ -80,7 +65,8 @@ fn reference_cases_verify_exactly() {
 }
 
 /// Seeded random plane sets (`septa cut --random N --seed S`) over every
-/// shared mesh (only with `SEPTA_FULL=1`; the small meshes otherwise).
+/// shared mesh: one set of 7 planes by default; with `SEPTA_FULL=1` also
+/// 13, 20 and 31 planes (other seeds). Each must be proven clean.
 #[test]
 fn random_plane_sets_verify_exactly() {
     let data = common::shared_data();
@@ -91,21 +77,20 @@ fn random_plane_sets_verify_exactly() {
         .filter(|n| n.ends_with(".obj"))
         .collect();
     names.sort();
+    assert!(names.len() >= 11, "shared meshes missing: {names:?}");
+    let sets: &[(usize, u64)] = if full { &[(7, 11), (13, 5), (20, 3), (31, 7)] } else { &[(7, 11)] };
     let mut failures = Vec::new();
     for n in &names {
         let stem = n.trim_end_matches(".obj");
-        if !full && !["cube", "knight", "plate_genus9"].contains(&stem) {
-            continue;
-        }
         let mesh = read_mesh(&data.join("meshes").join(n)).unwrap();
-        for (count, seed) in [(7usize, 11u64), (13, 5)] {
+        for &(count, seed) in sets {
             let planes = septa::io::planes::random_planes(&mesh.vertices, count, seed);
             let opts = CutOptions { skip_self_intersection_check: true, ..Default::default() };
             let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &opts).unwrap();
             let r = out.verify();
             let name = format!("{stem}.r{count}s{seed}");
             eprintln!("{}", report_line(&name, &out, &r));
-            if r.violations() != 0 && !KNOWN.contains(&name.as_str()) {
+            if r.violations() != 0 || r.cells != out.num_cells {
                 failures.push(name);
             }
         }
