@@ -51,7 +51,8 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     // The 4 corner values of every function, read once: the tests below
     // compare every pair of functions at every corner (4 k^2 reads), and a
     // sparse read goes through a row look-up each time.
-    let rows: SmallVec<[[f64; 4]; 8]> = (0..k).map(|f| tet.map(|v| ctx.val(v, f))).collect();
+    let mut rows: SmallVec<[[f64; 4]; 8]> = SmallVec::new();
+    ctx.corner_rows(tet, &mut rows);
     let dominates = |g: usize, f: usize| (0..4).all(|i| rows[g][i] > rows[f][i]);
     if ctx.average_domination && k >= 3 {
         let mut max = [f64::NEG_INFINITY; 4];
