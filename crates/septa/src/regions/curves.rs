@@ -23,17 +23,44 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     if interest.curves.is_empty() {
         return Vec::new();
     }
-    extract_with(net, region, &|around: &[RegionId]| interest.curve(around))
+    extract_with(net, region, 0, &|around: &[RegionId]| interest.curve(around))
 }
 
 /// [`extract`] with the triple of each edge chosen by `pick` from the sorted
 /// distinct regions around it (`None`: no curve of interest there).
+/// `pick` must answer `None` for sets of fewer than `min_regions` regions:
+/// edges that cannot have that many are not looked at (0: every edge).
 pub(crate) fn extract_with(
     net: &Network,
     region: &[RegionId],
+    min_regions: usize,
     pick: &dyn Fn(&[RegionId]) -> Option<[RegionId; 3]>,
 ) -> Vec<Curve> {
-    // Regions around each network edge, from the cells of its polygons:
+    // The regions around an edge are among those around either end vertex
+    // (every polygon at the edge holds both ends). Up to `min_regions`
+    // distinct regions per vertex, in one linear pass, rule out the edges
+    // inside surfaces (nearly all of them) before anything is sorted.
+    let wanted = min_regions.min(3);
+    let mut seen: Vec<([RegionId; 3], u8)> = vec![([0; 3], 0); if wanted > 1 { net.points.len() } else { 0 }];
+    if wanted > 1 {
+        for f in 0..net.num_faces() {
+            for c in net.face_cells[f] {
+                if c == u32::MAX {
+                    continue;
+                }
+                let r = region[c as usize];
+                for &v in net.face(f) {
+                    let (set, n) = &mut seen[v as usize];
+                    if (*n as usize) < wanted && !set[..*n as usize].contains(&r) {
+                        set[*n as usize] = r;
+                        *n += 1;
+                    }
+                }
+            }
+        }
+    }
+    let may_be_curve = |v: u32| wanted <= 1 || seen[v as usize].1 as usize >= wanted;
+    // Regions around each candidate edge, from the cells of its polygons:
     // one (edge, region) entry per polygon side, sorted and deduplicated,
     // so each edge's regions are a sorted run (no map of small vectors).
     let mut around: Vec<((u32, u32), RegionId)> = Vec::new();
@@ -42,6 +69,9 @@ pub(crate) fn extract_with(
         let cells = net.face_cells[f];
         for k in 0..p.len() {
             let (a, b) = (p[k], p[(k + 1) % p.len()]);
+            if !(may_be_curve(a) && may_be_curve(b)) {
+                continue;
+            }
             for c in cells {
                 if c != u32::MAX {
                     around.push(((a.min(b), a.max(b)), region[c as usize]));

@@ -112,7 +112,7 @@ fn regions_of(net: crate::network::Network, ids: &[i64], list_triples: bool) -> 
         if k < 3 {
             return Vec::new();
         }
-        super::curves::extract_with(net, region, &pick)
+        super::curves::extract_with(net, region, 3, &pick)
     };
     from_network_with(net, &rule, &Interest::all(), &curves)
 }

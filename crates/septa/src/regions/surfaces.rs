@@ -62,19 +62,28 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     let poly = |i: usize| &loops[loop_start[i] as usize..loop_start[i + 1] as usize];
     // Join kept polygons of one pair across shared edges: (edge, pair,
     // polygon) entries sorted, so the polygons at one edge of one pair are
-    // a run (component numbering does not depend on the union order).
-    let mut by_edge: Vec<((u32, u32), [RegionId; 2], u32)> = Vec::with_capacity(loops.len());
+    // a run (component numbering does not depend on the union order). Each
+    // entry is packed into one `u128` in the same order (the pair by its
+    // rank among the distinct pairs), which sorts several times faster than
+    // a tuple of 32 bytes.
+    let mut ranks: Vec<[RegionId; 2]> = pairs.clone();
+    ranks.sort_unstable();
+    ranks.dedup();
+    let rank = |p: &[RegionId; 2]| ranks.binary_search(p).expect("a listed pair") as u128;
+    let mut by_edge: Vec<u128> = Vec::with_capacity(loops.len());
     for i in 0..n {
         let p = poly(i);
+        let r = rank(&pairs[i]) << 32 | i as u128;
         for k in 0..p.len() {
-            by_edge.push((edge(p[k], p[(k + 1) % p.len()]), pairs[i], i as u32));
+            let (a, b) = edge(p[k], p[(k + 1) % p.len()]);
+            by_edge.push((a as u128) << 96 | (b as u128) << 64 | r);
         }
     }
     by_edge.sort_unstable();
     let mut uf = UnionFind::new(n);
     for w in by_edge.windows(2) {
-        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
-            uf.union(w[0].2, w[1].2);
+        if w[0] >> 32 == w[1] >> 32 {
+            uf.union(w[0] as u32, w[1] as u32);
         }
     }
     let (comp, count) = uf.components();

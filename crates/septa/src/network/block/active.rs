@@ -48,29 +48,28 @@ pub(crate) fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
 /// the functions maximal at some vertex (complex/dominated.rs).
 fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     let k = ctx.k;
-    let v = |f: usize, i: usize| ctx.val(tet[i], f);
+    // The 4 corner values of every function, read once: the tests below
+    // compare every pair of functions at every corner (4 k^2 reads), and a
+    // sparse read goes through a row look-up each time.
+    let mut rows: SmallVec<[[f64; 4]; 8]> = SmallVec::new();
+    ctx.corner_rows(tet, &mut rows);
+    let dominates = |g: usize, f: usize| (0..4).all(|i| rows[g][i] > rows[f][i]);
     if ctx.average_domination && k >= 3 {
         let mut max = [f64::NEG_INFINITY; 4];
-        for f in 0..k {
+        for r in &rows {
             for (i, m) in max.iter_mut().enumerate() {
-                *m = m.max(v(f, i));
+                *m = m.max(r[i]);
             }
         }
-        let mut winners: SmallVec<[[f64; 4]; 8]> = SmallVec::new();
-        for f in 0..k {
-            let r = [0, 1, 2, 3].map(|i| v(f, i));
-            if (0..4).any(|i| r[i] == max[i]) {
-                winners.push(r);
-            }
-        }
+        let is_winner = |r: &[f64; 4]| (0..4).any(|i| r[i] == max[i]);
+        let winners: SmallVec<[[f64; 4]; 8]> = rows.iter().filter(|r| is_winner(r)).copied().collect();
         if winners.len() >= 2 {
-            for f in 0..k {
-                let r = [0, 1, 2, 3].map(|i| v(f, i));
-                let winner = (0..4).any(|i| r[i] == max[i]);
-                if winner || !crate::complex::average_dominates(&winners, &r) {
+            for (f, r) in rows.iter().enumerate() {
+                let winner = is_winner(r);
+                if winner || !crate::complex::average_dominates(&winners, r) {
                     // A winner is never dominated; the others still may be
                     // by a single function, as below.
-                    if winner || !(0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > r[i])) {
+                    if winner || !(0..k).any(|g| g != f && dominates(g, f)) {
                         out.push(f as u16);
                     }
                 }
@@ -79,12 +78,12 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
         }
     }
     // A likely dominator: the maximum at vertex 0.
-    let g0 = (0..k).fold(0, |b, f| if v(f, 0) > v(b, 0) { f } else { b });
+    let g0 = (0..k).fold(0, |b, f| if rows[f][0] > rows[b][0] { f } else { b });
     for f in 0..k {
-        if f != g0 && (0..4).all(|i| v(g0, i) > v(f, i)) {
+        if f != g0 && dominates(g0, f) {
             continue;
         }
-        if (0..k).any(|g| g != f && (0..4).all(|i| v(g, i) > v(f, i))) {
+        if (0..k).any(|g| g != f && dominates(g, f)) {
             continue;
         }
         out.push(f as u16);

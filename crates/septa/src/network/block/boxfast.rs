@@ -26,10 +26,9 @@ pub(crate) fn applies(ctx: &Ctx) -> bool {
     ctx.mode == Mode::Mi || ctx.k <= 63
 }
 
-fn vertex_label(ctx: &Ctx, v: u32) -> u64 {
+fn vertex_label(ctx: &Ctx, v: u32, buf: &mut Vec<f64>) -> u64 {
     let k = ctx.k;
-    let mut buf = Vec::new();
-    let row = ctx.row(v, &mut buf);
+    let row = ctx.row(v, buf);
     match ctx.mode {
         Mode::Ia => {
             let mut bits = 0u64;
@@ -98,11 +97,12 @@ pub(super) fn run_box(
     let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     let vn = [n[0] + 1, n[1] + 1, n[2] + 1];
     let mut vl = vec![0u64; vn[0] * vn[1] * vn[2]];
+    let mut buf = Vec::with_capacity(ctx.k);
     for i in 0..vn[0] {
         for j in 0..vn[1] {
             for k in 0..vn[2] {
                 let v = g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]);
-                vl[(i * vn[1] + j) * vn[2] + k] = vertex_label(ctx, v);
+                vl[(i * vn[1] + j) * vn[2] + k] = vertex_label(ctx, v, &mut buf);
             }
         }
     }

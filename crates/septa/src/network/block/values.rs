@@ -12,6 +12,11 @@ use crate::network::field::BoundedField;
 pub(crate) trait Values: Sync {
     /// Value of function `f` at grid vertex `v`.
     fn val(&self, v: u32, f: usize) -> f64;
+    /// The `k` values at grid vertex `v` where they are held as one row
+    /// (`None`: ask [`Values::val`] per function).
+    fn row(&self, _v: u32) -> Option<&[f64]> {
+        None
+    }
 }
 
 /// Run-wide inputs.
@@ -47,10 +52,27 @@ impl Ctx<'_> {
     pub(crate) fn row<'b>(&'b self, v: u32, buf: &'b mut Vec<f64>) -> &'b [f64] {
         match self.sparse {
             None => &self.values[v as usize * self.k..(v as usize + 1) * self.k],
-            Some(s) => {
-                buf.clear();
-                buf.extend((0..self.k).map(|f| s.val(v, f)));
-                buf
+            Some(s) => match s.row(v) {
+                Some(row) => row,
+                None => {
+                    buf.clear();
+                    buf.extend((0..self.k).map(|f| s.val(v, f)));
+                    buf
+                }
+            },
+        }
+    }
+
+    /// The values of every function at the 4 corners of `tet`
+    /// (`out[f][i]`: function `f` at corner `i`), one row look-up per corner.
+    pub(crate) fn corner_rows(&self, tet: &[u32; 4], out: &mut smallvec::SmallVec<[[f64; 4]; 8]>) {
+        out.clear();
+        out.resize(self.k, [0.0; 4]);
+        let mut buf = Vec::new();
+        for (i, &v) in tet.iter().enumerate() {
+            let row = self.row(v, &mut buf);
+            for (f, &x) in row.iter().enumerate() {
+                out[f][i] = x;
             }
         }
     }
@@ -99,6 +121,12 @@ impl Values for BlockValues {
     #[inline]
     fn val(&self, v: u32, f: usize) -> f64 {
         self.data[self.local(v) * self.k + f]
+    }
+
+    #[inline]
+    fn row(&self, v: u32) -> Option<&[f64]> {
+        let at = self.local(v) * self.k;
+        Some(&self.data[at..at + self.k])
     }
 }
 

@@ -74,20 +74,20 @@ fn sample_block(
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let mut data = Vec::with_capacity(vn[0] * vn[1] * vn[2] * k);
     let mut clean = true;
+    // One `sample` call per row of vertices along the last axis: fields
+    // that override it (a label volume reads each voxel once, not once per
+    // function) answer a row at a time; the values are the same bits.
+    let mut points = Vec::with_capacity(vn[2]);
     for i in lo[0]..=hi[0] {
         for j in lo[1]..=hi[1] {
-            for l in lo[2]..=hi[2] {
-                let v = grid.vertex_index([i, j, l]);
-                let p = grid.vertex(v);
-                let start = data.len();
-                for f in 0..k {
-                    let x = functions.value(f, p);
-                    if !x.is_finite() {
-                        return Err(NetworkError::NonFinite { vertex: v as usize, function: f, value: x });
-                    }
-                    data.push(x);
+            points.clear();
+            points.extend((lo[2]..=hi[2]).map(|l| grid.vertex(grid.vertex_index([i, j, l]))));
+            let rows = functions.sample(&points);
+            for (n, row) in rows.chunks_exact(k).enumerate() {
+                if let Some(f) = row.iter().position(|x| !x.is_finite()) {
+                    let v = grid.vertex_index([i, j, lo[2] + n]);
+                    return Err(NetworkError::NonFinite { vertex: v as usize, function: f, value: row[f] });
                 }
-                let row = &data[start..];
                 clean &= match mode {
                     Mode::Ia => row.iter().all(|&x| x != 0.0),
                     Mode::Mi => {
@@ -96,6 +96,7 @@ fn sample_block(
                     }
                 };
             }
+            data.extend_from_slice(&rows);
         }
     }
     Ok((BlockValues::new(grid, lo, vn, k, data), clean))
