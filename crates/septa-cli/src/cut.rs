@@ -105,18 +105,17 @@ pub fn run(a: Args) -> CliResult {
         let _ = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global();
     }
     let t1 = Instant::now();
-    let out = cut_mesh(
-        &mesh.vertices,
-        &mesh.triangles,
-        &planes,
-        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify },
-    )?;
+    let options =
+        CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
+    let out =
+        crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
     }
-    let check = out.validate();
+    let check = crate::progress::during(a.json, "checking the cells", || out.validate());
     let t2 = Instant::now();
+    let writing = crate::progress::stage(a.json, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     if !a.no_mesh_output {
@@ -143,6 +142,9 @@ pub fn run(a: Args) -> CliResult {
         Some(septa::cut::verify::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();
+    if let Some(bar) = writing {
+        bar.finish_and_clear();
+    }
     let c = out.counts;
     let mut seconds = serde_json::Map::new();
     seconds.insert("read".into(), read_s.into());
