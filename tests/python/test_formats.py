@@ -306,3 +306,15 @@ def test_progress_callback_and_logger(caplog):
     assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
     with pytest.raises(septa.InputError, match="progress"):
         septa.arrangement(g, f, progress=3)
+
+
+def test_region_progress_callback_and_logger(caplog):
+    import logging
+
+    calls = []
+    with caplog.at_level(logging.INFO, logger="septa"):
+        net = septa.region_surfaces("builtin:sphere-plane-hole", progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1][0] == calls[-1][1] and all(0 < d <= t for d, t in calls)
+    assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
+    with pytest.raises(septa.InputError, match="progress"):
+        septa.region_surfaces("builtin:sphere-plane-hole", progress="yes")

@@ -12,16 +12,18 @@ use std::time::Instant;
 pub struct Args {
     /// Closed, outward-oriented triangle mesh (.obj, .off, .ply, .stl).
     pub mesh: PathBuf,
-    /// N axis-aligned planes per axis over the bounding box (TopoCut's An).
+    /// N evenly spaced axis-aligned planes per axis across the mesh's bounding box.
     #[arg(long, conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
     pub grid: Option<usize>,
-    /// N random planes through the bounding-box diagonal (TopoCut's Rn).
+    /// N random planes, each through a random point of the bounding box's
+    /// diagonal (the same planes for the same --seed).
     #[arg(long, conflicts_with = "planes", value_parser = crate::args::planes)]
     pub random: Option<usize>,
     /// Seed of --random.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Plane file: `a b c d` per line (optionally TopoCut's `N 4` header).
+    /// Plane file: one plane `a b c d` (a x + b y + c z + d = 0) per line; a
+    /// first line `N 4` (the number of planes) is allowed.
     #[arg(long)]
     pub planes: Option<PathBuf>,
     /// Output folder (cells.vtu, cells.obj, cut.json; default septa-out; not

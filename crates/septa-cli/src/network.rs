@@ -64,7 +64,7 @@ pub struct Args {
     #[arg(long, default_value_t = 16, value_parser = crate::args::block)]
     block: usize,
     /// Sample every grid vertex (the dense path). By default, analytic
-    /// functions on a box grid (a function JSON, reference config or scene)
+    /// functions on a box grid (a scene or a JSON list of functions)
     /// are evaluated sparsely: blocks the functions' bounds prove empty are
     /// skipped, the rest sampled block by block; the output is identical
     /// (the bounds enclose the rounded samples; docs/sparse.md).
