@@ -30,6 +30,14 @@ rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stal
 # CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
 PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .
 
+step "Python: the wheel for other machines (maturin build --release: stripped, manylinux, abi3)"
+# Same profile and flags as the install above, so cargo reuses its build;
+# scripts/check_wheel.py checks the tag, the size and that the library is
+# stripped (the README and docs/distributed.md quote them).
+rm -rf "$ROOT/target/wheels-ci"
+PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/maturin build --release -q -o "$ROOT/target/wheels-ci"
+.venv/bin/python scripts/check_wheel.py "$ROOT"/target/wheels-ci/septa-*.whl
+
 step "Python: pytest"
 # Run from tests/python so `import septa` is the installed package, not python/septa.
 # -rs lists every skip with its reason; under CI=true (.ci/run) a skip fails

@@ -22,7 +22,8 @@ def network(
     progress: object | None = None,
 ) -> dict: ...
 
-def regions(scene: str, normals: bool = False, clean: float | None = None) -> dict:
+def regions(scene: str, normals: bool = False, clean: float | None = None,
+            progress: object | None = None) -> dict:
     """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as numpy arrays (``septa.Network``'s names)."""
 
 def labels(volume: np.ndarray, sigma: float = 0.0) -> dict:

@@ -53,6 +53,11 @@ def _grid_inputs(grid_or_vertices, tets, values):
     return v, t, f
 
 
+def _check_progress(progress):
+    if progress is not None and not callable(progress):
+        raise _septa.InputError("progress: expected a function progress(done, total)")
+
+
 def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progress=None):
     v, t, f = _grid_inputs(grid_or_vertices, tets, values)
     if cells not in ("raytrace", "grouping"):
@@ -61,8 +66,7 @@ def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progr
     g = grid_or_vertices
     if isinstance(g, Grid) and g.resolution is not None and (tets is None or values is None or tets is g.tets):
         box = (tuple(g.resolution), g.bounds.tolist(), g.split)
-    if progress is not None and not callable(progress):
-        raise _septa.InputError("progress: expected a function progress(done, total)")
+    _check_progress(progress)
     t0 = time.perf_counter()
     d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"),
                        threads=_inputs.threads(threads), progress=progress)
@@ -110,7 +114,7 @@ def material_interface(grid_or_vertices, tets, values=None, *, threads=None, loo
 
 
 def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False,
-                    clean=None):
+                    clean=None, progress=None):
     """Non-manifold implicit shape: the surfaces and curves of interest of a region rule.
 
     ``scene_or_functions`` is a scene (a dict in the scene-file form, a path,
@@ -134,6 +138,9 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     edge are collapsed where the surfaces' topology, curves and corners
     stay; the polygons become triangles; ``net.summary()["clean"]`` says
     how many edges were collapsed and refused.
+    ``progress``: a function ``progress(done, total)`` called as blocks of
+    the network finish (as in :func:`arrangement`); the ``septa`` logger
+    says what was computed, at INFO.
 
     >>> import septa
     >>> net = septa.region_surfaces("builtin:sphere-with-hole")
@@ -156,8 +163,9 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     elif rule is not None or surfaces is not None or curves is not None:
         raise _septa.InputError("rule, surfaces and curves go with a list of functions; a scene carries its own")
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
+    _check_progress(progress)
     t0 = time.perf_counter()
-    net = _region_network(_septa.regions(text, normals=normals, clean=clean))
+    net = _region_network(_septa.regions(text, normals=normals, clean=clean, progress=progress))
     _log_done("region_surfaces", net, t0)
     return net
 

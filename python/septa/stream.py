@@ -28,11 +28,13 @@ from .distributed import job_spec
 
 def stream_ply(scene_or_functions, path, *, grid=None, mode="ia", block=16, window=0, triangles=False,
                threads=None, topology=True) -> dict:
-    """Streams the IA or MI polygons of analytic functions to the PLY ``path``.
+    """Streams the IA or MI polygons of analytic functions to the PLY ``path``
+    (or, for a path ending in ``.vtu``, a VTK file with cell data ``patch``,
+    ``labels``, ``cells`` and ``block``, which meshio and ParaView read).
 
     ``scene_or_functions``, ``grid``, ``block``: as :func:`septa.distributed.job_spec`.
     ``window``: blocks computed at a time (0: four per thread). ``triangles``:
-    write each polygon as a fan of triangles (what trimesh reads). ``topology``:
+    write each polygon as a fan of triangles (what trimesh reads; PLY only). ``topology``:
     assemble patches, chains, shells and cells too (else faces get patch and
     cells -1). Returns ``{"path", "faces" (polygons), "ply_faces", "vertices",
     "active_tets", "blocks": {"total", "skipped", "sampled", "active"}}`` and,

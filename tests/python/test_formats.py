@@ -29,6 +29,15 @@ def _run(*args):
     return json.loads(out.stdout)
 
 
+def _run_plain(*args):
+    """A command with --json and no --format (cut writes its one set of files)."""
+    if not SEPTA.exists():
+        pytest.skip("target/release/septa not built (scripts/test.sh builds it)")
+    out = subprocess.run([str(SEPTA), *map(str, args), "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout.splitlines()[0])
+
+
 def _jobs(tmp_path):
     """(name, folder, --json) of each command on a small input."""
     vol = np.zeros((10, 10, 10), dtype=np.int64)
@@ -134,11 +143,98 @@ def _check_folder(name, d, summary):
     return z
 
 
+def _check_surfaces_obj(d, z):
+    """regions/labels surfaces.obj: a group per surface (its polygons) and
+    per curve (its `l` lines), read by all three."""
+    nf, nchains = len(z["offsets"]) - 1, len(z["chain_offsets"]) - 1
+    m = meshio.read(d / "surfaces.obj")
+    assert sum(len(c.data) for c in m.cells) == nf  # (meshio keeps the faces only)
+    groups = np.concatenate(m.cell_data["obj:group_ids"])
+    assert len(np.unique(groups)) == len(z["patch_labels"])  # one group per surface
+    t = trimesh.load(d / "surfaces.obj", process=False, force="mesh", group_material=False, split_object=False)
+    assert len(t.faces) == int((np.diff(z["offsets"]) - 2).sum())  # the polygons as triangles
+    assert pv.read(d / "surfaces.obj").n_cells == nf + nchains
+
+
+def _check_stream(tmp_path):
+    """`ia --stream`: the PLY (trimesh with --triangles, pyvista) and the .vtu
+    (meshio, pyvista) hold the same polygons, in the same order, with the
+    same arrays; counts are the command's and the topology file's."""
+    d = tmp_path / "stream"
+    d.mkdir()
+    runs = {}
+    for name, extra in (("s.ply", []), ("t.ply", ["--triangles"]), ("s.vtu", [])):
+        runs[name] = _run_plain("ia", "builtin:sphere-with-hole", "--stream", d / name, *extra)
+    nf, nv = runs["s.vtu"]["faces"], runs["s.vtu"]["vertices"]
+    assert all(r["faces"] == nf and r["vertices"] == nv for r in runs.values())
+    topo = json.loads((d / "s.topology.json").read_text())
+    m = meshio.read(d / "s.vtu")
+    assert len(m.points) == nv and sum(len(c.data) for c in m.cells) == nf
+    g = pv.read(d / "s.vtu")
+    assert g.n_cells == nf and g.n_points == nv
+    labels, cells, patch = (np.asarray(g.cell_data[k]) for k in ("labels", "cells", "patch"))
+    assert labels.shape == (nf, 2) and cells.shape == (nf, 2)
+    # meshio cuts the polygons into runs of one size, in file order.
+    for key, ref in (("patch", patch), ("labels", labels), ("cells", cells), ("block", g.cell_data["block"])):
+        assert np.array_equal(_cat(m, key).reshape(nf, -1), np.asarray(ref).reshape(nf, -1)), key
+    assert np.allclose(m.points, g.points)
+    # Every face has its patch and both cells (the topology's counts); IA labels are the function twice.
+    assert np.array_equal(np.bincount(patch), [p["faces"] for p in topo["patches"]])
+    assert cells.min() >= 0 and cells.max() == topo["counts"]["cells"] - 1
+    assert np.all(labels[:, 0] == labels[:, 1])
+    # The PLY triangle fans, read by trimesh: the same arrays per polygon.
+    t = trimesh.load(d / "t.ply", process=False)
+    sizes = np.diff(g.offset)
+    of_tri = np.repeat(np.arange(nf), sizes - 2)
+    assert len(t.faces) == len(of_tri) and len(t.vertices) == nv
+    raw = t.metadata["_ply_raw"]["face"]["data"]
+    assert np.array_equal(raw["patch"].ravel(), patch[of_tri])
+    for k in (0, 1):
+        assert np.array_equal(raw[f"labels_{k}"].ravel(), labels[of_tri, k])
+        assert np.array_equal(raw[f"cells_{k}"].ravel(), cells[of_tri, k])
+    assert np.allclose(t.vertices, g.points)
+    # pyvista reads both PLYs' geometry (VTK's PLY reader keeps no face properties).
+    assert pv.read(d / "s.ply").n_cells == nf and pv.read(d / "t.ply").n_cells == len(of_tri)
+
+
+def _check_cut(tmp_path):
+    """`septa cut`: cells.vtu (polyhedra) read by meshio and pyvista with
+    cell_id and volume; cells.obj by all three (one group per cell)."""
+    # A corner tetrahedron cut by 5 planes per axis at exact quarters: 20
+    # cells (the cubes with i + j + k <= 3).
+    obj = tmp_path / "tet.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    d = tmp_path / "cut"
+    summary = _run_plain("cut", obj, "--grid", 5, "-o", d)
+    n = summary["cut_cells"]
+    assert n == 20
+    m = meshio.read(d / "cells.vtu")
+    assert sum(len(c.data) for c in m.cells) == n
+    ids = np.concatenate([np.asarray(a).ravel() for a in m.cell_data["cell_id"]])
+    assert np.array_equal(np.sort(ids), np.arange(n))
+    vols = np.concatenate([np.asarray(a).ravel() for a in m.cell_data["volume"]])
+    assert np.all(vols > 0)
+    g = pv.read(d / "cells.vtu")
+    assert g.n_cells == n and np.array_equal(g.cell_data["cell_id"], np.arange(n))
+    assert np.allclose(np.sort(g.cell_data["volume"]), np.sort(vols))
+    o = meshio.read(d / "cells.obj")
+    groups = np.concatenate(o.cell_data["obj:group_ids"])
+    assert len(np.unique(groups)) == n
+    nobj = sum(len(c.data) for c in o.cells)
+    t = trimesh.load(d / "cells.obj", process=False, force="mesh", group_material=False, split_object=False)
+    assert len(t.faces) >= nobj
+    assert pv.read(d / "cells.obj").n_cells == nobj
+
+
 # VTK's OBJ reader makes chains and corners cells but sizes its GroupIds for faces only.
 @pytest.mark.filterwarnings("ignore:PolyData mesh is not valid")
 def test_every_format_from_every_command(tmp_path):
     for name, d, summary in _jobs(tmp_path):
-        _check_folder(name, d, summary)
+        z = _check_folder(name, d, summary)
+        if name in ("regions", "labels"):
+            _check_surfaces_obj(d, z)
+    _check_stream(tmp_path)
+    _check_cut(tmp_path)
 
 
 def test_python_save_uses_the_same_writers(tmp_path):
@@ -210,3 +306,15 @@ def test_progress_callback_and_logger(caplog):
     assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
     with pytest.raises(septa.InputError, match="progress"):
         septa.arrangement(g, f, progress=3)
+
+
+def test_region_progress_callback_and_logger(caplog):
+    import logging
+
+    calls = []
+    with caplog.at_level(logging.INFO, logger="septa"):
+        net = septa.region_surfaces("builtin:sphere-plane-hole", progress=lambda done, total: calls.append((done, total)))
+    assert calls and calls[-1][0] == calls[-1][1] and all(0 < d <= t for d, t in calls)
+    assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
+    with pytest.raises(septa.InputError, match="progress"):
+        septa.region_surfaces("builtin:sphere-plane-hole", progress="yes")

@@ -4,7 +4,7 @@ the in-memory run, with per-face labels and block indices.
 
 trimesh's binary PLY reader needs every face list to have one length: it
 reads the `--triangles` file. meshio reads a face element with more than one
-property wrongly and is not used here.
+property wrongly: it reads `--stream OUT.vtu` (test_formats.py).
 """
 
 import json

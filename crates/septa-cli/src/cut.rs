@@ -12,16 +12,18 @@ use std::time::Instant;
 pub struct Args {
     /// Closed, outward-oriented triangle mesh (.obj, .off, .ply, .stl).
     pub mesh: PathBuf,
-    /// N axis-aligned planes per axis over the bounding box (TopoCut's An).
+    /// N evenly spaced axis-aligned planes per axis across the mesh's bounding box.
     #[arg(long, conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
     pub grid: Option<usize>,
-    /// N random planes through the bounding-box diagonal (TopoCut's Rn).
+    /// N random planes, each through a random point of the bounding box's
+    /// diagonal (the same planes for the same --seed).
     #[arg(long, conflicts_with = "planes", value_parser = crate::args::planes)]
     pub random: Option<usize>,
     /// Seed of --random.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
-    /// Plane file: `a b c d` per line (optionally TopoCut's `N 4` header).
+    /// Plane file: one plane `a b c d` (a x + b y + c z + d = 0) per line; a
+    /// first line `N 4` (the number of planes) is allowed.
     #[arg(long)]
     pub planes: Option<PathBuf>,
     /// Output folder (cells.vtu, cells.obj, cut.json; default septa-out; not
@@ -106,18 +108,17 @@ pub fn run(a: Args) -> CliResult {
         let _ = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global();
     }
     let t1 = Instant::now();
-    let out = cut_mesh(
-        &mesh.vertices,
-        &mesh.triangles,
-        &planes,
-        &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify },
-    )?;
+    let options =
+        CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
+    let out =
+        crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
     }
-    let check = out.validate();
+    let check = crate::progress::during(a.json, "checking the cells", || out.validate());
     let t2 = Instant::now();
+    let writing = crate::progress::stage(a.json, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     if !a.no_mesh_output {
@@ -149,6 +150,9 @@ pub fn run(a: Args) -> CliResult {
         Some(septa::cut::verify::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();
+    if let Some(bar) = writing {
+        bar.finish_and_clear();
+    }
     let c = out.counts;
     let mut seconds = serde_json::Map::new();
     seconds.insert("read".into(), read_s.into());

@@ -97,7 +97,7 @@ fn apollonius(dir: &Path, a: &Args) -> JobResult {
     scene_network("apollonius-18", Some(a.grid), dir)
 }
 
-/// The reference's 18 spheres (IA) streamed block by block: `stream.ply`
+/// The 18 spheres of the IA benchmark (data/specs/ia18.json) streamed block by block: `stream.ply`
 /// (faces with patch and cells) and `stream.topology.json`, in bounded memory.
 fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
     use septa::network::{stream_topology, NetworkOptions};

@@ -64,7 +64,7 @@ pub struct Args {
     #[arg(long, default_value_t = 16, value_parser = crate::args::block)]
     block: usize,
     /// Sample every grid vertex (the dense path). By default, analytic
-    /// functions on a box grid (a function JSON, reference config or scene)
+    /// functions on a box grid (a scene or a JSON list of functions)
     /// are evaluated sparsely: blocks the functions' bounds prove empty are
     /// skipped, the rest sampled block by block; the output is identical
     /// (the bounds enclose the rounded samples; docs/sparse.md).
@@ -74,12 +74,14 @@ pub struct Args {
     /// wherever it applies (no effect on `.npz` input or a tet mesh).
     #[arg(long)]
     sparse: bool,
-    /// Stream the polygons to this binary PLY block by block, with memory
+    /// Stream the polygons to this file block by block, with memory
     /// bounded by a window of blocks (analytic functions on a box grid), and
     /// assemble the topology (patches, chains, corners, shells, cells) from
-    /// block summaries on the way: faces carry `labels_0`, `labels_1`, `block`,
-    /// `patch`, `cells_0`, `cells_1`; the topology goes to `OUT.topology.json`
-    /// beside the PLY. Vertices are written once.
+    /// block summaries on the way. A binary PLY, whose faces carry `labels_0`,
+    /// `labels_1`, `block`, `patch`, `cells_0`, `cells_1`; or, for a name
+    /// ending in .vtu (for meshio and ParaView), a VTK file with cell data
+    /// `patch`, `labels`, `cells`, `block`. The topology goes to
+    /// `OUT.topology.json` beside it. Vertices are written once.
     #[arg(long, conflicts_with_all = ["dense", "no_output"])]
     stream: Option<PathBuf>,
     /// With `--stream`: blocks computed at a time (0: four per thread).
@@ -122,8 +124,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     if let Some(bar) = &bar {
         let bar = bar.clone();
         opts.progress = Some(network::Progress(std::sync::Arc::new(move |done, total| {
-            bar.set_length(total as u64);
-            bar.set_position(done as u64);
+            crate::progress::blocks_then(&bar, done, total, "topology: patches, chains, corners, cells")
         })));
     }
     let mut pool = rayon::ThreadPoolBuilder::new();
@@ -181,7 +182,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     Ok(())
 }
 
-/// `septa ia|mi --stream OUT.ply`: polygons streamed to one PLY and the
+/// `septa ia|mi --stream OUT.ply|OUT.vtu`: polygons streamed to one file and the
 /// topology assembled from block summaries (bounded memory).
 fn run_stream(
     args: &Args,
@@ -197,8 +198,7 @@ fn run_stream(
         format!("--stream: {} is not formulas on a box grid (a function list, config or scene)", args.input.display())
     })?;
     let t_read = t0.elapsed().as_secs_f64();
-    let mut sink =
-        septa::io::ply_stream::PlyStreamSink::create(out, &g, mode, funcs.len())?.triangulated(args.triangles);
+    let mut sink = septa::io::vtu_stream::StreamFile::create(out, &g, mode, funcs.len(), args.triangles)?;
     let (stats, topology) = if args.polygons_only {
         (pool.install(|| network::stream_sparse(g, funcs, opts, args.window, &mut sink))?, None)
     } else {
@@ -265,7 +265,7 @@ fn run_stream(
     Ok(())
 }
 
-/// `OUT.topology.json` beside the streamed `OUT.ply`.
+/// `OUT.topology.json` beside the streamed `OUT.ply` or `OUT.vtu`.
 fn topology_path(out: &std::path::Path) -> std::path::PathBuf {
     out.with_extension("topology.json")
 }

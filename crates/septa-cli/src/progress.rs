@@ -40,3 +40,20 @@ pub fn during<T>(quiet: bool, what: &str, work: impl FnOnce() -> T) -> T {
     }
     out
 }
+
+/// Moves a block bar on as blocks finish; when the last block is done the
+/// bar becomes a spinner naming the stage after the blocks (`next`: the
+/// topology of patches, chains and cells, which has no block count), so a
+/// long topology stage does not look like a hang at 100%.
+pub fn blocks_then(bar: &ProgressBar, done: usize, total: usize, next: &str) {
+    bar.set_length(total as u64);
+    bar.set_position(done as u64);
+    if done == total && bar.message().is_empty() {
+        bar.set_style(
+            ProgressStyle::with_template("{spinner} {msg} {elapsed}")
+                .unwrap_or_else(|_| ProgressStyle::default_spinner()),
+        );
+        bar.set_message(next.to_string());
+        bar.enable_steady_tick(std::time::Duration::from_millis(1000));
+    }
+}

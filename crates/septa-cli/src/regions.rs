@@ -66,7 +66,7 @@ pub fn run(a: Args) -> CliResult {
             return Err(format!("--clean: expected a factor >= 0, not {f}").into());
         }
     }
-    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean };
+    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean, ..Default::default() };
     let quiet = a.out.json || a.out.quiet;
     let r = crate::progress::during(quiet, "region surfaces", || a.out.install(|| region_surfaces(&scene, &options)))??;
     let dir = &a.out.output;

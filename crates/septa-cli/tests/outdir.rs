@@ -190,3 +190,38 @@ extern "C" {
     #[link_name = "kill"]
     fn libc_kill(pid: i32, sig: i32) -> i32;
 }
+
+/// A multiblock's pieces (`network/<block>.vtu`) belong to the set: listed
+/// in the manifest with their sizes, staged like every file, and a piece
+/// the next result has no cells for goes with the old set.
+#[test]
+fn multiblock_pieces_are_part_of_the_set() {
+    let dir = scratch("vtm");
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    let run = |input: &Path| {
+        let r = septa(&["ia", input.to_str().unwrap(), "-o", o, "--format", "json,ply,vtm", "--grid", "12"]);
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        assert_one_set(&out);
+        let m: serde_json::Value = serde_json::from_slice(&std::fs::read(out.join("manifest.json")).unwrap()).unwrap();
+        let mut names: Vec<String> =
+            m["files"].as_array().unwrap().iter().map(|f| f["name"].as_str().unwrap().to_string()).collect();
+        names.sort();
+        assert!(temps(&out).is_empty() && temps(&out.join("network")).is_empty());
+        let vtm = std::fs::read_to_string(out.join("network.vtm")).unwrap();
+        for n in names.iter().filter(|n| n.starts_with("network/")) {
+            assert!(vtm.contains(&format!("file=\"{n}\"")), "{vtm}");
+        }
+        names
+    };
+    // Three spheres: chains (circles, no corners); one sphere: none.
+    let three = run(&spheres(&dir, 3));
+    for b in ["patches", "chains", "cells"] {
+        assert!(three.contains(&format!("network/{b}.vtu")), "{three:?}");
+    }
+    let one = run(&spheres(&dir, 1));
+    assert!(one.contains(&"network/patches.vtu".to_string()) && one.contains(&"network/cells.vtu".to_string()));
+    assert!(!one.iter().any(|n| n.contains("chains") || n.contains("corners")), "{one:?}");
+    assert!(!out.join("network/chains.vtu").exists() && !out.join("network/corners.vtu").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -84,6 +84,12 @@ fn demo_prints_table() {
     let s = dir.join("d").join("stream-ia18");
     assert!(s.join("stream.ply").is_file() && s.join("stream.topology.json").is_file());
     assert!(!s.join("viewer").exists());
+    // `septa view` on that folder writes its viewer (the stream's polygons
+    // with the topology file's patches).
+    let out = septa(&["view", s.to_str().unwrap(), "--no-open"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let data = std::fs::read_to_string(s.join("viewer/data.js")).unwrap();
+    assert!(data.contains("\"face_patch\""), "no per-face patches in the stream's viewer");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

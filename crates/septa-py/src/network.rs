@@ -51,15 +51,7 @@ pub fn network<'py>(
     let mut options = NetworkOptions::new(mode);
     options.lookup = lookup;
     options.raytrace = raytrace;
-    if let Some(cb) = progress {
-        options.progress = Some(septa::network::Progress(std::sync::Arc::new(move |done, total| {
-            Python::attach(|py| {
-                if let Err(e) = cb.call1(py, (done, total)) {
-                    e.print(py);
-                }
-            })
-        })));
-    }
+    options.progress = progress.map(py_progress);
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     options.cancel = Some(cancel.clone());
     let result: Result<Network, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
@@ -146,4 +138,16 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py
     }
     d.set_item("seconds", seconds)?;
     Ok(d)
+}
+
+/// A Python `progress(done, total)` as the library's block progress (an
+/// exception in it is printed, not raised: the computation goes on).
+pub(crate) fn py_progress(cb: Py<PyAny>) -> septa::network::Progress {
+    septa::network::Progress(std::sync::Arc::new(move |done, total| {
+        Python::attach(|py| {
+            if let Err(e) = cb.call1(py, (done, total)) {
+                e.print(py);
+            }
+        })
+    }))
 }

@@ -8,7 +8,7 @@ use septa::io::result::ResultView;
 use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
 use septa::scene::Scene;
 
-/// regions(scene, normals=False, clean=None)
+/// regions(scene, normals=False, clean=None, progress=None)
 /// --
 ///
 /// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
@@ -19,8 +19,14 @@ use septa::scene::Scene;
 /// `normal_vectors` and `indices_normal`; the GIL is released while it is
 /// computed.
 #[pyfunction]
-#[pyo3(signature = (scene, normals = false, clean = None))]
-pub fn regions<'py>(py: Python<'py>, scene: &str, normals: bool, clean: Option<f64>) -> PyResult<Bound<'py, PyDict>> {
+#[pyo3(signature = (scene, normals = false, clean = None, progress = None))]
+pub fn regions<'py>(
+    py: Python<'py>,
+    scene: &str,
+    normals: bool,
+    clean: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
     if let Some(f) = clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(InputError::new_err(format!("clean: expected a factor >= 0, not {f}")));
@@ -33,7 +39,8 @@ pub fn regions<'py>(py: Python<'py>, scene: &str, normals: bool, clean: Option<f
             Scene::load(scene)
         }
         .map_err(|e| e.to_string())?;
-        region_surfaces(&s, &RegionOptions { normals, clean, ..Default::default() }).map_err(|e| e.to_string())
+        let progress = progress.map(crate::network::py_progress);
+        region_surfaces(&s, &RegionOptions { normals, clean, progress, ..Default::default() }).map_err(|e| e.to_string())
     });
     region_dict(py, &result.map_err(InputError::new_err)?)
 }

@@ -1,5 +1,5 @@
 //! `septa.stream_ply`: the polygons of a sparse job streamed block by block
-//! into one PLY in bounded memory (docs/sparse.md: networks larger than memory),
+//! into one PLY (or, for a path ending in .vtu, one VTK file) in bounded memory (docs/sparse.md: networks larger than memory),
 //! with the topology assembled from block summaries on the way (written to
 //! `<path>.topology.json`, as `septa ia --stream` does).
 use std::path::Path;
@@ -10,7 +10,8 @@ use crate::Failure;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
-use septa::io::ply_stream::{PlyStreamSink, PlyStreamStats};
+use septa::io::ply_stream::PlyStreamStats;
+use septa::io::vtu_stream::StreamFile;
 use septa::network::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
 use septa::network::{BlockResult, NetworkSummary, SparsePlan};
 
@@ -35,10 +36,17 @@ pub fn stream_ply<'py>(
     let r: Result<Out, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = crate::distributed::parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
+<<<<<<< HEAD
         let run = || -> Result<Out, Failure> {
             let mut sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
                 .map_err(|e| format!("{path}: {e}"))?
                 .triangulated(triangles);
+=======
+        let run = || -> Result<Out, String> {
+            // (its errors name the file)
+            let mut sink = StreamFile::create(Path::new(path), &j.grid, j.options.mode, j.functions.len(), triangles)
+                .map_err(|e| e.to_string())?;
+>>>>>>> results
             let (stats, summary) = if topology {
                 let (s, t) =
                     stream_topology(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(crate::failure)?;
@@ -103,7 +111,7 @@ fn result_dict<'py>(
 /// unfinished (an error, Ctrl-C), it leaves no file.
 #[pyclass(module = "septa._septa")]
 pub struct StreamWriter {
-    state: Option<(StreamFeeder<'static>, PlyStreamSink)>,
+    state: Option<(StreamFeeder<'static>, StreamFile)>,
     path: String,
 }
 
@@ -116,9 +124,8 @@ impl StreamWriter {
             let plan = SparsePlan { blocks: plan.0, kept: plan.1, dense: plan.2 };
             let feeder = StreamFeeder::new(&j.grid, j.functions.clone(), &j.options, &plan, topology)
                 .map_err(|e| e.to_string())?;
-            let sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
-                .map_err(|e| format!("{path}: {e}"))?
-                .triangulated(triangles);
+            let sink = StreamFile::create(Path::new(path), &j.grid, j.options.mode, j.functions.len(), triangles)
+                .map_err(|e| e.to_string())?;
             Ok(StreamWriter { state: Some((feeder, sink)), path: path.to_string() })
         })();
         r.map_err(InputError::new_err)

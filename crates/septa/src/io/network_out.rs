@@ -234,9 +234,8 @@ pub fn write_formats(
     let meta = meta(net, extra_seconds);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
         if f == Format::Vtm {
-            // A multiblock names its pieces by its own file name: written in
-            // place (each file atomically), outside the staged set.
-            super::result::write_file(&view, &out.path().join("network.vtm"), f, &meta)?;
+            // The multiblock and its pieces network/<block>.vtu, all staged.
+            super::result_vtk::write_vtm_into(&view, &mut out, "network")?;
             continue;
         }
         out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;

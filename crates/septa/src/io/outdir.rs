@@ -31,11 +31,16 @@ pub const MANIFEST: &str = "manifest.json";
 /// Files Septa writes as results; removed when a new run starts in a folder
 /// so that the new set never mixes with an old one (also from runs older
 /// than manifests).
-const RESULT_FILES: [&str; 9] = [
+const RESULT_FILES: [&str; 14] = [
     "network.json",
     "network.ply",
     "network.obj",
     "network.vtu",
+    "network.vtm",
+    "network/patches.vtu",
+    "network/chains.vtu",
+    "network/corners.vtu",
+    "network/cells.vtu",
     "surfaces.obj",
     "cells.vtu",
     "cells.obj",
@@ -116,7 +121,7 @@ impl OutputDir {
 
     /// Removes stale temporaries and staged files of killed runs.
     fn clean(&self) -> std::io::Result<()> {
-        for sub in [self.dir.clone(), self.dir.join("viewer")] {
+        for sub in [self.dir.clone(), self.dir.join("viewer"), self.dir.join("network")] {
             let Ok(entries) = std::fs::read_dir(&sub) else { continue };
             for e in entries.flatten() {
                 if is_temp(&e.file_name().to_string_lossy()) {
@@ -155,6 +160,7 @@ impl OutputDir {
         write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
     ) -> std::io::Result<()> {
         let path = self.dir.join(staged(name));
+        self.make_parent(&path)?;
         write_atomic_with(&path, write)?;
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
@@ -165,6 +171,7 @@ impl OutputDir {
     /// `io` writer does) for `name` and adds the file to the set.
     pub fn write_path(&mut self, name: &str, write: impl FnOnce(&Path) -> std::io::Result<()>) -> std::io::Result<()> {
         let path = self.dir.join(staged(name));
+        self.make_parent(&path)?;
         let result = write(&path);
         if result.is_err() {
             let _ = std::fs::remove_file(&path);
@@ -173,6 +180,15 @@ impl OutputDir {
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
         Ok(())
+    }
+
+    /// Creates the sub-folder a file `a/b` of the set goes into (`viewer/`, a
+    /// multiblock's pieces).
+    fn make_parent(&self, path: &Path) -> std::io::Result<()> {
+        match path.parent() {
+            Some(p) if p != self.dir => std::fs::create_dir_all(p).map_err(|e| ctx(p, "cannot create the folder", e)),
+            _ => Ok(()),
+        }
     }
 
     /// Where file `name` of this set is before [`OutputDir::finish`] moves

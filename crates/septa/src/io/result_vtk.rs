@@ -12,6 +12,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use super::atomic::write_atomic_with;
+use super::outdir::OutputDir;
 use super::result::ResultView;
 
 /// VTK cell types used here.
@@ -30,41 +31,51 @@ struct Piece<'a> {
     data: Vec<(&'static str, usize, Vec<i32>)>,
 }
 
-fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
-    let nc = piece.offsets.len() - 1;
-    let np = piece.points.len();
-    // Appended arrays in order, each preceded by its UInt64 byte count.
-    let mut arrays: Vec<(usize, &str, String, usize)> = vec![
-        (np * 24, "Float64", "Points".into(), 3),
-        (piece.conn.len() * 4, "Int32", "connectivity".into(), 1),
-        (nc * 4, "Int32", "offsets".into(), 1),
-        (nc, "UInt8", "types".into(), 1),
-    ];
-    for (name, comps, values) in &piece.data {
-        arrays.push((values.len() * 4, "Int32", (*name).into(), *comps));
-    }
+/// The XML of an unstructured grid with `np` points and `nc` cells whose
+/// arrays (byte length, VTK type, name, components) follow in raw appended
+/// data in this order: `Points`, then `connectivity`, `offsets`, `types`,
+/// then the cell data (`scalars` the active one). Each appended array is
+/// preceded by its UInt64 byte count; the text ends with the `_` that
+/// starts the appended data.
+pub(crate) fn vtu_header(np: usize, nc: usize, arrays: &[(usize, &str, &str, usize)], scalars: &str) -> String {
     let mut offset = 0usize;
     let mut xml = Vec::new();
-    for (bytes, ty, name, comps) in &arrays {
+    for (bytes, ty, name, comps) in arrays {
         xml.push(format!(
             "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" format=\"appended\" offset=\"{offset}\"/>\n"
         ));
         offset += 8 + bytes;
     }
+    format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+         <UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">\n<Points>\n{}</Points>\n\
+         <Cells>\n{}{}{}</Cells>\n<CellData Scalars=\"{scalars}\">\n{}</CellData>\n</Piece>\n</UnstructuredGrid>\n\
+         <AppendedData encoding=\"raw\">\n_",
+        xml[0],
+        xml[1],
+        xml[2],
+        xml[3],
+        xml[4..].concat()
+    )
+}
+
+fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
+    let nc = piece.offsets.len() - 1;
+    let np = piece.points.len();
+    // Appended arrays in order, each preceded by its UInt64 byte count.
+    let mut arrays: Vec<(usize, &str, &str, usize)> = vec![
+        (np * 24, "Float64", "Points", 3),
+        (piece.conn.len() * 4, "Int32", "connectivity", 1),
+        (nc * 4, "Int32", "offsets", 1),
+        (nc, "UInt8", "types", 1),
+    ];
+    for (name, comps, values) in &piece.data {
+        arrays.push((values.len() * 4, "Int32", name, *comps));
+    }
     let scalars = piece.data.first().map_or("", |d| d.0);
+    let head = vtu_header(np, nc, &arrays, scalars);
     write_atomic_with(path, |w| {
-        write!(
-            w,
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
-             <UnstructuredGrid>\n<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">\n<Points>\n{}</Points>\n\
-             <Cells>\n{}{}{}</Cells>\n<CellData Scalars=\"{scalars}\">\n{}</CellData>\n</Piece>\n</UnstructuredGrid>\n\
-             <AppendedData encoding=\"raw\">\n_",
-            xml[0],
-            xml[1],
-            xml[2],
-            xml[3],
-            xml[4..].concat()
-        )?;
+        w.write_all(head.as_bytes())?;
         let mut buf: Vec<u8> = Vec::with_capacity(1 << 16);
         let flush = |w: &mut std::io::BufWriter<std::fs::File>, buf: &mut Vec<u8>, force: bool| {
             if force || buf.len() > 1 << 16 {
@@ -209,33 +220,62 @@ fn cell_boundaries<'a>(r: &'a ResultView) -> Piece<'a> {
 /// The four block names of a `.vtm`, in order.
 pub const VTM_BLOCKS: [&str; 4] = ["patches", "chains", "corners", "cells"];
 
+/// The non-empty blocks of `r`'s multiblock, by name (meshio cannot read
+/// an empty unstructured grid, so a block without cells, say no chains,
+/// has no piece).
+fn vtm_pieces<'a>(r: &'a ResultView) -> Vec<(&'static str, Piece<'a>)> {
+    let pieces = [polygons(r), chains(r), corners(r), cell_boundaries(r)];
+    VTM_BLOCKS.into_iter().zip(pieces).filter(|(_, p)| p.offsets.len() > 1).collect()
+}
+
+/// The `.vtm` text naming pieces `stem/<block>.vtu`.
+fn vtm_xml(stem: &str, blocks: &[&str]) -> String {
+    let mut xml = String::new();
+    for (i, name) in blocks.iter().enumerate() {
+        xml.push_str(&format!("<DataSet index=\"{i}\" name=\"{name}\" file=\"{stem}/{name}.vtu\"/>\n"));
+    }
+    format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
+         <vtkMultiBlockDataSet>\n{xml}</vtkMultiBlockDataSet>\n</VTKFile>\n"
+    )
+}
+
 /// Writes `path` (`NAME.vtm`) and its pieces `NAME/<block>.vtu` (module
-/// doc); returns the pieces' paths. Empty blocks are left out.
+/// doc); returns the pieces' paths. Empty blocks are left out (a stale
+/// piece of that name is removed).
 pub fn write_vtm(r: &ResultView, path: &Path) -> std::io::Result<Vec<PathBuf>> {
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "network".into());
     let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")).join(&stem);
     std::fs::create_dir_all(&dir)?;
-    let pieces = [polygons(r), chains(r), corners(r), cell_boundaries(r)];
+    let pieces = vtm_pieces(r);
     let mut paths = Vec::new();
-    let mut xml = String::new();
-    for (name, piece) in VTM_BLOCKS.iter().zip(&pieces) {
+    for name in VTM_BLOCKS {
         let p = dir.join(format!("{name}.vtu"));
-        if piece.offsets.len() == 1 {
-            // No cells (no chains, say): no piece, as meshio cannot read
-            // an empty unstructured grid; a stale one is removed.
-            let _ = std::fs::remove_file(&p);
-            continue;
+        match pieces.iter().find(|(n, _)| *n == name) {
+            Some((_, piece)) => {
+                write_piece(piece, &p)?;
+                paths.push(p);
+            }
+            None => {
+                let _ = std::fs::remove_file(&p);
+            }
         }
-        write_piece(piece, &p)?;
-        xml.push_str(&format!("<DataSet index=\"{}\" name=\"{name}\" file=\"{stem}/{name}.vtu\"/>\n", paths.len()));
-        paths.push(p);
     }
-    write_atomic_with(path, |w| {
-        write!(
-            w,
-            "<?xml version=\"1.0\"?>\n<VTKFile type=\"vtkMultiBlockDataSet\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n\
-             <vtkMultiBlockDataSet>\n{xml}</vtkMultiBlockDataSet>\n</VTKFile>\n"
-        )
-    })?;
+    let names: Vec<&str> = pieces.iter().map(|(n, _)| *n).collect();
+    write_atomic_with(path, |w| w.write_all(vtm_xml(&stem, &names).as_bytes()))?;
     Ok(paths)
+}
+
+/// Writes `STEM.vtm` and its pieces `STEM/<block>.vtu` into the output set
+/// `out`: each piece is staged and listed in the manifest like every other
+/// file, so a failed run leaves the old multiblock whole and a finished one
+/// never mixes pieces of two runs (an old piece the new result has no cells
+/// for goes with the old set).
+pub fn write_vtm_into(r: &ResultView, out: &mut OutputDir, stem: &str) -> std::io::Result<()> {
+    let pieces = vtm_pieces(r);
+    for (name, piece) in &pieces {
+        out.write_path(&format!("{stem}/{name}.vtu"), |p| write_piece(piece, p))?;
+    }
+    let names: Vec<&str> = pieces.iter().map(|(n, _)| *n).collect();
+    out.write(&format!("{stem}.vtm"), vtm_xml(stem, &names).as_bytes())
 }

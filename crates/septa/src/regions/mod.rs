@@ -34,7 +34,7 @@ use std::time::Instant;
 
 use crate::complex::Mode;
 use crate::grid::Grid;
-use crate::network::{compute, Network, NetworkError, NetworkOptions};
+use crate::network::{compute, Network, NetworkError, NetworkOptions, Progress};
 use crate::network::{compute_sparse, SparseStats};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
@@ -61,11 +61,14 @@ pub struct RegionOptions {
     /// are collapsed where that keeps the combinatorics. Default value:
     /// `None` (the exact polygons as they are).
     pub clean: Option<f64>,
+    /// Called as blocks of the network finish ([`NetworkOptions::progress`]).
+    /// Default value: `None`.
+    pub progress: Option<Progress>,
 }
 
 impl Default for RegionOptions {
     fn default() -> RegionOptions {
-        RegionOptions { normals: false, sparse: true, clean: None }
+        RegionOptions { normals: false, sparse: true, clean: None, progress: None }
     }
 }
 
@@ -163,8 +166,10 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     let t0 = Instant::now();
     let bgrid = scene.grid.box_grid()?;
     let mode = scene.mode;
+    let mut network_options = NetworkOptions::new(mode);
+    network_options.progress = options.progress.clone();
     if options.sparse {
-        let (net, stats) = compute_sparse(&bgrid, &scene.functions, &NetworkOptions::new(mode))?;
+        let (net, stats) = compute_sparse(&bgrid, &scene.functions, &network_options)?;
         let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);
         out.sparse = Some(stats);
         return Ok(out);
@@ -178,7 +183,7 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     let points = grid.vertices();
     let values = sample_grid(&scene.functions, &points);
     let t1 = Instant::now();
-    let net = compute(&grid, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
+    let net = compute(&grid, &values, scene.functions.len(), &network_options)?;
     let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);
     out.seconds.insert(0, ("sample", (t1 - t0).as_secs_f64()));
     Ok(out)
