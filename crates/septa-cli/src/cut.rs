@@ -110,7 +110,8 @@ pub fn run(a: Args) -> CliResult {
         &mesh.triangles,
         &planes,
         &CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify },
-    )?;
+    )
+    .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
