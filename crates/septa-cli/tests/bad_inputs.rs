@@ -282,7 +282,29 @@ fn label_volumes() {
     refused(&d, &["labels", "t.npy"], &["t.npy"]);
     std::fs::write(d.join("two.npy"), npy("<i8", false, &[27], &bytes)).unwrap();
     refused(&d, &["labels", "two.npy"], &["two.npy", "3 axes"]);
+    // NIfTI and NRRD: truncated or unsupported files name the file and field.
+    std::fs::write(d.join("short.nii"), b"garbage").unwrap();
+    refused(&d, &["labels", "short.nii"], &["short.nii", "NIfTI-1 header"]);
+    std::fs::write(d.join("short.nii.gz"), [0x1fu8, 0x8b, 8, 0, 0]).unwrap();
+    refused(&d, &["labels", "short.nii.gz"], &["short.nii.gz", "gzip"]);
+    let ascii: String = lab.iter().map(|x| format!("{x}\n")).collect();
+    let head = |extra: &str| format!("NRRD0004\ntype: int16\ndimension: 3\nsizes: 3 3 3\nencoding: ascii\n{extra}\n");
+    std::fs::write(d.join("flat.nrrd"), head("").replace("dimension: 3\nsizes: 3 3 3", "dimension: 2\nsizes: 9 3") + &ascii).unwrap();
+    refused(&d, &["labels", "flat.nrrd"], &["flat.nrrd", "3 axes"]);
+    std::fs::write(d.join("det.nrrd"), head("data file: v.raw\n")).unwrap();
+    refused(&d, &["labels", "det.nrrd"], &["det.nrrd", "detached"]);
+    std::fs::write(d.join("few.nrrd"), head("") + "1 2 3\n").unwrap();
+    refused(&d, &["labels", "few.nrrd"], &["few.nrrd", "3 ascii values, 27 expected"]);
+    std::fs::write(d.join("dir.nrrd"), head("space directions: (1,0,0) (0,1,0)\n") + &ascii).unwrap();
+    refused(&d, &["labels", "dir.nrrd"], &["dir.nrrd", "space directions"]);
+    refused(&d, &["labels", "v.npy", "--spacing", "1", "0", "1"], &["--spacing"]);
+    // The same labels as ascii NRRD (first axis fastest) with a mirror: the
+    // surfaces of the .npy, moved.
+    std::fs::write(d.join("ok.nrrd"), head("space directions: (-1,0,0) (0,1,0) (0,0,1)\n") + &ascii).unwrap();
+    let n = succeeds(&d, &["labels", "ok.nrrd", "--json", "-o", "n"]);
     let ok = succeeds(&d, &["labels", "v.npy", "--json"]);
+    let faces = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap()["faces"].clone();
+    assert_eq!(faces(&n), faces(&ok));
     assert!(ok.contains("\"surfaces\""), "{ok}");
     let _ = std::fs::remove_dir_all(&d);
 }
