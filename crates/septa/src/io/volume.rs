@@ -35,7 +35,7 @@ pub fn read_label_volume(path: &Path) -> Result<LabelVolume, String> {
     let low = file.to_ascii_lowercase();
     let raw = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
     let r = if low.ends_with(".nii") || low.ends_with(".nii.gz") {
-        read_nifti(&maybe_gunzip(&raw)?)
+        maybe_gunzip(&raw).and_then(|b| read_nifti(&b))
     } else if low.ends_with(".nrrd") {
         read_nrrd(&raw)
     } else {
