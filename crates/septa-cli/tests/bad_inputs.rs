@@ -289,7 +289,11 @@ fn label_volumes() {
     refused(&d, &["labels", "short.nii.gz"], &["short.nii.gz", "gzip"]);
     let ascii: String = lab.iter().map(|x| format!("{x}\n")).collect();
     let head = |extra: &str| format!("NRRD0004\ntype: int16\ndimension: 3\nsizes: 3 3 3\nencoding: ascii\n{extra}\n");
-    std::fs::write(d.join("flat.nrrd"), head("").replace("dimension: 3\nsizes: 3 3 3", "dimension: 2\nsizes: 9 3") + &ascii).unwrap();
+    std::fs::write(
+        d.join("flat.nrrd"),
+        head("").replace("dimension: 3\nsizes: 3 3 3", "dimension: 2\nsizes: 9 3") + &ascii,
+    )
+    .unwrap();
     refused(&d, &["labels", "flat.nrrd"], &["flat.nrrd", "3 axes"]);
     std::fs::write(d.join("det.nrrd"), head("data file: v.raw\n")).unwrap();
     refused(&d, &["labels", "det.nrrd"], &["det.nrrd", "detached"]);

@@ -101,7 +101,8 @@ fn winding(verts: &[[f64; 3]], tris: &[[u32; 3]], shell: &[u32], q: u32) -> Cros
         let [a, b, c] = tris[t as usize];
         let [pa, pb, pc] = [a, b, c].map(|v| verts[v as usize]);
         // Exact pre-tests on input coordinates (equal values go on).
-        let out = |k: usize| (p[k] < pa[k] && p[k] < pb[k] && p[k] < pc[k]) || (p[k] > pa[k] && p[k] > pb[k] && p[k] > pc[k]);
+        let out =
+            |k: usize| (p[k] < pa[k] && p[k] < pb[k] && p[k] < pc[k]) || (p[k] > pa[k] && p[k] > pb[k] && p[k] > pc[k]);
         if out(1) || out(2) || (p[0] > pa[0] && p[0] > pb[0] && p[0] > pc[0]) {
             continue;
         }

@@ -63,7 +63,8 @@ fn nested_shells_must_alternate() {
 
 /// The octahedron `|x| + |y| + |z| = 4`, outwards, as one shell.
 fn octahedron() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let v = vec![[4.0, 0.0, 0.0], [-4.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, -4.0, 0.0], [0.0, 0.0, 4.0], [0.0, 0.0, -4.0]];
+    let v =
+        vec![[4.0, 0.0, 0.0], [-4.0, 0.0, 0.0], [0.0, 4.0, 0.0], [0.0, -4.0, 0.0], [0.0, 0.0, 4.0], [0.0, 0.0, -4.0]];
     let mut t = Vec::new();
     for x in [0, 1] {
         for y in [2, 3] {

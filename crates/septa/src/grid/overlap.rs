@@ -85,13 +85,21 @@ impl Bvh {
                 std::array::from_fn(|a| ((p[0][a] + p[1][a] + p[2][a] + p[3][a]) * 0.25) as f32)
             })
             .collect();
-        let mut bvh = Bvh { nodes: Vec::with_capacity(2 * tets.len() / LEAF + 1), order: (0..tets.len() as u32).collect() };
+        let mut bvh =
+            Bvh { nodes: Vec::with_capacity(2 * tets.len() / LEAF + 1), order: (0..tets.len() as u32).collect() };
         bvh.split(vertices, tets, &centre, 0, tets.len());
         bvh
     }
 
     /// Appends the node for `order[start..end]` and its subtree; returns its index.
-    fn split(&mut self, vertices: &[[f64; 3]], tets: &[[u32; 4]], centre: &[[f32; 3]], start: usize, end: usize) -> u32 {
+    fn split(
+        &mut self,
+        vertices: &[[f64; 3]],
+        tets: &[[u32; 4]],
+        centre: &[[f32; 3]],
+        start: usize,
+        end: usize,
+    ) -> u32 {
         let mut b = Aabb::EMPTY;
         for &t in &self.order[start..end] {
             for p in corners(vertices, &tets[t as usize]) {
@@ -105,8 +113,9 @@ impl Bvh {
         }
         let axis = (0..3).max_by(|&x, &y| (b.hi[x] - b.lo[x]).total_cmp(&(b.hi[y] - b.lo[y]))).unwrap_or(0);
         let mid = start + (end - start) / 2;
-        self.order[start..end]
-            .select_nth_unstable_by(mid - start, |&x, &y| centre[x as usize][axis].total_cmp(&centre[y as usize][axis]));
+        self.order[start..end].select_nth_unstable_by(mid - start, |&x, &y| {
+            centre[x as usize][axis].total_cmp(&centre[y as usize][axis])
+        });
         // Children are pushed in order, so the left child is `id + 1`; the
         // right one's index is stored after the left subtree is complete.
         let left = self.split(vertices, tets, centre, start, mid);

@@ -152,7 +152,9 @@ fn decode(data: &[u8], kind: Kind, n: usize, big: bool) -> Result<Values, String
             Values::Int(out)
         }
         Kind::Uint(_) => Values::Int((0..n).map(|i| u64::from_le_bytes(word(i)) as i64).collect()),
-        Kind::Float(4) => Values::Float((0..n).map(|i| f32::from_bits(u64::from_le_bytes(word(i)) as u32) as f64).collect()),
+        Kind::Float(4) => {
+            Values::Float((0..n).map(|i| f32::from_bits(u64::from_le_bytes(word(i)) as u32) as f64).collect())
+        }
         Kind::Float(_) => Values::Float((0..n).map(|i| f64::from_bits(u64::from_le_bytes(word(i)))).collect()),
     })
 }
@@ -172,7 +174,11 @@ fn read_nifti(b: &[u8]) -> Result<LabelVolume, String> {
     }
     let i16_at = |o: usize| {
         let x = [b[o], b[o + 1]];
-        if big { i16::from_be_bytes(x) } else { i16::from_le_bytes(x) }
+        if big {
+            i16::from_be_bytes(x)
+        } else {
+            i16::from_le_bytes(x)
+        }
     };
     let f32_at = |o: usize| {
         let x = [b[o], b[o + 1], b[o + 2], b[o + 3]];
@@ -256,7 +262,8 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
     let mut line_no = 0;
     loop {
         let end = raw[pos..].iter().position(|&c| c == b'\n').ok_or("the header has no empty line before the data")?;
-        let line = std::str::from_utf8(&raw[pos..pos + end]).map_err(|_| format!("header line {} is not text", line_no + 1))?;
+        let line = std::str::from_utf8(&raw[pos..pos + end])
+            .map_err(|_| format!("header line {} is not text", line_no + 1))?;
         let line = line.trim_end_matches('\r');
         pos += end + 1;
         line_no += 1;
@@ -273,7 +280,8 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
     if get("data file").or(get("datafile")).is_some() {
         return Err("detached data files are not supported: save with the data attached".into());
     }
-    let dim: usize = get("dimension").ok_or("no \"dimension\" field")?.parse().map_err(|_| "\"dimension\" is not a number")?;
+    let dim: usize =
+        get("dimension").ok_or("no \"dimension\" field")?.parse().map_err(|_| "\"dimension\" is not a number")?;
     let sizes: Vec<usize> = get("sizes")
         .ok_or("no \"sizes\" field")?
         .split_whitespace()
@@ -321,14 +329,20 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
     };
     let labels = values.whole(shape, true)?;
     let vector = |s: &str| -> Result<[f64; 3], String> {
-        let inner = s.trim().strip_prefix('(').and_then(|s| s.strip_suffix(')')).ok_or(format!("{s:?} is not (x,y,z)"))?;
-        let v: Vec<f64> = inner.split(',').map(|x| x.trim().parse::<f64>()).collect::<Result<_, _>>().map_err(|_| format!("{s:?} is not (x,y,z)"))?;
+        let inner =
+            s.trim().strip_prefix('(').and_then(|s| s.strip_suffix(')')).ok_or(format!("{s:?} is not (x,y,z)"))?;
+        let v: Vec<f64> = inner
+            .split(',')
+            .map(|x| x.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|_| format!("{s:?} is not (x,y,z)"))?;
         <[f64; 3]>::try_from(v).map_err(|_| format!("{s:?} does not have 3 numbers"))
     };
     let mut affine = IDENTITY;
     if let Some(d) = get("space directions") {
         // One vector per axis: the world step of one voxel along it.
-        let rows: Vec<[f64; 3]> = d.split_whitespace().map(vector).collect::<Result<_, _>>().map_err(|e| format!("space directions: {e}"))?;
+        let rows: Vec<[f64; 3]> =
+            d.split_whitespace().map(vector).collect::<Result<_, _>>().map_err(|e| format!("space directions: {e}"))?;
         if rows.len() != 3 {
             return Err(format!("space directions has {} vectors, expected 3", rows.len()));
         }
@@ -349,7 +363,17 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
 
 /// The map `origin + index * spacing` (what `--spacing`/`--origin` give).
 pub fn diagonal(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
-    [0, 1, 2].map(|r| std::array::from_fn(|c| if c == 3 { origin[r] } else if c == r { spacing[r] } else { 0.0 }))
+    [0, 1, 2].map(|r| {
+        std::array::from_fn(|c| {
+            if c == 3 {
+                origin[r]
+            } else if c == r {
+                spacing[r]
+            } else {
+                0.0
+            }
+        })
+    })
 }
 
 /// Moves label surfaces from voxel indices to world points by `affine`
