@@ -112,3 +112,61 @@ def test_nifti_and_nrrd_affines_land_where_nibabel_says(tmp_path):
     affine[:3, 3] = [100.0, -20.0, 7.5]
     assert np.allclose(a.points, apply_affine(affine, ref.points))
     assert np.isclose(_signed_volume(a, pair), ref_vol * abs(np.linalg.det(m)))
+
+
+def _cli_labels(tmp_path, path, *extra):
+    import subprocess
+
+    from conftest import SEPTA, need
+
+    out = tmp_path / ("out-" + path.name + "-".join(extra))
+    r = subprocess.run([str(need(SEPTA, "the septa binary")), "labels", str(path), "--quiet", "-o", str(out), *extra],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    return septa.load(out)
+
+
+def test_cli_places_label_files_like_python_and_nibabel(tmp_path):
+    """`septa labels` reads NIfTI (sform, or qform only) and NRRD files and
+    places them as nibabel / pynrrd say, giving Python's points and polygons."""
+    nib = pytest.importorskip("nibabel")
+    nrrd = pytest.importorskip("nrrd")
+    from nibabel.affines import apply_affine
+
+    v = _volume()
+    ref = septa.label_surfaces(v)
+    ref_vol = _signed_volume(ref, 5)
+    c, s = np.cos(0.3), np.sin(0.3)
+    rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
+    sheared = rot @ np.array([[0.9, 0.2, 0], [0, 1.1, 0], [0, 0, -1.5]])  # det < 0
+    mirrored = rot @ np.diag([0.8, 1.2, -2.0])  # a rotation and zooms with a flip: a qform
+    files = []
+    for name, m, qform_only in (("sheared.nii.gz", sheared, False), ("flip-x.nii", np.diag([-0.8, 0.8, 2.0]), False),
+                                ("qform.nii", mirrored, True)):
+        affine = np.eye(4)
+        affine[:3, :3] = m
+        affine[:3, 3] = [100.0, -20.0, 7.5]
+        img = nib.Nifti1Image(v, affine)
+        if qform_only:
+            img.set_sform(None, code=0)
+            img.set_qform(affine, code=1)
+        nib.save(img, str(tmp_path / name))
+        files.append((tmp_path / name, nib.load(str(tmp_path / name)).affine))
+    affine = np.eye(4)
+    affine[:3, :3] = sheared
+    affine[:3, 3] = [100.0, -20.0, 7.5]
+    nrrd.write(str(tmp_path / "v.nrrd"), v, {"space directions": sheared.T, "space origin": [100.0, -20.0, 7.5],
+                                             "space": "left-posterior-superior", "encoding": "gzip"})
+    files.append((tmp_path / "v.nrrd", affine))
+    for path, affine in files:
+        cli = _cli_labels(tmp_path, path)
+        py = septa.label_surfaces(path)
+        assert np.allclose(cli.points, apply_affine(affine, ref.points)), path.name
+        assert np.allclose(cli.points, py.points) and np.array_equal(cli.indices, py.indices), path.name
+        m = np.asarray(affine)[:3, :3]
+        assert np.isclose(_signed_volume(cli, 5), ref_vol * abs(np.linalg.det(m))), path.name
+    # --spacing / --origin replace a file's map, as spacing= / origin= do in Python.
+    np.save(tmp_path / "v.npy", v)
+    cli = _cli_labels(tmp_path, tmp_path / "v.npy", "--spacing", "0.5", "2", "3", "--origin", "-1", "0", "4")
+    py = septa.label_surfaces(v, spacing=(0.5, 2, 3), origin=(-1, 0, 4))
+    assert np.allclose(cli.points, py.points) and np.array_equal(cli.indices, py.indices)

@@ -64,6 +64,15 @@ pub fn finite(s: &str) -> Result<f64, String> {
     Ok(x)
 }
 
+/// A finite number `> 0` (a voxel size).
+pub fn positive(s: &str) -> Result<f64, String> {
+    let x = finite(s)?;
+    if x <= 0.0 {
+        return Err(format!("expected a number > 0, not {x}"));
+    }
+    Ok(x)
+}
+
 /// A finite number `>= 0`.
 pub fn finite_nonneg(s: &str) -> Result<f64, String> {
     let x = finite(s)?;

@@ -142,6 +142,22 @@ fn grid_readers_name_file_and_element() {
     std::fs::write(d.join("m3.json"), "[[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[0.1,0.1,0.1]],[[0,1,2,3],[4,1,2,3]]]")
         .unwrap();
     refused(&d, &["ia", "f.json", "--mesh", "m3.json", "-o", "o"], &["m3.json", "face"]);
+    // The unit cube in 5 tets plus a sixth laid over them, sharing no face
+    // with them (was accepted: 6 cells instead of 5), as JSON and as Gmsh.
+    let cube = "[[0,0,0],[1,0,0],[0,1,0],[1,1,0],[0,0,1],[1,0,1],[0,1,1],[1,1,1]]";
+    let tets = "[[0,3,5,6],[1,0,3,5],[2,0,3,6],[4,0,5,6],[7,3,5,6],[0,1,2,4]]";
+    std::fs::write(d.join("m4.json"), format!("[{cube},{tets}]")).unwrap();
+    refused(&d, &["ia", "f.json", "--mesh", "m4.json", "-o", "o"], &["m4.json", "tets 0 and 5 overlap"]);
+    let nodes: Vec<String> = (0..8).map(|i| format!("{} {} {} {}", i + 1, i & 1, (i >> 1) & 1, (i >> 2) & 1)).collect();
+    let elems = ["1 4 6 7", "2 1 4 6", "3 1 4 7", "5 1 6 7", "8 4 6 7", "1 2 3 5"];
+    let elems: Vec<String> = elems.iter().enumerate().map(|(k, e)| format!("{} 4 0 {e}", k + 1)).collect();
+    let msh = format!(
+        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n{}\n$EndNodes\n$Elements\n6\n{}\n$EndElements\n",
+        nodes.join("\n"),
+        elems.join("\n")
+    );
+    std::fs::write(d.join("over.msh"), msh).unwrap();
+    refused(&d, &["ia", "f.json", "--mesh", "over.msh", "-o", "o"], &["over.msh", "tets 0 and 5 overlap"]);
     // Gmsh: an element referring to a missing node.
     let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n$Elements\n1\n1 4 0 1 2 3 9\n$EndElements\n";
     std::fs::write(d.join("m.msh"), msh).unwrap();
@@ -202,6 +218,31 @@ fn mesh_and_plane_readers() {
     std::fs::write(d.join("tiny.obj"), tiny).unwrap();
     let t = succeeds(&d, &["cut", "tiny.obj", "--grid", "2", "-o", "t", "--json"]);
     assert_eq!(cells(&t), cells(&b));
+    // Two nested cubes (sides 3 and 1) facing the same way: refused, naming
+    // the inner shell (was cut into overlapping cells of volumes 27 and 1).
+    // Facing opposite ways (a cavity): cut.
+    let nested = |inner_out: bool| {
+        let mut s = String::new();
+        for (lo, size) in [(0.0, 3.0), (1.0, 1.0)] {
+            for l in cube.lines().filter(|l| l.starts_with("v ")) {
+                let c: Vec<f64> = l[2..].split(' ').map(|x| lo + size * x.parse::<f64>().unwrap()).collect();
+                s += &format!("v {} {} {}\n", c[0], c[1], c[2]);
+            }
+        }
+        for (base, flip) in [(0, false), (8, !inner_out)] {
+            for l in cube.lines().filter(|l| l.starts_with("f ")) {
+                let ids: Vec<usize> = l[2..].split(' ').map(|x| x.parse::<usize>().unwrap() + base).collect();
+                let (b, c) = if flip { (ids[2], ids[1]) } else { (ids[1], ids[2]) };
+                s += &format!("f {} {b} {c}\n", ids[0]);
+            }
+        }
+        s
+    };
+    std::fs::write(d.join("nested.obj"), nested(true)).unwrap();
+    refused(&d, &["cut", "nested.obj", "--grid", "2", "-o", "x"], &["nested.obj", "shell 1", "inside shells [0]"]);
+    std::fs::write(d.join("cavity.obj"), nested(false)).unwrap();
+    let c = succeeds(&d, &["cut", "cavity.obj", "--grid", "2", "-o", "cav", "--json"]);
+    assert!(c.contains("\"check\":\"ok\""), "{c}");
     // Bad meshes name the file and line or element.
     std::fs::write(d.join("bad.off"), "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n").unwrap();
     refused(&d, &["cut", "bad.off", "--grid", "2", "-o", "x"], &["bad.off", "index 5"]);
@@ -241,7 +282,33 @@ fn label_volumes() {
     refused(&d, &["labels", "t.npy"], &["t.npy"]);
     std::fs::write(d.join("two.npy"), npy("<i8", false, &[27], &bytes)).unwrap();
     refused(&d, &["labels", "two.npy"], &["two.npy", "3 axes"]);
+    // NIfTI and NRRD: truncated or unsupported files name the file and field.
+    std::fs::write(d.join("short.nii"), b"garbage").unwrap();
+    refused(&d, &["labels", "short.nii"], &["short.nii", "NIfTI-1 header"]);
+    std::fs::write(d.join("short.nii.gz"), [0x1fu8, 0x8b, 8, 0, 0]).unwrap();
+    refused(&d, &["labels", "short.nii.gz"], &["short.nii.gz", "gzip"]);
+    let ascii: String = lab.iter().map(|x| format!("{x}\n")).collect();
+    let head = |extra: &str| format!("NRRD0004\ntype: int16\ndimension: 3\nsizes: 3 3 3\nencoding: ascii\n{extra}\n");
+    std::fs::write(
+        d.join("flat.nrrd"),
+        head("").replace("dimension: 3\nsizes: 3 3 3", "dimension: 2\nsizes: 9 3") + &ascii,
+    )
+    .unwrap();
+    refused(&d, &["labels", "flat.nrrd"], &["flat.nrrd", "3 axes"]);
+    std::fs::write(d.join("det.nrrd"), head("data file: v.raw\n")).unwrap();
+    refused(&d, &["labels", "det.nrrd"], &["det.nrrd", "detached"]);
+    std::fs::write(d.join("few.nrrd"), head("") + "1 2 3\n").unwrap();
+    refused(&d, &["labels", "few.nrrd"], &["few.nrrd", "3 ascii values, 27 expected"]);
+    std::fs::write(d.join("dir.nrrd"), head("space directions: (1,0,0) (0,1,0)\n") + &ascii).unwrap();
+    refused(&d, &["labels", "dir.nrrd"], &["dir.nrrd", "space directions"]);
+    refused(&d, &["labels", "v.npy", "--spacing", "1", "0", "1"], &["--spacing"]);
+    // The same labels as ascii NRRD (first axis fastest) with a mirror: the
+    // surfaces of the .npy, moved.
+    std::fs::write(d.join("ok.nrrd"), head("space directions: (-1,0,0) (0,1,0) (0,0,1)\n") + &ascii).unwrap();
+    let n = succeeds(&d, &["labels", "ok.nrrd", "--json", "-o", "n"]);
     let ok = succeeds(&d, &["labels", "v.npy", "--json"]);
+    let faces = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap()["faces"].clone();
+    assert_eq!(faces(&n), faces(&ok));
     assert!(ok.contains("\"surfaces\""), "{ok}");
     let _ = std::fs::remove_dir_all(&d);
 }

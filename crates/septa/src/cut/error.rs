@@ -66,6 +66,38 @@ pub enum CutError {
         /// The signed volume.
         volume: f64,
     },
+    /// Nested shells facing the same way (or a cavity facing outwards, or
+    /// a lone shell facing inwards): some points would be inside the solid
+    /// twice, or -1 times.
+    #[error("shell {shell} (the triangles connected to triangle {triangle}) faces {facing} and lies inside shells {around:?}: the winding number would be {winding} next to it, but it must be 0 or 1 everywhere; nested shells must alternate orientation (the outermost faces outwards, a cavity's triangles face inwards): flip or remove shell {shell}")]
+    ShellWinding {
+        /// Shell index (shells are numbered by their smallest triangle).
+        shell: usize,
+        /// Its smallest triangle.
+        triangle: usize,
+        /// "outwards" (positive volume) or "inwards".
+        facing: &'static str,
+        /// The shells around it.
+        around: Vec<usize>,
+        /// A winding number other than 0 or 1 found beside the shell.
+        winding: i64,
+    },
+    /// A shell encloses zero volume (exactly).
+    #[error("shell {shell} (the triangles connected to triangle {triangle}) encloses zero volume")]
+    FlatShell {
+        /// Shell index.
+        shell: usize,
+        /// Its smallest triangle.
+        triangle: usize,
+    },
+    /// A vertex of one shell lies on a triangle of another.
+    #[error("vertex {vertex} lies on triangle {triangle} of another shell (the shells touch)")]
+    ShellsTouch {
+        /// The vertex.
+        vertex: usize,
+        /// The triangle.
+        triangle: usize,
+    },
     /// Two triangles meet away from their shared vertices.
     #[error("triangles {first} and {second} intersect (the mesh self-intersects)")]
     SelfIntersection {

@@ -66,6 +66,7 @@ pub mod plane_graph;
 pub mod rational;
 pub mod repair;
 pub mod selfx;
+mod shells;
 pub mod side_filter;
 pub mod triangulate;
 mod validate;
@@ -255,6 +256,9 @@ fn cut_impl(
     if !opts.skip_self_intersection_check {
         selfx::check_self_intersections(vertices, triangles)?;
     }
+    // After the self-intersection test: shells are then disjoint, which
+    // the winding-number argument needs (timed with it).
+    shells::check_shells(vertices, triangles, &edge_tris, &tri_edges)?;
     lap("self_intersection", &mut stats);
     let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
     let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();

@@ -4,6 +4,8 @@ use std::collections::HashMap;
 
 use septa_exact::{det_sign_diff, Sign};
 
+use super::overlap::find_overlap;
+
 /// Why a tet mesh was rejected. Each variant names the element.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MeshError {
@@ -41,6 +43,15 @@ pub enum MeshError {
         /// Tets sharing it.
         tets: Vec<usize>,
     },
+    /// Two tets share interior points (an extra tet laid over others):
+    /// decided exactly, also for tets that share no face.
+    #[error("tets {first} and {second} overlap (their interiors intersect): a tet mesh must cover each point at most once")]
+    Overlap {
+        /// The smaller tet id.
+        first: usize,
+        /// The other tet id.
+        second: usize,
+    },
     /// No tets (or no vertices): nothing to compute on.
     #[error("the mesh has {vertices} vertices and {tets} tets: at least one tet is needed")]
     Empty {
@@ -76,7 +87,8 @@ pub fn orientation(p: &[[f64; 3]; 4]) -> Sign {
 impl TetMesh {
     /// Validates a mesh: finite coordinates, indices in range, no zero-volume
     /// tet (exact test), every face shared by at most two tets lying on
-    /// opposite sides of it. Inverted tets are re-oriented by swapping their
+    /// opposite sides of it, no two tets with a common interior point (exact
+    /// test on every pair with overlapping bounding boxes). Inverted tets are re-oriented by swapping their
     /// last two vertices.
     pub fn new(vertices: Vec<[f64; 3]>, tets: &[[i64; 4]]) -> Result<TetMesh, MeshError> {
         if tets.is_empty() || vertices.is_empty() {
@@ -109,7 +121,20 @@ impl TetMesh {
             out.push(ids);
         }
         check_manifold(&out)?;
+        if let Some((first, second)) = find_overlap(&vertices, &out) {
+            return Err(MeshError::Overlap { first, second });
+        }
         Ok(TetMesh { vertices, tets: out })
+    }
+}
+
+impl TetMesh {
+    /// The first pair of tets whose interiors intersect (exact), if any;
+    /// [`TetMesh::new`] refuses such meshes, so this is `None` for any
+    /// mesh it built. Public for benchmarks and for checking meshes
+    /// assembled by hand.
+    pub fn first_overlap(&self) -> Option<(usize, usize)> {
+        find_overlap(&self.vertices, &self.tets)
     }
 }
 

@@ -9,6 +9,7 @@
 mod boxgrid;
 pub mod memory;
 mod mesh;
+mod overlap;
 
 pub use boxgrid::{grid_coordinate, BoxGrid, GridError, Split};
 pub use mesh::{MeshError, TetMesh};

@@ -21,6 +21,7 @@ pub mod result_mesh;
 pub mod result_npz;
 pub mod result_vtk;
 pub mod summary_out;
+pub mod volume;
 pub mod vtu_stream;
 
 pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};
