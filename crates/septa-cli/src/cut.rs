@@ -110,8 +110,9 @@ pub fn run(a: Args) -> CliResult {
     let t1 = Instant::now();
     let options =
         CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
-    let out = crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))
-        .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
+    let out =
+        crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))
+            .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");

@@ -100,8 +100,8 @@ fn apollonius(dir: &Path, a: &Args) -> JobResult {
 /// The 18 spheres of the IA benchmark (data/specs/ia18.json) streamed block by block: `stream.ply`
 /// (faces with patch and cells) and `stream.topology.json`, in bounded memory.
 fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
+    use septa::complex::Mode;
     use septa::network::{stream_topology, NetworkOptions};
-use septa::complex::Mode;
     let spec = include_str!("../../../data/specs/ia18.json");
     let functions = septa::scene::load_function_list(spec, "data/specs/ia18.json", None)?;
     let n = 2 * a.grid;

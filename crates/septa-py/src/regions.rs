@@ -40,7 +40,8 @@ pub fn regions<'py>(
         }
         .map_err(|e| e.to_string())?;
         let progress = progress.map(crate::network::py_progress);
-        region_surfaces(&s, &RegionOptions { normals, clean, progress, ..Default::default() }).map_err(|e| e.to_string())
+        region_surfaces(&s, &RegionOptions { normals, clean, progress, ..Default::default() })
+            .map_err(|e| e.to_string())
     });
     region_dict(py, &result.map_err(InputError::new_err)?)
 }

@@ -36,17 +36,10 @@ pub fn stream_ply<'py>(
     let r: Result<Out, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = crate::distributed::parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
-<<<<<<< HEAD
         let run = || -> Result<Out, Failure> {
-            let mut sink = PlyStreamSink::create(Path::new(path), &j.grid, j.options.mode, j.functions.len())
-                .map_err(|e| format!("{path}: {e}"))?
-                .triangulated(triangles);
-=======
-        let run = || -> Result<Out, String> {
             // (its errors name the file)
             let mut sink = StreamFile::create(Path::new(path), &j.grid, j.options.mode, j.functions.len(), triangles)
                 .map_err(|e| e.to_string())?;
->>>>>>> results
             let (stats, summary) = if topology {
                 let (s, t) =
                     stream_topology(&j.grid, &j.functions, &j.options, window, &mut sink).map_err(crate::failure)?;

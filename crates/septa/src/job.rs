@@ -21,9 +21,9 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split, TetMesh};
 use crate::network::{compute, compute_sparse, Network, NetworkError, NetworkOptions, SparseStats};
-use crate::complex::Mode;
 use crate::scene::{load_function_list, sample_grid, Primitive, Scene, SceneError};
 
 /// The functions of a job.

@@ -45,7 +45,9 @@ pub enum MeshError {
     },
     /// Two tets share interior points (an extra tet laid over others):
     /// decided exactly, also for tets that share no face.
-    #[error("tets {first} and {second} overlap (their interiors intersect): a tet mesh must cover each point at most once")]
+    #[error(
+        "tets {first} and {second} overlap (their interiors intersect): a tet mesh must cover each point at most once"
+    )]
     Overlap {
         /// The smaller tet id.
         first: usize,

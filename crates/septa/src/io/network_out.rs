@@ -8,9 +8,9 @@ use std::path::Path;
 
 use super::atomic::write_atomic_with;
 use super::result::{Format, ResultView};
+use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::{CellInfo, Network, Patch};
-use crate::complex::Mode;
 
 pub(crate) fn list<W: Write + ?Sized, T: std::fmt::Display>(
     w: &mut W,
@@ -180,8 +180,6 @@ pub(crate) fn write_counts_seconds<W: Write + ?Sized>(
     }
     w.write_all(b"}}\n")
 }
-
-
 
 /// Writes `network.ply`: the polygons as triangle fans with `face`, `patch`,
 /// `labels_0`, `labels_1`, `cells_0`, `cells_1` and the patch colour

@@ -34,9 +34,9 @@ use std::path::{Path, PathBuf};
 
 use std::io::{BufReader, Read};
 
+use crate::complex::Mode;
 use crate::grid::BoxGrid;
 use crate::network::NetworkSummary;
-use crate::complex::Mode;
 use crate::network::{StreamBlock, StreamSink};
 
 /// Writes streamed blocks to one PLY (module doc).

@@ -20,9 +20,9 @@
 
 use std::borrow::Cow;
 
+use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::Network;
-use crate::complex::Mode;
 use crate::regions::RegionSurfaces;
 
 /// A result as the writers see it: polygons with per-polygon `patch`,

@@ -10,9 +10,9 @@ use std::path::Path;
 
 use super::atomic::write_atomic_with;
 use super::network_out::{list, write_counts_seconds, write_topology, TopologyJson};
+use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::NetworkSummary;
-use crate::complex::Mode;
 
 /// Writes the summary's JSON atomically.
 pub fn write_summary_json(s: &NetworkSummary, path: &Path, seconds: &[(&str, f64)]) -> std::io::Result<()> {

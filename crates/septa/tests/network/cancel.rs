@@ -3,9 +3,9 @@
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, NetworkError, NetworkOptions};
-use septa::complex::Mode;
 
 #[test]
 fn a_cancelled_run_returns_cancelled() {

@@ -5,9 +5,9 @@
 
 use std::collections::HashMap;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, Network, NetworkOptions};
-use septa::complex::Mode;
 use septa::scene::{sample_grid, Primitive};
 
 fn network(functions: &[Primitive], n: usize, mode: Mode, split: Split, raytrace: bool) -> Network {

@@ -4,9 +4,9 @@
 
 use crate::common;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid};
 use septa::network::{compute, Network, NetworkError, NetworkOptions};
-use septa::complex::Mode;
 use septa::network::{compute_continuation, Field, Seeds};
 use septa::scene::Primitives;
 use septa::scene::{sample_grid, Primitive};

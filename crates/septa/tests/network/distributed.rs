@@ -6,9 +6,9 @@ use std::path::Path;
 
 use rand::seq::SliceRandom;
 use rand::SeedableRng;
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, finish_sparse, plan_sparse, run_block, BlockResult, NetworkOptions};
-use septa::complex::Mode;
 use septa::scene::{load_function_list, sample_grid, Primitive};
 
 fn spec(name: &str) -> Vec<Primitive> {

@@ -6,10 +6,10 @@ use crate::common;
 
 use std::path::{Path, PathBuf};
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, NetworkOptions};
-use septa::complex::Mode;
 
 fn data_dir() -> Option<PathBuf> {
     Some(common::shared_data().join("isn"))

@@ -6,11 +6,11 @@ use crate::common;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+use septa::complex::Mode;
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Network, NetworkError, NetworkOptions};
-use septa::complex::Mode;
 use septa::scene::{sample_grid as sample, Primitive};
 
 fn data_dir() -> Option<PathBuf> {

@@ -5,10 +5,10 @@
 
 use crate::common;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Network, NetworkOptions};
-use septa::complex::Mode;
 
 fn json(net: &Network, tag: &str) -> String {
     common::network_json(net, tag)

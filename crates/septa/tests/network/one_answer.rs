@@ -9,9 +9,9 @@
 
 use crate::common;
 
+use septa::complex::Mode;
 use septa::job::{GridOverride, Job};
 use septa::network::{stream_topology, Network, NetworkOptions, StreamBlock, StreamSink};
-use septa::complex::Mode;
 
 use common::assert_same_network;
 

@@ -4,10 +4,10 @@
 
 use std::path::PathBuf;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::io::network_out::write_all;
 use septa::network::{compute, NetworkOptions};
-use septa::complex::Mode;
 use septa::scene::{sample_grid as sample, Primitive};
 
 #[test]

@@ -6,11 +6,11 @@ use std::path::{Path, PathBuf};
 
 use crate::common;
 
+use septa::complex::Mode;
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
 use septa::io::npz::read_grid_input;
 use septa::network::{compute, Network, NetworkOptions};
-use septa::complex::Mode;
 
 fn data_dir() -> Option<PathBuf> {
     Some(common::shared_data().join("isn"))

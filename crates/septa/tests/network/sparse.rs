@@ -5,9 +5,9 @@ use crate::common;
 
 use std::path::Path;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, Network, NetworkOptions};
-use septa::complex::Mode;
 use septa::network::{compute_sparse, SparseStats};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{sample_grid, Primitive, Scene};

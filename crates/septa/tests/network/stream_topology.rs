@@ -11,11 +11,11 @@ use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Split};
 use septa::network::compute_sparse;
 use septa::network::{stream_topology, StreamBlock, StreamSink};
 use septa::network::{Network, NetworkOptions, NetworkSummary, VKey};
-use septa::complex::Mode;
 use septa::scene::{Primitive, Scene};
 
 use common::{cube_grid, spec};

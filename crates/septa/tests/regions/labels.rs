@@ -6,9 +6,9 @@ use crate::common;
 
 use std::path::PathBuf;
 
+use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, NetworkOptions};
-use septa::complex::Mode;
 
 use septa::io::regions_out;
 use septa::regions::{label_surfaces, label_surfaces_listing_triples, RegionSurfaces};

@@ -298,10 +298,10 @@ fn open_meshes_get_no_bound_closed_ones_do() {
 /// dense array by array (or both reject the same input).
 #[test]
 fn every_primitive_sparse_equals_dense() {
+    use septa::complex::Mode;
     use septa::grid::{BoxGrid, Grid, Split};
     use septa::network::compute_sparse;
     use septa::network::{compute, NetworkOptions};
-use septa::complex::Mode;
     use septa::scene::sample_grid;
     let mut skipped = 0;
     for (name, f) in primitives() {

@@ -12,8 +12,8 @@
 
 use std::collections::{BTreeMap, HashMap, HashSet};
 
-use septa::grid::{BoxGrid, Grid, Split};
 use septa::complex::Mode as NetMode;
+use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, Network, NetworkOptions};
 use septa::scene::{builtin, Mode, RegionId, Scene};
 

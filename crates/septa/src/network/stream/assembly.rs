@@ -31,12 +31,12 @@ use smallvec::SmallVec;
 
 use super::numbering::max_x;
 use super::summary::{BlockSummary, ShellNode};
+use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::block::{BlockOut, Label, OpenT};
 use crate::network::dense::label_free_cells;
 use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
 use crate::network::{named_counts, CellInfo, NetworkError, Patch};
-use crate::complex::Mode;
 use crate::uf::UnionFind;
 
 /// The topology of a streamed network, without its polygons (they went to
