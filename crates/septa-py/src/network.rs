@@ -113,12 +113,7 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py
         cd.set_item("shells", c.shells.clone())?;
         match net.mode {
             // Sign vector as booleans (bit f set iff f > 0), as network.json.
-            Mode::Ia => cd.set_item(
-                "label",
-                (0..net.functions)
-                    .map(|f| c.label.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1))
-                    .collect::<Vec<bool>>(),
-            )?,
+            Mode::Ia => cd.set_item("label", (0..net.functions).map(|f| c.positive(f)).collect::<Vec<bool>>())?,
             Mode::Mi => cd.set_item("label", vec![c.label.first().copied().unwrap_or(0)])?,
         }
         cells.append(cd)?;

@@ -34,14 +34,12 @@ fn id(x: u32) -> i64 {
     }
 }
 
-/// The cell label as JSON: IA a list of booleans (function positive), MI `[material]`.
 /// A cell label as JSON: IA one boolean per function (`f > 0`), MI `[material]`.
 pub(crate) fn label_json(mode: Mode, functions: usize, l: &[u64]) -> String {
     match mode {
         Mode::Ia => {
-            let bits: Vec<&str> = (0..functions)
-                .map(|f| if l.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1) { "true" } else { "false" })
-                .collect();
+            let bits: Vec<&str> =
+                (0..functions).map(|f| if crate::network::sign_bit(l, f) { "true" } else { "false" }).collect();
             format!("[{}]", bits.join(","))
         }
         Mode::Mi => format!("[{}]", l.first().copied().unwrap_or(0)),

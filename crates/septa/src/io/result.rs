@@ -97,9 +97,7 @@ impl<'a> ResultView<'a> {
             .cells
             .iter()
             .map(|c| match net.mode {
-                Mode::Ia => {
-                    (0..net.functions).map(|f| c.label.get(f / 64).map_or(0, |w| (w >> (f % 64) & 1) as i64)).collect()
-                }
+                Mode::Ia => (0..net.functions).map(|f| c.positive(f) as i64).collect(),
                 Mode::Mi => vec![c.label.first().copied().unwrap_or(0) as i64],
             })
             .collect();

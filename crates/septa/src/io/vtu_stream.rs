@@ -23,8 +23,8 @@ use std::path::{Path, PathBuf};
 
 use super::ply_stream::{PlyStreamSink, PlyStreamStats};
 use super::result_vtk::vtu_header;
-use crate::grid::BoxGrid;
 use crate::complex::Mode;
+use crate::grid::BoxGrid;
 use crate::network::{NetworkSummary, StreamBlock, StreamSink};
 
 /// VTK's polygon cell type.

@@ -242,6 +242,19 @@ pub struct CellInfo {
     pub volume: f64,
 }
 
+impl CellInfo {
+    /// IA: whether function `f` is positive on the cell (its sign bit).
+    pub fn positive(&self, f: usize) -> bool {
+        sign_bit(&self.label, f)
+    }
+}
+
+/// Bit `f` of an IA sign label (set iff function `f` is positive); the one
+/// reader of the label layout.
+pub fn sign_bit(label: &[u64], f: usize) -> bool {
+    label.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1)
+}
+
 /// A complete surface network.
 #[derive(Clone, Debug)]
 pub struct Network {

@@ -194,8 +194,7 @@ fn cell_region(net: &Network, rule: &RegionRule, c: usize) -> RegionId {
     let label = &net.cells[c].label;
     match net.mode {
         Mode::Ia => {
-            let bit = |f: usize| label.get(f / 64).is_some_and(|w| w >> (f % 64) & 1 == 1);
-            let positive: Vec<bool> = (0..net.functions).map(bit).collect();
+            let positive: Vec<bool> = (0..net.functions).map(|f| crate::network::sign_bit(label, f)).collect();
             rule.region_ia(&positive)
         }
         Mode::Mi => rule.region_mi(label.first().copied().unwrap_or(0) as usize),

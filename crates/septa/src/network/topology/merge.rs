@@ -252,7 +252,7 @@ impl Merger {
             match mode {
                 Mode::Ia => {
                     let f = ha.3;
-                    let pos_a = m.region_label.get(ha.2)[f as usize / 64] >> (f % 64) & 1 == 1;
+                    let pos_a = crate::network::sign_bit(m.region_label.get(ha.2), f as usize);
                     let (first, second) = if pos_a { (a, b) } else { (b, a) };
                     let (h1, h2) = (&halves[first as usize], &halves[second as usize]);
                     let id = new_face(&mut m, &h1.1, [f, f], [h1.2, h2.2]);
@@ -278,7 +278,7 @@ impl Merger {
             // A function vanishing on a grid boundary face: one side only.
             for h in singles {
                 let (_, verts, node, f) = &halves[h as usize];
-                let pos = m.region_label.get(*node)[*f as usize / 64] >> (f % 64) & 1 == 1;
+                let pos = crate::network::sign_bit(m.region_label.get(*node), *f as usize);
                 if pos {
                     let id = new_face(&mut m, verts, [*f, *f], [*node, NONE]);
                     half_side[h as usize] = Some(2 * id);
