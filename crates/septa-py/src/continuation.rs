@@ -128,13 +128,7 @@ pub fn continuation<'py>(
     let (net, stats) = r.map_err(InputError::new_err)?;
     let d = crate::network::to_dict(py, &net)?;
     if let (Some(s), Some(counts)) = (stats, d.get_item("counts")?) {
-        let b = PyDict::new(py);
-        b.set_item("blocks", s.blocks.blocks)?;
-        b.set_item("skipped", s.blocks.skipped)?;
-        b.set_item("sampled", s.blocks.sampled)?;
-        b.set_item("active", s.blocks.active)?;
-        b.set_item("sampled_vertices", s.blocks.sampled_vertices)?;
-        b.set_item("dense_fallback", s.blocks.dense_fallback)?;
+        let b = crate::distributed::stats_dict(py, &s.blocks)?;
         b.set_item("seeds", s.seeds)?;
         b.set_item("rounds", s.rounds)?;
         counts.set_item("blocks", b)?;
@@ -240,14 +234,7 @@ pub fn continuation_finish<'py>(
     let (net, s) = r.map_err(InputError::new_err)?;
     let d = crate::network::to_dict(py, &net)?;
     if let Some(counts) = d.get_item("counts")? {
-        let b = PyDict::new(py);
-        b.set_item("blocks", s.blocks)?;
-        b.set_item("skipped", s.skipped)?;
-        b.set_item("sampled", s.sampled)?;
-        b.set_item("active", s.active)?;
-        b.set_item("sampled_vertices", s.sampled_vertices)?;
-        b.set_item("dense_fallback", s.dense_fallback)?;
-        counts.set_item("blocks", b)?;
+        counts.set_item("blocks", crate::distributed::stats_dict(py, &s)?)?;
     }
     Ok(d)
 }

@@ -47,7 +47,8 @@ fn plan_of(p: (usize, Vec<usize>, bool)) -> SparsePlan {
     SparsePlan { blocks: p.0, kept: p.1, dense: p.2 }
 }
 
-fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Bound<'py, PyDict>> {
+/// A sparse run's block statistics as the dict Python results carry.
+pub(crate) fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("blocks", s.blocks)?;
     d.set_item("skipped", s.skipped)?;
