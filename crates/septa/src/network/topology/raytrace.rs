@@ -509,10 +509,8 @@ fn shell_around_vertex(
             if !face.vertices.contains(&p) {
                 continue;
             }
-            if let Some(side) = face_side(ctx, v, face, cell) {
-                let keys: SmallVec<[VKey; 8]> =
-                    face.vertices.iter().map(|&x| vertex_key(ctx.mode, &v.complex, x, &v.tet, &v.active)).collect();
-                if let Some(s) = index.shell(&v.tet, &keys, side) {
+            if face_side(ctx, v, face, cell).is_some() {
+                if let Some(s) = shell_of_face(ctx, index, v, face, cell) {
                     return Some(s);
                 }
                 continue;
@@ -552,34 +550,35 @@ fn facing_shell(
     towards_a: bool,
 ) -> Option<u32> {
     let c = &view.complex;
-    let la = view.tet.iter().position(|&x| x == a)? as u8;
-    let lb = view.tet.iter().position(|&x| x == b)? as u8;
-    let list = c.tet_edge_points(la, lb);
+    let list = c.tet_edge_points(local(view, a)?, local(view, b)?);
     if list.len() < 2 {
         return None;
     }
     let p = list[j];
     let q = if towards_a { list[j - 1] } else { *list.get(j + 1)? };
-    let edge = c.edges().iter().position(|e| e.vertices == [p, q] || e.vertices == [q, p])? as u32;
-    // A ray segment lying in the network has no side: ambiguous.
-    if c.faces().iter().any(|f| f.plane.is_network() && f.edges.contains(&edge)) {
-        return None;
-    }
-    let cell =
-        c.cells().iter().position(|cl| cl.faces.iter().any(|&f| c.faces()[f as usize].edges.contains(&edge)))? as u32;
-    for &fi in &c.cells()[cell as usize].faces {
-        let face = &c.faces()[fi as usize];
-        if !face.vertices.contains(&p) {
-            continue;
-        }
-        let Some(side) = face_side(ctx, view, face, cell) else { continue };
-        let keys: SmallVec<[VKey; 8]> =
-            face.vertices.iter().map(|&v| vertex_key(ctx.mode, c, v, &view.tet, &view.active)).collect();
-        if let Some(s) = index.shell(&view.tet, &keys, side) {
-            return Some(s);
-        }
-    }
-    None
+    // A ray segment lying in the network has no side: ambiguous (`None`).
+    let cell = cell_at_edge(c, p, q)?;
+    c.cells()[cell as usize]
+        .faces
+        .iter()
+        .map(|&fi| &c.faces()[fi as usize])
+        .filter(|face| face.vertices.contains(&p))
+        .find_map(|face| shell_of_face(ctx, index, view, face, cell))
+}
+
+/// The shell of network face `face` of the tet's complex on the side of
+/// cell `cell`, or `None` if the face is no part of the network.
+fn shell_of_face(
+    ctx: &Ctx,
+    index: &mut dyn RayIndex,
+    view: &TetView,
+    face: &crate::complex::Face,
+    cell: u32,
+) -> Option<u32> {
+    let side = face_side(ctx, view, face, cell)?;
+    let keys: SmallVec<[VKey; 8]> =
+        face.vertices.iter().map(|&v| vertex_key(ctx.mode, &view.complex, v, &view.tet, &view.active)).collect();
+    index.shell(&view.tet, &keys, side)
 }
 
 /// The side of network face `face` of the tet's complex that cell `cell`
