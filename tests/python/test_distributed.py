@@ -152,9 +152,16 @@ def test_distributed_stream_writes_the_local_files(client, tmp_path):
     net = sd.arrangement(spec, client=client, grid=24, block=6)
     s = net.summary()
     assert all(dist["counts"][k] == s[k] for k in ("vertices", "faces", "patches", "chains", "shells", "cells"))
-    # A job the stream refuses (a plane through grid vertices: faces lying in
-    # tet faces) leaves no file.
-    planes = [septa.shapes.plane([0, 0, 0], [1, 0, 0])]
-    with pytest.raises(septa.InputError, match="lies in a tet face"):
-        sd.stream_ply(planes, tmp_path / "bad.ply", client=client, grid=8, block=4)
+    # A plane through grid vertices (faces lying in tet faces, some on block
+    # boundaries) streams on the cluster as it does here.
+    planes = [septa.shapes.plane([0, 0, 0], [1, 0, 0]), septa.shapes.sphere([0, 0, 0], 0.5)]
+    local = septa.stream.stream_ply(planes, tmp_path / "plane.ply", grid=8, block=4, mode="ia")
+    dist = sd.stream_ply(planes, tmp_path / "dplane.ply", client=client, grid=8, block=4, mode="ia")
+    assert dist["counts"] == local["counts"] and dist["counts"]["cells"] == 4
+    assert (tmp_path / "dplane.ply").read_bytes() == (tmp_path / "plane.ply").read_bytes()
+    # A job the stream refuses (two spheres touching at a point: no cells by
+    # ray shooting) leaves no file.
+    tangent = [septa.shapes.sphere([-0.5, 0, 0], 0.5), septa.shapes.sphere([0.5, 0, 0], 0.5)]
+    with pytest.raises(septa.InputError, match="ray shooting"):
+        sd.stream_ply(tangent, tmp_path / "bad.ply", client=client, grid=8, block=4)
     assert not list(tmp_path.glob("*bad*")) and not list(tmp_path.glob(".bad*"))

@@ -216,23 +216,43 @@ fn streamed_ply_holds_the_network_with_each_vertex_once() {
 
 #[test]
 fn a_failed_stream_leaves_no_file() {
-    // IA: a plane through grid vertices lies in tet faces: streaming cannot
-    // pair such faces yet and stops with a clear error naming the block.
+    // A plane through grid vertices lies in tet faces: its faces are paired
+    // inside blocks and across block boundaries, and stream like any others.
     let f =
         load_function_list(r#"[{"type": "plane", "point": [0, 0, 0], "normal": [1, 0, 0]}]"#, "plane", None).unwrap();
     let grid = cube_grid(8);
+    let mut o = NetworkOptions::new(Mode::Ia);
+    o.block = 4;
+    let (net, _) = compute_sparse(&grid, &f, &o).unwrap();
     let path = tmp("plane.ply");
     let mut sink = PlyStreamSink::create(&path, &grid, Mode::Ia, 1).unwrap();
-    let e = stream_sparse(&grid, &f, &NetworkOptions::new(Mode::Ia), 0, &mut sink).unwrap_err();
+    let stats = stream_sparse(&grid, &f, &o, 0, &mut sink).unwrap();
+    sink.finish().unwrap();
+    assert_eq!((stats.faces, stats.vertices as usize), (net.num_faces(), net.points.len()));
+    assert_eq!(read_ply(&path).faces.len(), net.num_faces());
+    std::fs::remove_file(&path).unwrap();
+    // Two spheres touching at a point: the streamed topology cannot find
+    // cells by ray shooting and stops after the last block with a clear
+    // error; the half-written file is removed.
+    let f = load_function_list(
+        r#"[{"type": "sphere", "center": [-0.5, 0, 0], "radius": 0.5},
+            {"type": "sphere", "center": [0.5, 0, 0], "radius": 0.5}]"#,
+        "tangent",
+        None,
+    )
+    .unwrap();
+    let path = tmp("tangent.ply");
+    let mut sink = PlyStreamSink::create(&path, &grid, Mode::Ia, 2).unwrap();
+    let e = stream_topology(&grid, &f, &o, 0, &mut sink).unwrap_err();
     assert!(
-        matches!(e, StreamError::Network(NetworkError::BlockResults(ref m)) if m.contains("lies in a tet face") && m.contains("block ")),
+        matches!(e, StreamError::Network(NetworkError::BlockResults(ref m)) if m.contains("ray shooting")),
         "{e}"
     );
     drop(sink);
     assert!(!path.exists());
     let dir = path.parent().unwrap();
     let left: Vec<_> = std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()).map(|e| e.file_name()).collect();
-    assert!(left.iter().all(|n| !n.to_string_lossy().contains("plane.ply")), "{left:?}");
+    assert!(left.iter().all(|n| !n.to_string_lossy().contains("tangent.ply")), "{left:?}");
 }
 
 #[test]

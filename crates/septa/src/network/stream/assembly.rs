@@ -36,7 +36,8 @@ use crate::complex::NONE;
 use crate::network::block::{BlockOut, Label, OpenT};
 use crate::network::dense::label_free_cells;
 use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
-use crate::network::{named_counts, CellInfo, NetworkError, Patch};
+use crate::network::topology::ray_start;
+use crate::network::{named_counts, CellInfo, NetworkError, Patch, VKey};
 use crate::uf::UnionFind;
 
 /// The topology of a streamed network, without its polygons (they went to
@@ -135,6 +136,10 @@ pub(crate) struct Assembler {
     active_tets: usize,
     /// (block index, its first piece), ascending.
     pub(crate) block_pieces: Vec<(usize, u32)>,
+    /// Blocks with open halves (`halves.rs`): (block index, its first slot in `half_piece`), ascending.
+    pub(crate) block_halves: Vec<(usize, u32)>,
+    /// Per open half, the piece of the face it became (`NONE`: none, or not yet).
+    pub(crate) half_piece: Vec<u32>,
     /// Most open edges and tet-face pieces held at once.
     pub(crate) peak_open: usize,
 }
@@ -165,6 +170,8 @@ impl Assembler {
             faces: 0,
             active_tets: 0,
             block_pieces: Vec::new(),
+            block_halves: Vec::new(),
+            half_piece: Vec::new(),
             peak_open: 0,
         }
     }
@@ -190,7 +197,7 @@ impl Assembler {
         out: &BlockOut,
         s: &BlockSummary,
         ids: &[u32],
-    ) -> Result<(), NetworkError> {
+    ) -> Result<BlockNodes, NetworkError> {
         if lo_x > self.slab {
             self.slab = lo_x;
             self.close(lo_x);
@@ -279,7 +286,68 @@ impl Assembler {
             }
         }
         self.peak_open = self.peak_open.max(self.open_edges.len() + self.open_t.len());
-        Ok(())
+        Ok(BlockNodes { node_base, pieces: n })
+    }
+
+    /// Adds a network face in a tet face on a block boundary, paired across
+    /// two blocks (`halves.rs`) and streamed with the later one, as a piece
+    /// of its own: `ids` and `keys` are its vertices (streamed ids and keys)
+    /// counter-clockwise seen from side 0, `side_label` the region labels on
+    /// its two sides and `nodes` the shell nodes of the halves on side 0 and 1.
+    /// Returns the piece.
+    pub(crate) fn add_face_across(
+        &mut self,
+        ids: &[u32],
+        keys: &[VKey],
+        label: [u16; 2],
+        side_label: [Label; 2],
+        nodes: [u32; 2],
+    ) -> Result<u32, NetworkError> {
+        let piece = self.pieces();
+        self.faces += 1;
+        if self.faces >= (1 << 31) {
+            return Err(NetworkError::BlockResults(
+                "more than 2^31 polygons: too many for the streamed topology".into(),
+            ));
+        }
+        let node = self.shell_uf.len() as u32;
+        self.piece_label.push(label);
+        self.piece_faces.push(1);
+        self.piece_side_label.push(side_label);
+        self.piece_start.push(keys.iter().filter_map(ray_start).min().unwrap_or((u32::MAX, u32::MAX)));
+        self.piece_node.push(node);
+        self.patch_uf.push();
+        self.sheet_uf.push();
+        self.comp_uf.push();
+        self.shell_uf.push();
+        self.shell_uf.push();
+        self.shell_uf.union(node, nodes[0]);
+        self.shell_uf.union(node + 1, nodes[1]);
+        // Every edge of a face in a block's boundary has both ends there: open.
+        for j in 0..ids.len() {
+            let k = (j + 1) % ids.len();
+            let (x, y) = (ids[j], ids[k]);
+            let retire = max_x(self.plane, &keys[j]).min(max_x(self.plane, &keys[k])) as u32;
+            let e = self.open_edges.entry([x.min(y), x.max(y)]).or_insert_with(|| OpenEdge {
+                faces: 0,
+                pieces: SmallVec::new(),
+                retire,
+            });
+            if e.faces == 0 {
+                self.edges += 1;
+            }
+            e.pieces.push(piece);
+            e.faces += 1;
+            self.sheet_uf.union(e.pieces[0], piece);
+        }
+        self.peak_open = self.peak_open.max(self.open_edges.len() + self.open_t.len());
+        Ok(piece)
+    }
+
+    /// Joins the shells of two nodes: two halves of one material meeting
+    /// across a block boundary (MI; the shell passes through, `halves.rs`).
+    pub(crate) fn same_shell(&mut self, a: u32, b: u32) {
+        self.shell_uf.union(a, b);
     }
 
     /// Closes the open edges and tet-face pieces no block from x index `slab` on can reach.
@@ -317,11 +385,11 @@ impl Assembler {
         self.close(usize::MAX);
         let np = self.piece_label.len();
         let (piece_patch, npatch) = self.patch_uf.components();
-        let mut patches: Vec<Patch> = (0..npatch).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
+        let mut patches: Vec<Patch> = (0..npatch).map(|_| Patch { label: [u16::MAX; 2], faces: 0 }).collect();
         let mut patch_piece = vec![NONE; npatch];
         for c in 0..np {
             let p = piece_patch[c] as usize;
-            patches[p].label = self.piece_label[c];
+            patches[p].label = patches[p].label.min(self.piece_label[c]);
             patches[p].faces += self.piece_faces[c] as usize;
             if patch_piece[p] == NONE {
                 patch_piece[p] = c as u32;
@@ -354,7 +422,8 @@ impl Assembler {
             starts[k] = starts[k].min(self.piece_start[c]);
         }
         let half_shell: Vec<u32> = (0..2 * np).map(|h| shell_of_hp[2 * piece_patch[h / 2] as usize + h % 2]).collect();
-        let a = Assembled { piece_comp, half_shell, starts, num_shells: shells.len() };
+        let piece_label = std::mem::take(&mut self.piece_label);
+        let a = Assembled { piece_label, piece_comp, half_shell, starts, num_shells: shells.len() };
         // Ray shooting assumes the pieces of one component meet along edges.
         let cells_of = if sheets == ncomp && a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
         let Some((shell_cell, ncells)) = cells_of else {
@@ -443,8 +512,27 @@ impl Assembler {
     }
 }
 
+/// Where a block's shell nodes start in the assembly (see [`BlockNodes::node`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BlockNodes {
+    node_base: u32,
+    pieces: u32,
+}
+
+impl BlockNodes {
+    /// The assembly's shell node for a block's [`ShellNode`].
+    pub(crate) fn node(&self, x: ShellNode) -> u32 {
+        match x {
+            ShellNode::Half(h) => self.node_base + h,
+            ShellNode::Extra(e) => self.node_base + 2 * self.pieces + e,
+        }
+    }
+}
+
 /// What ray shooting needs from the assembly.
 pub(crate) struct Assembled {
+    /// Label of each piece (IA `[f, f]`, MI `[a, b]`).
+    pub piece_label: Vec<[u16; 2]>,
     /// Network component of each piece.
     pub piece_comp: Vec<u32>,
     /// Shell of each half-piece `2 * piece + side`.

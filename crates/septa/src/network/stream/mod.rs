@@ -36,6 +36,7 @@
 
 mod assembly;
 mod feeder;
+mod halves;
 mod numbering;
 mod rerun;
 mod run;

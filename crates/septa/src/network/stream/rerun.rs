@@ -16,12 +16,23 @@ use crate::network::block::{BlockOut, Worker};
 use crate::network::field::BoundedField;
 use crate::network::sparse::run_block_with;
 use crate::network::topology::{faces_at_vertices, FaceSide, RayIndex};
+use crate::complex::NONE;
 use crate::network::{NetworkOptions, VKey};
+
+/// The faces that halves left open at block boundaries became (`halves.rs`).
+pub(crate) struct HalfPieces {
+    /// (block index, its first slot in `piece`), ascending: blocks with open halves.
+    pub blocks: Vec<(usize, u32)>,
+    /// Per open half, the piece of its face (`NONE`: no face).
+    pub piece: Vec<u32>,
+}
 
 /// A block run again, indexed for lookups.
 struct Rerun {
     index: usize,
     out: BlockOut,
+    /// Its open halves, with their vertices sorted, and the piece of each face.
+    open: Vec<(SmallVec<[u32; 8]>, u32)>,
     /// Global piece of each polygon.
     piece: Vec<u32>,
     vmap: FxHashMap<VKey, u32>,
@@ -38,6 +49,7 @@ pub(crate) struct RerunIndex<'a> {
     pub options: &'a NetworkOptions,
     /// (block index, its first piece), ascending: the streamed blocks.
     pub block_pieces: &'a [(usize, u32)],
+    pub halves: &'a HalfPieces,
     pub assembled: &'a Assembled,
     pub worker: Worker,
     cache: Vec<Rerun>,
@@ -55,6 +67,7 @@ impl<'a> RerunIndex<'a> {
         functions: &'a dyn BoundedField,
         options: &'a NetworkOptions,
         block_pieces: &'a [(usize, u32)],
+        halves: &'a HalfPieces,
         assembled: &'a Assembled,
     ) -> RerunIndex<'a> {
         RerunIndex {
@@ -63,6 +76,7 @@ impl<'a> RerunIndex<'a> {
             functions,
             options,
             block_pieces,
+            halves,
             assembled,
             worker: Worker::default(),
             cache: Vec::new(),
@@ -88,17 +102,32 @@ impl<'a> RerunIndex<'a> {
         }
         let at = self.block_pieces.binary_search_by_key(&index, |x| x.0).ok()?;
         let base = self.block_pieces[at].1;
-        let r = run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index).ok()?;
+        let mut r = run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index).ok()?;
         self.reruns += 1;
+        let prepared = super::feeder::prepare(self.grid, self.options, &mut r, true).ok()?;
         let out = r.out;
-        let s = super::summary::summarize(&out).ok()?;
+        let s = prepared.summary?;
         let piece = s.poly_piece.iter().map(|&p| base + p).collect();
+        let first = match self.halves.blocks.binary_search_by_key(&index, |x| x.0) {
+            Ok(at) => self.halves.blocks[at].1 as usize,
+            Err(_) => 0,
+        };
+        let open = prepared
+            .open
+            .iter()
+            .enumerate()
+            .map(|(j, h)| {
+                let mut vs = h.verts.clone();
+                vs.sort_unstable();
+                (vs, self.halves.piece.get(first + j).copied().unwrap_or(NONE))
+            })
+            .collect();
         let vmap = out.keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
         let (start, polys) = faces_at_vertices(out.keys.len(), &out.poly_start, &out.poly_verts);
         if self.cache.len() == KEEP {
             self.cache.remove(0);
         }
-        self.cache.push(Rerun { index, out, piece, vmap, start, polys });
+        self.cache.push(Rerun { index, out, open, piece, vmap, start, polys });
         self.cache.last()
     }
 }
@@ -114,15 +143,15 @@ impl RayIndex for RerunIndex<'_> {
         let assembled = self.assembled;
         let r = self.block_of(tet)?;
         let v = *r.vmap.get(&key)?;
-        let p = *r.polys_at(v).first()?;
-        let piece = r.piece[p as usize];
+        let piece = match r.polys_at(v).first() {
+            Some(&p) => r.piece[p as usize],
+            // On faces paired across blocks only.
+            None => r.open.iter().find(|(vs, p)| *p != NONE && vs.contains(&v))?.1,
+        };
         Some(assembled.piece_comp[piece as usize])
     }
 
     fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: FaceSide) -> Option<u32> {
-        // The stream refuses faces lying in tet faces, the only ones whose
-        // side depends on the merged face.
-        let FaceSide::Of(side) = side else { return None };
         let assembled = self.assembled;
         let r = self.block_of(tet)?;
         let mut ids: SmallVec<[u32; 8]> = SmallVec::new();
@@ -137,9 +166,11 @@ impl RayIndex for RerunIndex<'_> {
             vs.sort_unstable();
             if vs == ids {
                 let piece = r.piece[p as usize] as usize;
-                return Some(assembled.half_shell[2 * piece + side]);
+                return Some(assembled.half_shell[2 * piece + side.of(o.poly_label[p as usize])]);
             }
         }
-        None
+        // A face lying in a tet face on the block's boundary, paired across blocks.
+        let &(_, piece) = r.open.iter().find(|(vs, _)| *vs == ids)?;
+        (piece != NONE).then(|| assembled.half_shell[2 * piece as usize + side.of(assembled.piece_label[piece as usize])])
     }
 }

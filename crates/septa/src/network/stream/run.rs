@@ -7,9 +7,8 @@ use std::sync::Mutex;
 use rayon::prelude::*;
 
 use super::assembly::NetworkSummary;
-use super::feeder::{summary_of, StreamFeeder};
+use super::feeder::{prepare, Prepared, StreamFeeder};
 use super::sink::{StreamError, StreamSink, StreamStats};
-use super::summary::BlockSummary;
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::Worker;
 use crate::network::field::{BoundedField, ByRef};
@@ -87,7 +86,7 @@ fn drive<S: StreamSink + Send>(
     let g = Grid::Box(grid.clone());
     let pool: Mutex<Vec<Worker>> = Mutex::new(Vec::new());
     let done = AtomicUsize::new(0);
-    let run_window = |ids: &[usize]| -> Result<Vec<(BlockResult, Option<BlockSummary>)>, NetworkError> {
+    let run_window = |ids: &[usize]| -> Result<Vec<(BlockResult, Prepared)>, NetworkError> {
         ids.par_iter()
             .map_init(
                 || Lease { worker: Some(pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default()), pool: &pool },
@@ -96,10 +95,10 @@ fn drive<S: StreamSink + Send>(
                         return Err(NetworkError::Cancelled);
                     }
                     let w = lease.worker.as_mut().expect("a leased worker");
-                    let r = run_block_with(w, &g, grid, functions, &o, i)?;
-                    // Summaries are made here, in parallel; only their
-                    // assembly runs in block order.
-                    let summary = if topology { Some(summary_of(&r)?) } else { None };
+                    let mut r = run_block_with(w, &g, grid, functions, &o, i)?;
+                    // Halves are paired inside the block and summaries made
+                    // here, in parallel; only their assembly runs in block order.
+                    let summary = prepare(grid, &o, &mut r, topology)?;
                     if let Some(p) = &o.progress {
                         p.tick(&done, plan.kept.len());
                     }
@@ -109,8 +108,8 @@ fn drive<S: StreamSink + Send>(
             .collect()
     };
     // Window w + 1 is computed while window w goes to the sink.
-    let mut pending: Option<Vec<(BlockResult, Option<BlockSummary>)>> = None;
-    let mut feed = |rs: Vec<(BlockResult, Option<BlockSummary>)>, sink: &mut S| -> Result<(), StreamError> {
+    let mut pending: Option<Vec<(BlockResult, Prepared)>> = None;
+    let mut feed = |rs: Vec<(BlockResult, Prepared)>, sink: &mut S| -> Result<(), StreamError> {
         for (r, summary) in rs {
             feeder.feed_with(r, summary, sink)?;
         }

@@ -20,7 +20,9 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use crate::complex::NONE;
+use super::halves::OpenHalf;
 use crate::network::block::{BlockOut, Label, OpenT, SRef};
+use crate::network::topology::ray_start;
 use crate::uf::UnionFind;
 
 /// A node of the shell union-find a block hands on for an open tet-face piece.
@@ -66,25 +68,18 @@ pub(crate) struct BlockSummary {
     pub shell_pairs: Vec<(u32, u32)>,
     /// Transparent tet-face pieces left open at the block boundary, with their shell node.
     pub open_t: Vec<(OpenT, ShellNode)>,
+    /// The shell node of each open half (`halves.rs`), in the block's order.
+    pub open_half_node: Vec<ShellNode>,
     /// Number of [`ShellNode::Extra`] classes.
     pub extras: u32,
     /// Wedges at chain edges inside tets: (edge, side `2 p + s`, side `2 q + t`) of block polygons.
     pub wedges: Vec<([u32; 2], u32, u32)>,
 }
 
-/// Why a block cannot be summarised.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum SummaryError {
-    /// A network face lies on a tet face (a value exactly 0 in IA, a tie in
-    /// MI): only the in-memory merge pairs such faces.
-    FaceOnTetFace,
-}
-
-/// The summary of a block's output (module doc).
-pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
-    if !out.halves.is_empty() {
-        return Err(SummaryError::FaceOnTetFace);
-    }
+/// The summary of a block's output (module doc), after its halves were
+/// paired inside the block (`halves::pair_in_block`, which returned `open`).
+pub(crate) fn summarize(out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
+    assert!(out.halves.is_empty(), "halves are paired before a block is summarised");
     let np = out.poly_label.len();
     let poly = |p: usize| &out.poly_verts[out.poly_start[p] as usize..out.poly_start[p + 1] as usize];
     // Polygon sides as (a, b, polygon), a < b, sorted: a run is one edge.
@@ -140,14 +135,17 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
     for p in 0..np {
         let c = poly_piece[p] as usize;
         s.piece_faces[c] += 1;
+        // The smallest face label (as `topology::build` labels patches).
+        s.piece_label[c] = if s.piece_faces[c] == 1 { out.poly_label[p] } else { s.piece_label[c].min(out.poly_label[p]) };
         if s.piece_faces[c] == 1 {
-            s.piece_label[c] = out.poly_label[p];
-            s.piece_side_label[c] = out.poly_cells[p].map(|r| out.comp_label[r as usize].clone());
+            // A one-sided face on the grid boundary has no region outside.
+            s.piece_side_label[c] =
+                out.poly_cells[p].map(|r| if r == NONE { Label::new() } else { out.comp_label[r as usize].clone() });
         }
         for &v in poly(p) {
             let k = &out.keys[v as usize];
-            if k.grid[2] == u32::MAX {
-                s.piece_start[c] = s.piece_start[c].min((k.grid[0], k.grid[1]));
+            if let Some(start) = ray_start(k) {
+                s.piece_start[c] = s.piece_start[c].min(start);
             }
             match s.vertex_piece[v as usize] {
                 NONE => s.vertex_piece[v as usize] = c as u32,
@@ -165,7 +163,7 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
     };
     let mut shells = UnionFind::new(2 * pieces + out.tnodes as usize);
     for &(a, b) in &out.unions {
-        let (Some(x), Some(y)) = (half(a), half(b)) else { return Err(SummaryError::FaceOnTetFace) };
+        let (Some(x), Some(y)) = (half(a), half(b)) else { unreachable!("halves are paired first") };
         shells.union(x, y);
     }
     for x in 0..2 * pieces as u32 {
@@ -179,16 +177,19 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
     // extra node. On clean blocks (the only ones streamed) it does not
     // arise: a tet-face piece at a network edge not on a tet edge always
     // faces a network face of the same tet; kept for safety, not tested.
-    for (key, t) in &out.open_t {
+    let mut node_of = |t: u32| {
         let r = shells.find(2 * pieces as u32 + t);
-        let node = if r < 2 * pieces as u32 {
+        if r < 2 * pieces as u32 {
             ShellNode::Half(r)
         } else {
             let n = extra.len() as u32;
             ShellNode::Extra(*extra.entry(r).or_insert(n))
-        };
-        s.open_t.push((key.clone(), node));
+        }
+    };
+    for (key, t) in &out.open_t {
+        s.open_t.push((key.clone(), node_of(*t)));
     }
+    s.open_half_node = open.iter().map(|h| node_of(h.t)).collect();
     s.extras = extra.len() as u32;
     for &(e, r1, r2) in &out.wedges {
         if let (SRef::Side(p, a), SRef::Side(q, b)) = (r1, r2) {
@@ -196,7 +197,7 @@ pub(crate) fn summarize(out: &BlockOut) -> Result<BlockSummary, SummaryError> {
         }
     }
     s.poly_piece = poly_piece;
-    Ok(s)
+    s
 }
 
 /// Every polygon side as `(a, b, polygon)` with `a < b`, sorted: a

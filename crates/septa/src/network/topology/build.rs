@@ -92,10 +92,13 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     drop(start);
     drop(ef);
     let (face_patch, np) = patch_uf.components();
-    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [0, 0], faces: 0 }).collect();
+    // A patch's label is its smallest face label: the faces of a patch share
+    // one label except where MI ties on the grid's boundary leave no face
+    // between two interfaces (then every path must name it the same way).
+    let mut patches: Vec<Patch> = (0..np).map(|_| Patch { label: [u16::MAX; 2], faces: 0 }).collect();
     for f in 0..nf {
         let p = &mut patches[face_patch[f] as usize];
-        p.label = m.face_label[f];
+        p.label = p.label.min(m.face_label[f]);
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);

@@ -12,4 +12,4 @@ mod raytrace;
 pub(crate) use build::{cell_cycle, chains, topology, wedge_cycle, Topology};
 pub(crate) use canon::{canonicalize_merged, canonicalize_topology, min_rotation};
 pub(crate) use merge::{merge, Merged, Merger};
-pub(crate) use raytrace::{faces_at_vertices, ray_cells, FaceSide, RayIndex};
+pub(crate) use raytrace::{faces_at_vertices, ray_cells, ray_start, FaceSide, RayIndex};
