@@ -29,10 +29,11 @@
 //! block (counter-clockwise seen from the positive side), before the
 //! in-memory path's canonical renumbering.
 //!
-//! Streaming needs ray shooting's precondition (IA: no value exactly 0;
-//! MI: a unique maximum at every vertex) on every sampled block: otherwise
-//! network faces may lie on tet faces and are paired only by the merge. A
-//! block without it stops the run with [`NetworkError::BlockResults`].
+//! Network faces lying in tet faces (a function vanishing on a whole tet
+//! face, two materials tied on one) are paired inside a block and across
+//! block boundaries by the merge's rules (`halves.rs`). Cells come from ray
+//! shooting: a network whose pieces touch only at points (the in-memory path
+//! groups cells there) stops the run with [`NetworkError::BlockResults`].
 
 mod assembly;
 mod feeder;

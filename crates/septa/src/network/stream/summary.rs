@@ -174,9 +174,9 @@ pub(crate) fn summarize(out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
     }
     let mut extra: FxHashMap<u32, u32> = FxHashMap::default();
     // A class of t-nodes meeting no polygon side in the block is kept as an
-    // extra node. On clean blocks (the only ones streamed) it does not
-    // arise: a tet-face piece at a network edge not on a tet edge always
-    // faces a network face of the same tet; kept for safety, not tested.
+    // extra node: two MI halves of one material (no face, the shell passes
+    // through) or a half left open at the block boundary whose tet has no
+    // other network face.
     let mut node_of = |t: u32| {
         let r = shells.find(2 * pieces as u32 + t);
         if r < 2 * pieces as u32 {
