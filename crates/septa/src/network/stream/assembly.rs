@@ -415,7 +415,7 @@ impl Assembler {
             shell_of_hp[hp] = s;
         }
         let (piece_comp, ncomp) = self.comp_uf.components();
-        let sheets = self.sheet_uf.components().1;
+        let (piece_sheet, sheets) = self.sheet_uf.components();
         let mut starts = vec![(u32::MAX, u32::MAX); ncomp];
         for c in 0..np {
             let k = piece_comp[c] as usize;
@@ -425,11 +425,14 @@ impl Assembler {
         let piece_label = std::mem::take(&mut self.piece_label);
         let a = Assembled { piece_label, piece_comp, half_shell, starts, num_shells: shells.len() };
         // Ray shooting assumes the pieces of one component meet along edges.
-        let cells_of = if sheets == ncomp && a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
+        if sheets != ncomp {
+            return Err(touching_at_points(&a.piece_comp, &piece_sheet, &a.piece_label, self.mode));
+        }
+        let cells_of = if a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
         let Some((shell_cell, ncells)) = cells_of else {
             return Err(NetworkError::BlockResults(
-                "cells could not be found by ray shooting (network pieces touching only at points, \
-                 or a ray running along the network): stream the polygons only, or run in memory (cell grouping)"
+                "cells could not be found by ray shooting (a ray running along the network): \
+                 stream the polygons only, or run in memory (cell grouping)"
                     .into(),
             ));
         };
@@ -541,6 +544,40 @@ pub(crate) struct Assembled {
     pub starts: Vec<(u32, u32)>,
     /// Number of shells.
     pub num_shells: usize,
+}
+
+/// The error for a component whose pieces touch only at points (two
+/// spheres tangent at a point): names the functions (IA) or materials (MI)
+/// of the surfaces that touch.
+fn touching_at_points(piece_comp: &[u32], piece_sheet: &[u32], piece_label: &[[u16; 2]], mode: Mode) -> NetworkError {
+    // The first component holding two sheets, and the labels of its sheets.
+    let mut first_sheet: FxHashMap<u32, u32> = FxHashMap::default();
+    let mut comp = None;
+    for (&c, &s) in piece_comp.iter().zip(piece_sheet) {
+        if *first_sheet.entry(c).or_insert(s) != s {
+            comp = Some(c);
+            break;
+        }
+    }
+    let mut names: Vec<u16> = Vec::new();
+    if let Some(c) = comp {
+        for (p, &pc) in piece_comp.iter().enumerate() {
+            if pc == c {
+                names.extend(piece_label[p]);
+            }
+        }
+    }
+    names.sort_unstable();
+    names.dedup();
+    let what = match mode {
+        Mode::Ia => "functions",
+        Mode::Mi => "materials",
+    };
+    NetworkError::BlockResults(format!(
+        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points \
+         (tangent at a vertex), which ray shooting cannot see across: stream the polygons only \
+         (--polygons-only), or run in memory (without --stream), which groups cells there"
+    ))
 }
 
 /// Chains and corners from chain edges on streamed vertex ids: the ids are
