@@ -113,6 +113,37 @@ fn stream_writes_topology_unless_polygons_only() {
 }
 
 #[test]
+fn stream_takes_faces_lying_in_tet_faces() {
+    // Three coordinate planes (grid planes at 16^3, on block boundaries for
+    // blocks of 4) and a sphere through grid vertices: streamed with the
+    // in-memory run's topology, in .ply and .vtu alike.
+    let dir = scratch("stream-degenerate");
+    let f = dir.join("axes.json");
+    std::fs::write(
+        &f,
+        r#"[{"type": "plane", "point": [0, 0, 0], "normal": [1, 0, 0]},
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]},
+            {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}]"#,
+    )
+    .unwrap();
+    let f = f.to_str().unwrap();
+    let mem = septa(&["ia", f, "--grid", "16", "--block", "4", "--json", "-o", dir.join("mem").to_str().unwrap()]);
+    assert_eq!(
+        (&mem["patches"], &mem["chains"], &mem["corners"], &mem["cells"]),
+        (&32.into(), &24.into(), &13.into(), &16.into())
+    );
+    for out in ["s.ply", "s.vtu"] {
+        let s =
+            septa(&["ia", f, "--grid", "16", "--block", "4", "--json", "--stream", dir.join(out).to_str().unwrap()]);
+        for k in ["vertices", "faces", "edges", "patches", "chains", "corners", "shells", "cells", "components"] {
+            assert_eq!(s["counts"][k], mem[k], "{out}: {k}");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn scenes_in_json_and_toml_give_the_same_network_sparse_and_dense() {
     let dir = scratch("toml");
     let json = r#"{"mode": "ia", "grid": {"resolution": 14, "bounds": [[-1,-1,-1],[1,1,1]]},

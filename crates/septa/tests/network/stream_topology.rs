@@ -279,9 +279,21 @@ fn degenerate_inputs_stream_face_by_face() {
         ("round spheres MI, block 5", round.clone(), Mode::Mi, 20, 5),
         ("round spheres MI + tied copy", tied, Mode::Mi, 16, 4),
         // A plane on the grid's top face: a one-sided face (IA).
-        ("plane on the grid boundary", vec![P::plane([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), P::sphere([0.0, 0.0, 0.9], 0.3)], Mode::Ia, 10, 4),
+        (
+            "plane on the grid boundary",
+            vec![P::plane([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]), P::sphere([0.0, 0.0, 0.9], 0.3)],
+            Mode::Ia,
+            10,
+            4,
+        ),
         // x = 0 twice (IA): two functions vanishing on the same tet faces.
-        ("duplicated plane", vec![P::plane([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), P::plane([0.0, 0.0, 0.0], [1.0, 0.0, 0.0])], Mode::Ia, 8, 4),
+        (
+            "duplicated plane",
+            vec![P::plane([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), P::plane([0.0, 0.0, 0.0], [1.0, 0.0, 0.0])],
+            Mode::Ia,
+            8,
+            4,
+        ),
     ];
     for (what, f, mode, n, block) in cases {
         for window in [1, 3] {

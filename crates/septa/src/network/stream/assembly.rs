@@ -35,8 +35,8 @@ use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::block::{BlockOut, Label, OpenT};
 use crate::network::dense::label_free_cells;
-use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
 use crate::network::topology::ray_start;
+use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
 use crate::network::{named_counts, CellInfo, NetworkError, Patch, VKey};
 use crate::uf::UnionFind;
 

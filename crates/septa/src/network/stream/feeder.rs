@@ -11,9 +11,9 @@
 //! wherever the blocks ran.
 
 use super::assembly::{Assembler, NetworkSummary};
+use super::halves::{pair, pair_in_block, OpenHalf};
 use super::numbering::VertexNumbering;
 use super::sink::{StreamBlock, StreamError, StreamSink, StreamStats};
-use super::halves::{pair, pair_in_block, OpenHalf};
 use super::summary::{summarize, BlockSummary};
 use crate::complex::{Mode, NONE};
 use crate::grid::{BoxGrid, Grid};
@@ -218,7 +218,8 @@ impl<'a> StreamFeeder<'a> {
         stats.block_vertices += out.keys.len();
         // Faces paired across blocks are streamed after the block's own.
         let extended = (!across.is_empty()).then(|| {
-            let (mut start, mut verts, mut label) = (out.poly_start.clone(), out.poly_verts.clone(), out.poly_label.clone());
+            let (mut start, mut verts, mut label) =
+                (out.poly_start.clone(), out.poly_verts.clone(), out.poly_label.clone());
             for a in &across {
                 verts.extend_from_slice(&a.verts);
                 start.push(verts.len() as u32);
@@ -339,8 +340,11 @@ impl<'a> StreamFeeder<'a> {
                     // The earlier half is given first: side 0 unless `second_first`.
                     let side = if p.second_first { 0 } else { 1 };
                     let verts = if side == 0 { h.verts.clone() } else { h.verts.iter().rev().copied().collect() };
-                    let side_label =
-                        if side == 0 { [mine.clone(), earlier.label.clone()] } else { [earlier.label.clone(), mine.clone()] };
+                    let side_label = if side == 0 {
+                        [mine.clone(), earlier.label.clone()]
+                    } else {
+                        [earlier.label.clone(), mine.clone()]
+                    };
                     pairs.faces.push(Across { j, verts, label: p.label, side_label, side, earlier });
                 }
                 None => pairs.same.push((j, earlier)),

@@ -11,12 +11,12 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::assembly::Assembled;
+use crate::complex::NONE;
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{BlockOut, Worker};
 use crate::network::field::BoundedField;
 use crate::network::sparse::run_block_with;
 use crate::network::topology::{faces_at_vertices, FaceSide, RayIndex};
-use crate::complex::NONE;
 use crate::network::{NetworkOptions, VKey};
 
 /// The faces that halves left open at block boundaries became (`halves.rs`).
@@ -171,6 +171,7 @@ impl RayIndex for RerunIndex<'_> {
         }
         // A face lying in a tet face on the block's boundary, paired across blocks.
         let &(_, piece) = r.open.iter().find(|(vs, _)| *vs == ids)?;
-        (piece != NONE).then(|| assembled.half_shell[2 * piece as usize + side.of(assembled.piece_label[piece as usize])])
+        (piece != NONE)
+            .then(|| assembled.half_shell[2 * piece as usize + side.of(assembled.piece_label[piece as usize])])
     }
 }

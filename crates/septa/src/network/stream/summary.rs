@@ -19,8 +19,8 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use crate::complex::NONE;
 use super::halves::OpenHalf;
+use crate::complex::NONE;
 use crate::network::block::{BlockOut, Label, OpenT, SRef};
 use crate::network::topology::ray_start;
 use crate::uf::UnionFind;
@@ -136,7 +136,8 @@ pub(crate) fn summarize(out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
         let c = poly_piece[p] as usize;
         s.piece_faces[c] += 1;
         // The smallest face label (as `topology::build` labels patches).
-        s.piece_label[c] = if s.piece_faces[c] == 1 { out.poly_label[p] } else { s.piece_label[c].min(out.poly_label[p]) };
+        s.piece_label[c] =
+            if s.piece_faces[c] == 1 { out.poly_label[p] } else { s.piece_label[c].min(out.poly_label[p]) };
         if s.piece_faces[c] == 1 {
             // A one-sided face on the grid boundary has no region outside.
             s.piece_side_label[c] =
