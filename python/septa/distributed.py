@@ -45,20 +45,12 @@ from .network import Network
 
 __all__ = ["arrangement", "material_interface", "region_surfaces", "stream_ply", "job_spec"]
 
-# Python shape field names -> the scene / reference JSON's.
-_RENAME = {
-    "cylinder": {"point": "axis_point", "axis": "axis_vector"},
-    "torus": {"axis": "axis_vector", "major": "major_radius", "minor": "minor_radius"},
-}
-
 
 def _primitive_spec(f):
     if isinstance(f, dict):
         return f
     if hasattr(f, "to_spec"):
-        spec = f.to_spec()
-        ren = _RENAME.get(spec.get("type"), {})
-        return {ren.get(k, k): v for k, v in spec.items()}
+        return f.to_spec()
     raise _septa.InputError(f"functions: expected primitive dicts or septa.shapes primitives, got {type(f).__name__}")
 
 
