@@ -196,7 +196,7 @@ fn check_network(path: &Path, v: &Value) -> Result<(), ViewerError> {
         if ids.len() < 3 {
             return Err(invalid(path, format!("face {i} has {} point indices, at least 3 are needed", ids.len())));
         }
-        if let Some(x) = ids.iter().find(|x| !x.as_u64().is_some_and(|j| (j as usize) < points.len())) {
+        if let Some(x) = ids.iter().find(|x| x.as_u64().is_none_or(|j| (j as usize) >= points.len())) {
             return Err(invalid(path, format!("face {i} refers to point {x}, but there are {} points", points.len())));
         }
     }
