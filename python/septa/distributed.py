@@ -45,20 +45,12 @@ from .network import Network
 
 __all__ = ["arrangement", "material_interface", "region_surfaces", "stream_ply", "job_spec"]
 
-# Python shape field names -> the scene / reference JSON's.
-_RENAME = {
-    "cylinder": {"point": "axis_point", "axis": "axis_vector"},
-    "torus": {"axis": "axis_vector", "major": "major_radius", "minor": "minor_radius"},
-}
-
 
 def _primitive_spec(f):
     if isinstance(f, dict):
         return f
     if hasattr(f, "to_spec"):
-        spec = f.to_spec()
-        ren = _RENAME.get(spec.get("type"), {})
-        return {ren.get(k, k): v for k, v in spec.items()}
+        return f.to_spec()
     raise _septa.InputError(f"functions: expected primitive dicts or septa.shapes primitives, got {type(f).__name__}")
 
 
@@ -202,7 +194,7 @@ def region_surfaces(scene, *, client, grid=None, block=16, batch=None, normals=F
 
 
 def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=16, batch=None, in_flight=None,
-               triangles=False, topology=True) -> dict:
+               triangles=False, topology=True, progress=None) -> dict:
     """Streams a network larger than memory to the PLY ``path``, blocks run
     on a Dask cluster: the distributed form of :func:`septa.stream.stream_ply`.
 
@@ -215,6 +207,8 @@ def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=
     the same dict as :func:`septa.stream.stream_ply`, and writes the same
     bytes: the PLY and ``<path>.topology.json`` do not depend on where the
     blocks ran. On an error or Ctrl-C no PLY is left and pending tasks are cancelled.
+    ``progress``: a function ``progress(done, total)`` called here as block
+    results are written (``total``: the blocks that are not skipped).
 
     >>> import septa, tempfile, pathlib
     >>> out = pathlib.Path(tempfile.mkdtemp()) / "s.ply"
@@ -227,11 +221,22 @@ def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=
     text = json.dumps(job, separators=(",", ":"))
     plan = _septa.sparse_plan(text)
     kept = plan[1]
+    if progress is not None and not callable(progress):
+        raise _septa.InputError("progress: expected a function progress(done, total)")
     writer = _septa.StreamWriter(text, os.fspath(path), plan, bool(triangles), bool(topology))
+    done = 0
+
+    def feed(results):
+        nonlocal done
+        writer.feed(results)
+        done += len(results)
+        if progress is not None:
+            progress(done, len(kept))
+
     if client is None:
         step = batch or 64
         for i in range(0, len(kept), step):
-            writer.feed(_septa.sparse_blocks(text, kept[i:i + step]))
+            feed(_septa.sparse_blocks(text, kept[i:i + step]))
         return writer.finish()
     threads = sum(client.nthreads().values()) or 1
     if batch is None:
@@ -255,7 +260,7 @@ def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=
             results = fut.result()
             fut.release()
             submit()
-            writer.feed(results)
+            feed(results)
             del results
         return writer.finish()
     except BaseException:

@@ -6,6 +6,10 @@ grids (``shared/data/isn/README.md``). ``split=5`` cuts each cube into 5
 tets, mirrored with the parity of ``i+j+k`` so neighbouring cubes' face
 diagonals match; ``split=6`` cuts each cube into the 6 tets around its
 main diagonal. Every tet is positively oriented.
+
+The grid is the library's (``septa::grid::BoxGrid``, through the compiled
+core): the same vertices, bit for bit, and the same tets as a scene file's
+grid or the command line's ``--grid``.
 """
 from __future__ import annotations
 
@@ -13,20 +17,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _septa
 from ._septa import InputError
 
 __all__ = ["Grid", "box"]
-
-# Cube corners as (di, dj, dk) bits: corner c = 4*di + 2*dj + dk.
-# Five-tet split of the odd cube (i+j+k odd): the central tet on corners
-# 0,3,5,6 and the four corner tets cut off around corners 1, 2, 4, 7. The
-# even cube uses the mirror image (x -> 1 - x: central tet on 1,2,4,7, as the
-# reference's cube (0,0,0)) so face diagonals of neighbours meet.
-_FIVE_ODD = np.array([[0, 3, 5, 6], [1, 0, 3, 5], [2, 0, 6, 3], [4, 0, 5, 6], [7, 3, 6, 5]])
-_MIRROR_X = np.array([4, 5, 6, 7, 0, 1, 2, 3])
-_FIVE_EVEN = _MIRROR_X[_FIVE_ODD]
-# Six tets around the diagonal 0-7: one per path 0 -> 7 along cube edges.
-_SIX = np.array([[0, 4, 6, 7], [0, 4, 5, 7], [0, 1, 5, 7], [0, 1, 3, 7], [0, 2, 3, 7], [0, 2, 6, 7]])
 
 
 @dataclass(frozen=True)
@@ -49,16 +43,6 @@ class Grid:
 
     def __repr__(self) -> str:
         return f"Grid({len(self.vertices)} vertices, {len(self.tets)} tets, resolution={self.resolution}, split={self.split})"
-
-
-def _orient(vertices: np.ndarray, tets: np.ndarray) -> np.ndarray:
-    """Swaps two vertices of every negatively oriented tet."""
-    p = vertices[tets]
-    vol = np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0])
-    tets = tets.copy()
-    neg = vol < 0
-    tets[neg, 2], tets[neg, 3] = tets[neg, 3], tets[neg, 2].copy()
-    return tets
 
 
 def box(resolution, bounds=((0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), split: int = 5) -> Grid:
@@ -89,23 +73,5 @@ def box(resolution, bounds=((0.0, 0.0, 0.0), (1.0, 1.0, 1.0)), split: int = 5) -
     if split not in (5, 6):
         raise InputError(f"grid.box: split must be 5 or 6, got {split!r}")
 
-    i, j, k = np.meshgrid(np.arange(nx + 1), np.arange(ny + 1), np.arange(nz + 1), indexing="ij")
-    ijk = np.stack([i.ravel(), j.ravel(), k.ravel()], axis=1).astype(np.float64)
-    # lo + (hi - lo) * i / n, and exactly hi at i = n: the same numbers as the
-    # Rust box grid, so values sampled here equal the command line's.
-    n = np.array([nx, ny, nz], dtype=np.float64)
-    vertices = b[0] + (b[1] - b[0]) * ijk / n
-    vertices = np.where(ijk == n, b[1], vertices)
-
-    ci, cj, ck = (a.ravel() for a in np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij"))
-    sy, sx = nz + 1, (ny + 1) * (nz + 1)
-    base = ci * sx + cj * sy + ck
-    offsets = np.array([(c >> 2) * sx + ((c >> 1) & 1) * sy + (c & 1) for c in range(8)], dtype=np.int64)
-    corners = base[:, None].astype(np.int64) + offsets[None, :]  # (#cubes, 8)
-    if split == 6:
-        tets = corners[:, _SIX].reshape(-1, 4)
-    else:
-        odd = ((ci + cj + ck) % 2).astype(bool)
-        tets = np.where(odd[:, None, None], corners[:, _FIVE_ODD], corners[:, _FIVE_EVEN]).reshape(-1, 4)
-    tets = _orient(vertices, tets)
-    return Grid(vertices=vertices, tets=np.ascontiguousarray(tets, dtype=np.int64), resolution=(nx, ny, nz), bounds=b, split=split)
+    vertices, tets = _septa.box_grid((nx, ny, nz), b.tolist(), int(split))
+    return Grid(vertices=vertices, tets=tets, resolution=(nx, ny, nz), bounds=b, split=split)

@@ -170,7 +170,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     return net
 
 
-def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0)) -> Network:
+def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), progress=None) -> Network:
     """Exact surfaces between the labels of a segmented volume (``septa labels``).
 
     ``volume``: a 3-axis integer array (any integer dtype; what nibabel,
@@ -186,7 +186,8 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     so it stays counter-clockwise seen from the lesser region. Bool and
     whole-number float volumes are accepted. Returns a
     :class:`septa.Network` with ``surfaces`` and ``curves`` as
-    :func:`region_surfaces`.
+    :func:`region_surfaces`. ``progress``: a function ``progress(done,
+    total)`` called as blocks of the network finish (as in :func:`arrangement`).
 
     >>> import numpy as np, septa
     >>> v = np.zeros((8, 8, 8), dtype=np.int32)
@@ -218,8 +219,9 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     m = np.asarray(affine, dtype=np.float64)[:3]
     if not np.isfinite(m).all() or np.linalg.matrix_rank(m[:, :3]) < 3:
         raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
+    _check_progress(progress)
     t0 = time.perf_counter()
-    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma))
+    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma), progress=progress)
     # Placing the grid in space moves no combinatorics: points only. The
     # full affine (direction cosines, shears, flips) maps voxel indices to
     # world points, as nibabel's apply_affine and NRRD's space directions do.

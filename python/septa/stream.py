@@ -27,7 +27,7 @@ from .distributed import job_spec
 
 
 def stream_ply(scene_or_functions, path, *, grid=None, mode="ia", block=16, window=0, triangles=False,
-               threads=None, topology=True) -> dict:
+               threads=None, topology=True, progress=None) -> dict:
     """Streams the IA or MI polygons of analytic functions to the PLY ``path``
     (or, for a path ending in ``.vtu``, a VTK file with cell data ``patch``,
     ``labels``, ``cells`` and ``block``, which meshio and ParaView read).
@@ -40,8 +40,11 @@ def stream_ply(scene_or_functions, path, *, grid=None, mode="ia", block=16, wind
     "active_tets", "blocks": {"total", "skipped", "sampled", "active"}}`` and,
     with topology, ``"counts"`` (as ``network.json``) and ``"topology"`` (the
     JSON's path). Files are written atomically: on an error or Ctrl-C no PLY
-    is left.
+    is left. ``progress``: a function ``progress(done, total)`` called as
+    blocks finish (``total``: the blocks that are not skipped).
     """
+    if progress is not None and not callable(progress):
+        raise _septa.InputError("progress: expected a function progress(done, total)")
     job = job_spec(scene_or_functions, mode=mode, grid=grid, block=block)
     return _septa.stream_ply(json.dumps(job), os.fspath(path), int(window), bool(triangles), threads,
-                             bool(topology))
+                             bool(topology), progress)

@@ -4,7 +4,7 @@ use std::path::PathBuf;
 use crate::CliResult;
 use septa::io::regions_out;
 use septa::io::volume::{diagonal, place, read_label_volume};
-use septa::regions::label_surfaces;
+use septa::regions::label_surfaces_with_progress;
 
 /// Arguments of `septa labels`.
 #[derive(clap::Args)]
@@ -41,10 +41,14 @@ pub fn run(a: Args) -> CliResult {
         vol.affine
     };
     let quiet = a.out.json || a.out.quiet;
-    let mut r = crate::progress::during(quiet, "label surfaces", || {
-        a.out.install(|| label_surfaces(&vol.labels, vol.shape, a.sigma))
-    })?
-    .map_err(|e| format!("{file}: {e}"))?;
+    // A counted bar over the network's blocks, then a spinner naming the
+    // stage after them (the surfaces of the label pairs).
+    let (bar, progress) = crate::progress::block_bar(quiet, "label surfaces: pairs, curves");
+    let r = a.out.install(|| label_surfaces_with_progress(&vol.labels, vol.shape, a.sigma, progress));
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let mut r = r?.map_err(|e| format!("{file}: {e}"))?;
     place(&mut r, &affine).map_err(|e| format!("{file}: {e}"))?;
     crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
         regions_out::write_formats(&r, &a.out.output, &a.out.format.0)

@@ -66,9 +66,16 @@ pub fn run(a: Args) -> CliResult {
             return Err(format!("--clean: expected a factor >= 0, not {f}").into());
         }
     }
-    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean, ..Default::default() };
     let quiet = a.out.json || a.out.quiet;
-    let r = crate::progress::during(quiet, "region surfaces", || a.out.install(|| region_surfaces(&scene, &options)))??;
+    // A counted bar over the network's blocks, then a spinner naming the
+    // stage after them.
+    let (bar, progress) = crate::progress::block_bar(quiet, "region surfaces: topology, surfaces, curves");
+    let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean, progress };
+    let r = a.out.install(|| region_surfaces(&scene, &options));
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    let r = r??;
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
         regions_out::write_formats(&r, dir, &a.out.format.0)

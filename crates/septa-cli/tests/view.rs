@@ -128,3 +128,41 @@ fn view_reads_a_stream_folder() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("stream.ply"), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// The network of a viewer's data.js.
+fn viewer_network(viewer: &Path) -> serde_json::Value {
+    let data = std::fs::read_to_string(viewer.join("data.js")).unwrap();
+    let json = data.strip_prefix("window.__SEPTA_DATA = ").unwrap().trim_end().trim_end_matches(';');
+    serde_json::from_str::<serde_json::Value>(json).unwrap()["network"].clone()
+}
+
+#[test]
+fn view_reads_a_vtu_stream_and_a_stream_file() {
+    // `--stream OUT.vtu` used to give a folder `septa view` refused. The .vtu
+    // holds the same polygons, labels, patches and cells as the PLY stream.
+    let (pdir, vdir) = (scratch("stream-ply"), scratch("stream-vtu"));
+    for (dir, name) in [(&pdir, "s.ply"), (&vdir, "s.vtu")] {
+        let out = septa(&["ia", "builtin:sphere-with-hole", "--stream", dir.join(name).to_str().unwrap(), "-q"]);
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+    let out = septa(&["view", vdir.to_str().unwrap(), "--no-open"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = septa(&["view", pdir.join("s.ply").to_str().unwrap(), "--no-open"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let (mut from_vtu, mut from_ply) = (viewer_network(&vdir.join("viewer")), viewer_network(&pdir.join("viewer")));
+    let faces = from_vtu["faces"].as_array().unwrap().len();
+    assert!(faces > 100, "{faces} faces");
+    for net in [&mut from_vtu, &mut from_ply] {
+        net.as_object_mut().unwrap().remove("seconds");
+    }
+    assert_eq!(from_vtu, from_ply);
+    // The file named directly: the viewer goes beside it.
+    let out = septa(&["view", vdir.join("s.vtu").to_str().unwrap(), "--no-open"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // A truncated .vtu is refused with its name, not a panic.
+    let bytes = std::fs::read(vdir.join("s.vtu")).unwrap();
+    std::fs::write(vdir.join("s.vtu"), &bytes[..bytes.len() / 2]).unwrap();
+    let out = septa(&["view", vdir.to_str().unwrap(), "--no-open"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("s.vtu"), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -17,6 +17,7 @@ mod interrupt;
 mod network;
 mod regions;
 mod result;
+mod shapes;
 mod stream;
 mod viewer;
 
@@ -104,6 +105,11 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(checks::check_values, m)?)?;
     m.add_function(wrap_pyfunction!(checks::check_tets, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::viewer_write, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::viewer_write_result, m)?)?;
+    m.add_function(wrap_pyfunction!(viewer::viewer_page, m)?)?;
+    m.add_function(wrap_pyfunction!(shapes::box_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(shapes::sample_functions, m)?)?;
     m.add_function(wrap_pyfunction!(network::network, m)?)?;
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(regions::labels, m)?)?;

@@ -63,25 +63,30 @@ pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<
     Ok(d)
 }
 
-/// labels(volume, sigma=0.0)
+/// labels(volume, sigma=0.0, progress=None)
 /// --
 ///
 /// Exact surfaces between the labels of a segmented volume (`septa labels`):
 /// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
 /// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
-/// functions in voxels. Returns the arrays of `regions`; the GIL is
-/// released while it is computed.
+/// functions in voxels, `progress(done, total)` called as blocks of the
+/// network finish. Returns the arrays of `regions`; the GIL is released
+/// while it is computed.
 #[pyfunction]
-#[pyo3(signature = (volume, sigma = 0.0))]
+#[pyo3(signature = (volume, sigma = 0.0, progress = None))]
 pub fn labels<'py>(
     py: Python<'py>,
     volume: numpy::PyReadonlyArray3<'_, i64>,
     sigma: f64,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use numpy::PyUntypedArrayMethods;
     let shape = volume.shape();
     let shape = [shape[0], shape[1], shape[2]];
     let data: Vec<i64> = volume.as_array().iter().copied().collect();
-    let result = py.detach(|| septa::regions::label_surfaces(&data, shape, sigma).map_err(|e| e.to_string()));
+    let progress = progress.map(crate::network::py_progress);
+    let result = py.detach(|| {
+        septa::regions::label_surfaces_with_progress(&data, shape, sigma, progress).map_err(|e| e.to_string())
+    });
     region_dict(py, &result.map_err(InputError::new_err)?)
 }

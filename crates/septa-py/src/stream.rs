@@ -18,9 +18,11 @@ use septa::network::{BlockResult, NetworkSummary, SparsePlan};
 use crate::InputError;
 
 /// Streams job `job` (the JSON of `septa.distributed.job_spec`) to the PLY
-/// `path`; returns a summary dict.
+/// `path`; returns a summary dict. `progress(done, total)` is called as
+/// blocks finish.
 #[pyfunction]
-#[pyo3(signature = (job, path, window = 0, triangles = false, threads = None, topology = true))]
+#[pyo3(signature = (job, path, window = 0, triangles = false, threads = None, topology = true, progress = None))]
+#[allow(clippy::too_many_arguments)]
 pub fn stream_ply<'py>(
     py: Python<'py>,
     job: &str,
@@ -29,13 +31,16 @@ pub fn stream_ply<'py>(
     triangles: bool,
     threads: Option<usize>,
     topology: bool,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let progress = progress.map(crate::network::py_progress);
     let cancel = Arc::new(AtomicBool::new(false));
     type Out = (StreamStats, PlyStreamStats, Option<NetworkSummary>);
     let topo_path = Path::new(path).with_extension("topology.json");
     let r: Result<Out, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = crate::distributed::parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
+        j.options.progress = progress;
         let run = || -> Result<Out, Failure> {
             // (its errors name the file)
             let mut sink = StreamFile::create(Path::new(path), &j.grid, j.options.mode, j.functions.len(), triangles)

@@ -21,8 +21,13 @@ pub mod result_mesh;
 pub mod result_npz;
 pub mod result_vtk;
 pub mod summary_out;
+mod viewer;
 pub mod volume;
 pub mod vtu_stream;
 
 pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};
 pub use outdir::OutputDir;
+pub use viewer::{
+    folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,
+    VIEWER_INDEX_HTML, VIEWER_JS,
+};

@@ -21,7 +21,7 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
 
-use super::ply_stream::{PlyStreamSink, PlyStreamStats};
+use super::ply_stream::{PlyStreamSink, PlyStreamStats, StreamPly};
 use super::result_vtk::vtu_header;
 use crate::complex::Mode;
 use crate::grid::BoxGrid;
@@ -264,4 +264,73 @@ impl StreamSink for StreamFile {
             StreamFile::Vtu(s) => s.block(block),
         }
     }
+}
+
+/// The arrays of a streamed `.vtu`, in file order.
+const STREAM_VTU_ARRAYS: [&str; 8] =
+    ["Points", "connectivity", "offsets", "types", "patch", "labels", "cells", "block"];
+
+/// Reads a `.vtu` written by [`VtuStreamSink`] (for `septa view` on a
+/// stream's folder) into the same arrays as the streamed PLY; errors name
+/// the file and what is wrong.
+pub fn read_stream_vtu(path: &Path) -> Result<StreamPly, String> {
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    const START: &[u8] = b"<AppendedData encoding=\"raw\">\n_";
+    let end = bytes
+        .windows(START.len())
+        .position(|w| w == START)
+        .ok_or_else(|| format!("{name}: not a streamed Septa .vtu (no raw appended data)"))?
+        + START.len();
+    let head = std::str::from_utf8(&bytes[..end]).map_err(|_| format!("{name}: the VTU header is not text"))?;
+    let names: Vec<&str> = head.split("Name=\"").skip(1).filter_map(|s| s.split('"').next()).collect();
+    if names != STREAM_VTU_ARRAYS {
+        return Err(format!("{name}: not a streamed Septa .vtu (its arrays must be {})", STREAM_VTU_ARRAYS.join(", ")));
+    }
+    let attr = |key: &str| -> Result<usize, String> {
+        head.split(&format!("{key}=\""))
+            .nth(1)
+            .and_then(|s| s.split('"').next())
+            .and_then(|n| n.parse().ok())
+            .ok_or_else(|| format!("{name}: the header has no {key}"))
+    };
+    let (nv, nc) = (attr("NumberOfPoints")?, attr("NumberOfCells")?);
+    let mut at = end;
+    let mut arrays: Vec<&[u8]> = Vec::new();
+    for a in STREAM_VTU_ARRAYS {
+        let short = || format!("{name}: the file ends inside array {a}");
+        let size = bytes.get(at..at + 8).ok_or_else(short)?;
+        let size = u64::from_le_bytes(size.try_into().unwrap()) as usize;
+        arrays.push(bytes.get(at + 8..at + 8 + size).ok_or_else(short)?);
+        at += 8 + size;
+    }
+    let ints =
+        |b: &[u8]| -> Vec<i32> { b.chunks_exact(4).map(|c| i32::from_le_bytes(c.try_into().unwrap())).collect() };
+    let (conn, offsets, patch, labels, cells) =
+        (ints(arrays[1]), ints(arrays[2]), ints(arrays[4]), ints(arrays[5]), ints(arrays[6]));
+    if arrays[0].len() != nv * 24 || [offsets.len(), patch.len(), labels.len() / 2, cells.len() / 2] != [nc; 4] {
+        return Err(format!("{name}: array sizes do not match {nv} points and {nc} cells"));
+    }
+    let mut out = StreamPly {
+        points: arrays[0]
+            .chunks_exact(24)
+            .map(|s| [0, 1, 2].map(|i| f64::from_le_bytes(s[8 * i..8 * i + 8].try_into().unwrap())))
+            .collect(),
+        patch,
+        labels: labels.chunks_exact(2).map(|l| [l[0], l[1]]).collect(),
+        cells: cells.chunks_exact(2).map(|c| [c[0], c[1]]).collect(),
+        faces: Vec::with_capacity(nc),
+    };
+    let mut start = 0usize;
+    for (f, &stop) in offsets.iter().enumerate() {
+        let stop = usize::try_from(stop).ok().filter(|&s| s >= start + 3 && s <= conn.len());
+        let stop = stop.ok_or_else(|| format!("{name}: polygon {f} has bad offsets"))?;
+        let vs = &conn[start..stop];
+        if let Some(v) = vs.iter().find(|&&v| v < 0 || v as usize >= nv) {
+            return Err(format!("{name}: polygon {f} refers to point {v} of {nv}"));
+        }
+        out.faces.push(vs.iter().map(|&v| v as u32).collect());
+        start = stop;
+    }
+    Ok(out)
 }

@@ -5,7 +5,7 @@
 
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split};
-use crate::network::{compute, compute_sparse, BoundedField, NetworkOptions};
+use crate::network::{compute, compute_sparse, BoundedField, NetworkOptions, Progress};
 use crate::scene::{Expr, Interest, RegionRule, Rule};
 
 use super::{from_network, from_network_with, RegionError, RegionSurfaces};
@@ -16,7 +16,18 @@ use super::{from_network, from_network_with, RegionError, RegionSurfaces};
 /// indicator. Every pair of labels is a surface of interest; every triple a
 /// curve of interest.
 pub fn label_surfaces(labels: &[i64], shape: [usize; 3], sigma: f64) -> Result<RegionSurfaces, RegionError> {
-    surfaces_of(labels, shape, sigma, false)
+    surfaces_of(labels, shape, sigma, false, None)
+}
+
+/// [`label_surfaces`] reporting `progress(done, total)` as blocks of the
+/// network finish (the command line's bar, Python's `progress=`).
+pub fn label_surfaces_with_progress(
+    labels: &[i64],
+    shape: [usize; 3],
+    sigma: f64,
+    progress: Option<Progress>,
+) -> Result<RegionSurfaces, RegionError> {
+    surfaces_of(labels, shape, sigma, false, progress)
 }
 
 /// [`label_surfaces`] as first written: every triple of labels listed as a
@@ -27,7 +38,7 @@ pub fn label_surfaces_listing_triples(
     shape: [usize; 3],
     sigma: f64,
 ) -> Result<RegionSurfaces, RegionError> {
-    surfaces_of(labels, shape, sigma, true)
+    surfaces_of(labels, shape, sigma, true, None)
 }
 
 fn surfaces_of(
@@ -35,7 +46,10 @@ fn surfaces_of(
     shape: [usize; 3],
     sigma: f64,
     list_triples: bool,
+    progress: Option<Progress>,
 ) -> Result<RegionSurfaces, RegionError> {
+    let mut options = NetworkOptions::new(Mode::Mi);
+    options.progress = progress;
     let n: usize = shape.iter().product();
     if shape.iter().any(|&s| s < 2) || labels.len() != n {
         return Err(RegionError::LabelShape { shape, labels: labels.len() });
@@ -65,7 +79,7 @@ fn surfaces_of(
         // Sampled per block from the labels (no k values per voxel held),
         // blocks of one label skipped (sparse evaluation, docs/sparse.md).
         let field = LabelField { labels, shape, ids: &ids };
-        let (net, _) = compute_sparse(&bgrid, &field, &NetworkOptions::new(Mode::Mi))?;
+        let (net, _) = compute_sparse(&bgrid, &field, &options)?;
         return Ok(regions_of(net, &ids, list_triples));
     }
     // Grid vertex (i, j, k) has the same index as voxel (i, j, k).
@@ -80,7 +94,7 @@ fn surfaces_of(
     if sigma > 0.0 {
         smooth(&mut values, shape, k, sigma);
     }
-    let net = compute(&Grid::Box(bgrid), &values, k, &NetworkOptions::new(Mode::Mi))?;
+    let net = compute(&Grid::Box(bgrid), &values, k, &options)?;
     Ok(regions_of(net, &ids, list_triples))
 }
 

@@ -40,7 +40,7 @@ use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene
 
 pub use clean::{clean, CleanStats};
 pub use curves::Curve;
-pub use labels::label_surfaces;
+pub use labels::{label_surfaces, label_surfaces_with_progress};
 #[doc(hidden)]
 pub use labels::label_surfaces_listing_triples;
 pub use surfaces::Surface;
