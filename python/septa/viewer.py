@@ -59,7 +59,10 @@ def view(result, folder=None, *, open: bool = True, title: str | None = None) ->
     Without ``folder``, writes into ``<result folder>/viewer`` for loaded
     results, else into a new temporary folder.
     """
-    net = result if isinstance(result, Network) else load(result)
+    if hasattr(result, "_viewer_network"):  # septa.CutCells: its cells as a network
+        net = result._viewer_network()
+    else:
+        net = result if isinstance(result, Network) else load(result)
     if folder is None:
         src = getattr(net, "source", None)
         folder = Path(src).parent / "viewer" if src else Path(tempfile.mkdtemp(prefix="septa-view-"))
