@@ -103,11 +103,18 @@ class CutCells:
         boundary with the patch ``surface`` for the input surface and an
         empty patch per plane family, faceZones per plane family) into
         ``path`` if it ends in ``polyMesh``, else into
-        ``path/constant/polyMesh`` (a case folder). Returns that folder."""
+        ``path/constant/polyMesh`` (a case folder). Returns that folder.
+
+        PolyMesh cell ``i`` is cell ``i`` here, except when the last cell has
+        no face on the input surface: it would own no face (OpenFOAM's
+        owner < neighbour) and readers that count cells from the owner list
+        (fluidfoam) would miss it, so it trades its number with the last
+        cell that has one; ``foam_cells_swapped`` then holds the pair (else
+        ``None``)."""
         path = Path(path)
         if path.name != "polyMesh":
             path = path / "constant" / "polyMesh"
-        self._core.write_foam(str(path))
+        self.foam_cells_swapped = self._core.write_foam(str(path))
         return path
 
     def to_pyvista(self):

@@ -187,3 +187,123 @@ def test_save_refuses_an_unknown_format(tmp_path):
     cut = septa.cut_mesh(v, t, [[0, 0, 1, -2]])
     with pytest.raises(septa.InputError, match="format"):
         cut.save(tmp_path / "cells.xyz")
+
+
+foamlib = pytest.importorskip("foamlib")
+fluidfoam = pytest.importorskip("fluidfoam")
+
+
+def _foam(case_dir, name):
+    return foamlib.FoamFile(case_dir / "constant" / "polyMesh" / name)
+
+
+@pytest.mark.parametrize("which", ["hollow", "sphere"])
+def test_openfoam_polymesh_reads_back(which, tmp_path):
+    if which == "hollow":  # two families: z = 2, z = 3.5 and x = 0.5
+        v, t, volume = hollow_cube()
+        planes = np.array([[0, 0, 1, -2], [1, 0, 0, -0.5], [0, 0, -2, 7]], float)
+    else:
+        v, t, volume = sphere()
+        planes = random_planes(7, 11)
+    cut = septa.cut_mesh(v, t, planes)
+    poly = cut.save(tmp_path / "case" / "constant" / "polyMesh")
+    assert poly == tmp_path / "case" / "constant" / "polyMesh"
+    case_dir = tmp_path / "case"
+    points = np.asarray(_foam(case_dir, "points")[None], float)
+    assert np.array_equal(points, cut.points)  # the same doubles
+    faces = [np.asarray(f, np.int64) for f in _foam(case_dir, "faces")[None]]
+    owner = np.asarray(_foam(case_dir, "owner")[None], np.int64)
+    neighbour = np.asarray(_foam(case_dir, "neighbour")[None], np.int64)
+    boundary = _foam(case_dir, "boundary")[None]
+    boundary = dict(boundary) if not isinstance(boundary, dict) else boundary
+    n_int, nc = len(neighbour), len(cut.cells)
+    cell_of = np.arange(nc)  # polyMesh cell -> cut-cell
+    if cut.foam_cells_swapped is not None:
+        a, b = cut.foam_cells_swapped
+        cell_of[[a, b]] = [b, a]
+    assert len(owner) == len(faces)
+    assert set(owner.tolist()) | set(neighbour.tolist()) == set(range(nc))
+    assert owner.max() == nc - 1  # the owner list alone tells the number of cells
+    # OpenFOAM's order: internal faces first, upper-triangular (owner <
+    # neighbour, sorted by owner then neighbour), then boundary faces by patch
+    assert np.all(owner[:n_int] < neighbour)
+    key = owner[:n_int] * nc + neighbour
+    assert np.all(np.diff(key) >= 0)
+    names = list(boundary)
+    families = 2 if which == "hollow" else 7
+    assert names == ["surface"] + [f"planes{k}" for k in range(families)]
+    assert boundary["surface"]["type"] == "wall"
+    assert boundary["surface"]["startFace"] == n_int and boundary["surface"]["nFaces"] == len(faces) - n_int
+    assert all(boundary[n]["nFaces"] == 0 for n in names[1:])
+    # the faces are the written polygons: one per polygon of an interior
+    # face, one per polygon of a surface face
+    n_poly = np.array([len(p) for p in cut.face_polygons])
+    interior = cut.face_plane >= 0
+    assert n_int == n_poly[interior].sum() and len(faces) - n_int == n_poly[~interior].sum()
+    # closed cells: oriented area vectors sum to zero, directed edges cancel,
+    # and the divergence theorem gives each cell's volume (so normals point
+    # out of the owner)
+    area = np.zeros((nc, 3))
+    vol = np.zeros(nc)
+    edges = [Counter() for _ in range(nc)]
+    for i, f in enumerate(faces):
+        x = points[f]
+        a = 0.5 * sum(np.cross(x[k], x[(k + 1) % len(x)]) for k in range(len(x)))
+        w = sum(np.dot(x[0], np.cross(x[k], x[k + 1])) for k in range(1, len(x) - 1)) / 6
+        sides = [(owner[i], f.tolist())] + ([(neighbour[i], f[::-1].tolist())] if i < n_int else [])
+        for sgn, (c, loop) in zip((1, -1), sides):
+            area[c] += sgn * a
+            vol[c] += sgn * w
+            for p, q in zip(loop, loop[1:] + loop[:1]):
+                edges[c][(p, q)] += 1
+    scale = np.abs(points).max() ** 2
+    assert np.abs(area).max() <= 1e-12 * scale
+    assert all(all(e[(q, p)] == n for (p, q), n in e.items()) for e in edges)
+    assert np.allclose(vol, cut.cell_volumes[cell_of], rtol=0, atol=1e-12 * volume)
+    assert abs(vol.sum() - volume) <= 1e-12 * volume
+    # face zones: the internal faces of each plane family, flipMap against
+    # the family's first plane normal
+    zones = _foam(case_dir, "faceZones")[None]
+    assert [z[0] for z in zones] == [f"planes{k}" for k in range(families)]
+    family_normal = planes[[0, 1]] if which == "hollow" else planes
+    family_of_plane = [0, 1, 0] if which == "hollow" else list(range(7))
+    for k, (_, z) in enumerate(zones):
+        labels, flips = np.asarray(z["faceLabels"][1]), np.asarray(z["flipMap"][1])
+        on_family = np.isin(cut.face_plane, [p for p, f in enumerate(family_of_plane) if f == k])
+        assert len(labels) == n_poly[on_family].sum() and np.all(labels < n_int)
+        for i, flip in zip(labels, flips):
+            x = points[faces[i]]
+            n = sum(np.cross(x[j], x[(j + 1) % len(x)]) for j in range(len(x)))
+            assert np.dot(n, family_normal[k, :3]) * (1 - 2 * flip) > 0, (k, i)
+    # a maintained reader of the whole case: one cell centre per cell, one
+    # face centre per face of the surface patch
+    x, y, z = fluidfoam.readmesh(str(case_dir), verbose=False)
+    assert len(x) == nc
+    bx, by, bz = fluidfoam.readmesh(str(case_dir), boundary="surface", verbose=False)
+    assert len(bx) == len(faces) - n_int
+
+
+def test_command_line_writes_the_same_polymesh(tmp_path):
+    import subprocess
+    from pathlib import Path
+
+    septa_bin = Path(__file__).resolve().parents[2] / "target" / "release" / "septa"
+    assert septa_bin.exists(), "the command line is built by scripts/test.sh first"
+    v, t, _ = sphere()
+    (tmp_path / "ball.obj").write_text("".join(f"v {x!r} {y!r} {z!r}\n" for x, y, z in v.tolist())
+                                       + "".join(f"f {a+1} {b+1} {c+1}\n" for a, b, c in t.tolist()))
+    planes = random_planes(7, 11)
+    (tmp_path / "p.plane").write_text("".join(" ".join(repr(float(x)) for x in p) + "\n" for p in planes))
+    subprocess.run([str(septa_bin), "cut", str(tmp_path / "ball.obj"), "--planes", str(tmp_path / "p.plane"),
+                    "--format", "foam,vtu", "-o", str(tmp_path / "out"), "--json"], check=True, capture_output=True)
+    out = tmp_path / "out"
+    assert (out / "cells.vtu").exists() and not (out / "cells.obj").exists()
+    manifest = json.loads((out / "manifest.json").read_text())
+    assert {f"constant/polyMesh/{n}" for n in ("points", "faces", "owner", "neighbour", "boundary", "faceZones")} \
+        <= {f["name"] for f in manifest["files"]}
+    cut = septa.cut_mesh(v, t, planes)
+    mine = cut.save_foam(tmp_path / "py")
+    for name in ("points", "faces", "owner", "neighbour", "boundary", "faceZones"):
+        assert (out / "constant" / "polyMesh" / name).read_bytes() == (mine / name).read_bytes(), name
+    info = json.loads((out / "cut.json").read_text())
+    assert info["foam_cells_swapped"] == (list(cut.foam_cells_swapped) if cut.foam_cells_swapped else None)

@@ -106,8 +106,9 @@ impl CutResult {
             .map_err(|e| InputError::new_err(format!("cannot write {path}: {e}")))
     }
 
-    /// Writes the OpenFOAM polyMesh files into the folder `path`.
-    fn write_foam(&self, py: Python<'_>, path: &str) -> PyResult<()> {
+    /// Writes the OpenFOAM polyMesh files into the folder `path`; returns
+    /// the two cut-cells whose numbers the polyMesh trades, or `None`.
+    fn write_foam(&self, py: Python<'_>, path: &str) -> PyResult<Option<(u32, u32)>> {
         py.detach(|| septa::io::cut_foam::write_poly_mesh(Path::new(path), &self.mesh)).map_err(InputError::new_err)
     }
 }

@@ -47,6 +47,9 @@ pub struct PolyMesh {
     pub zones: Vec<(String, Vec<u32>, Vec<bool>)>,
     /// Number of cells.
     pub cells: usize,
+    /// Two cut-cells whose numbers are traded in the polyMesh (see
+    /// [`poly_mesh`]); every other polyMesh cell `i` is cut-cell `i`.
+    pub swapped: Option<(u32, u32)>,
 }
 
 /// Plane families: planes whose normals are exactly parallel (all three
@@ -82,15 +85,40 @@ pub fn plane_families(planes: &[[f64; 4]]) -> (Vec<u32>, Vec<bool>) {
     (fam, opposite)
 }
 
-/// Builds the polyMesh of `m` (see the module documentation).
+/// Builds the polyMesh of `m` (see the module documentation). Cell `i` is
+/// cut-cell `i`, except when the last cut-cell has no face on the input
+/// surface: with internal faces owned by their lower cell it would own no
+/// face, and readers that count cells from the owner list alone (fluidfoam
+/// does; OpenFOAM also reads the neighbour list) would miss it. It then
+/// trades its number with the last cut-cell that has a surface face
+/// ([`PolyMesh::swapped`]).
 pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
+    let mut on_surface = vec![false; m.num_cells];
+    for f in &m.faces {
+        if let [c, u32::MAX] | [u32::MAX, c] = f.cells {
+            if c != u32::MAX {
+                on_surface[c as usize] = true;
+            }
+        }
+    }
+    let mut swapped = None;
+    let mut cell: Vec<u32> = (0..m.num_cells as u32).collect();
+    if let Some(last) = m.num_cells.checked_sub(1) {
+        if !on_surface[last] {
+            if let Some(b) = on_surface.iter().rposition(|&s| s) {
+                cell.swap(last, b);
+                swapped = Some((b as u32, last as u32));
+            }
+        }
+    }
+    let renumber = |c: u32| if c == u32::MAX { c } else { cell[c as usize] };
     let (family, opposite) = plane_families(&m.planes);
     let nfam = family.iter().map(|&f| f as usize + 1).max().unwrap_or(0);
     // (owner, neighbour or MAX, face polygon, zone entry)
     let mut internal: Vec<(u32, u32, Vec<u32>, Option<(u32, bool)>)> = Vec::new();
     let mut boundary: Vec<(u32, Vec<u32>)> = Vec::new();
     for (i, f) in m.faces.iter().enumerate() {
-        let [c0, c1] = f.cells;
+        let [c0, c1] = f.cells.map(renumber);
         for poly in m.face_polygons(i) {
             // the polygon is counter-clockwise about the support normal,
             // which points out of cells[0]
@@ -113,7 +141,7 @@ pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
     }
     internal.sort_by_key(|e| (e.0, e.1));
     boundary.sort_by_key(|e| e.0);
-    let mut pm = PolyMesh { points: m.vertices.clone(), cells: m.num_cells, ..Default::default() };
+    let mut pm = PolyMesh { points: m.vertices.clone(), cells: m.num_cells, swapped, ..Default::default() };
     pm.zones = (0..nfam).map(|k| (format!("planes{k}"), Vec::new(), Vec::new())).collect();
     for (k, (o, n, face, zone)) in internal.into_iter().enumerate() {
         pm.owner.push(o);
@@ -191,11 +219,11 @@ impl PolyMesh {
         header(&mut boundary, "polyBoundaryMesh", "boundary", None);
         let _ = writeln!(boundary, "{}\n(", self.patches.len());
         for (name, ty, start, n) in &self.patches {
-            let group = if *ty == "wall" { "    inGroups        List<word> 1(wall);\n" } else { "" };
-            let _ = writeln!(
-                boundary,
-                "    {name}\n    {{\n        type            {ty};\n    {group}    nFaces          {n};\n        startFace       {start};\n    }}"
-            );
+            let _ = writeln!(boundary, "    {name}\n    {{\n        type            {ty};");
+            if *ty == "wall" {
+                boundary.push_str("        inGroups        List<word> 1(wall);\n");
+            }
+            let _ = writeln!(boundary, "        nFaces          {n};\n        startFace       {start};\n    }}");
         }
         boundary.push_str(")\n");
         let mut zones = String::new();
@@ -225,12 +253,30 @@ impl PolyMesh {
 }
 
 /// Writes the polyMesh files of `m` into the folder `dir` (created if
-/// needed; each file atomically). Errors name the file.
-pub fn write_poly_mesh(dir: &Path, m: &CutCellMesh) -> Result<(), String> {
+/// needed; each file atomically). Errors name the file. Returns the cells
+/// whose numbers were traded ([`PolyMesh::swapped`]).
+pub fn write_poly_mesh(dir: &Path, m: &CutCellMesh) -> Result<Option<(u32, u32)>, String> {
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    for (name, text) in poly_mesh(m).files() {
+    let pm = poly_mesh(m);
+    for (name, text) in pm.files() {
         let p = dir.join(name);
         super::write_atomic(&p, text.as_bytes()).map_err(|e| format!("cannot write {}: {e}", p.display()))?;
     }
-    Ok(())
+    Ok(pm.swapped)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::plane_families;
+
+    #[test]
+    fn families_are_exactly_parallel_planes() {
+        // x planes (one with the opposite normal), a z plane, and a plane
+        // whose normal differs from x's by one ulp in y: its own family
+        let tiny = f64::MIN_POSITIVE;
+        let planes = [[1.0, 0.0, 0.0, -1.0], [0.0, 0.0, 3.0, 1.0], [-2.0, 0.0, 0.0, 5.0], [1.0, tiny, 0.0, 0.0]];
+        let (fam, opp) = plane_families(&planes);
+        assert_eq!(fam, vec![0, 1, 0, 2]);
+        assert_eq!(opp, vec![false, false, true, false]);
+    }
 }
