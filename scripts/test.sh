@@ -25,7 +25,7 @@ if [ ! -x .venv/bin/python ]; then
   "$PY" -m venv .venv
 fi
 .venv/bin/python -m pip install -q --upgrade pip
-.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile "dask[distributed]" pynrrd nibabel pyvista
+.venv/bin/python -m pip install -q maturin numpy pytest meshio trimesh plyfile "dask[distributed]" pynrrd nibabel pyvista foamlib fluidfoam
 rm -f python/septa/_septa*.so  # left by `maturin develop`; never package a stale one
 # CARGO_TARGET_DIR shared with the cargo step above so built crates are reused.
 PATH="$ROOT/.venv/bin:$PATH" CARGO_TARGET_DIR="$ROOT/target" .venv/bin/python -m pip install -q --no-build-isolation --force-reinstall --no-deps .

@@ -37,13 +37,21 @@ def write_result(path: str, format: str, mode: str, functions: int, points: np.n
                  cell_shell_indices: np.ndarray, cell_labels: np.ndarray, meta: str) -> None:
     """Writes a result with the command line's writers (ply, plain.ply, obj, vtu, vtm, npz)."""
 
+class CutResult:
+    """A cut-cell mesh held by the Rust core (wrapped by ``septa.CutCells``)."""
+    def summary(self) -> str: ...
+    def arrays(self) -> dict: ...
+    def write_vtu(self, path: str) -> None: ...
+    def write_obj(self, path: str, explode: float = 0.0) -> None: ...
+    def write_foam(self, path: str) -> None: ...
+
 def cut(
     vertices: npt.NDArray[np.float64],
     triangles: npt.NDArray[np.int64],
     planes: npt.NDArray[np.float64],
     threads: int = 0,
-) -> str:
-    """Planar cut-cell mesh as JSON text (counts, points, cells' outward polygons)."""
+) -> CutResult:
+    """Planar cut-cell mesh (counts, points, faces with loops, cells)."""
 
 def sparse_plan(job: str) -> tuple[int, list[int], bool]:
     """Step 1 of a sparse job (JSON text): (blocks, kept block indices, dense)."""

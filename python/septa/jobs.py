@@ -19,6 +19,7 @@ from . import _septa
 from . import _inputs
 from .grid import Grid
 from .network import Network
+from .cut import CutCells, cut_mesh
 
 __all__ = ["arrangement", "material_interface", "region_surfaces", "cut_mesh", "CutCells"]
 
@@ -304,49 +305,3 @@ def _region_network(data: dict) -> Network:
         }
         net.indices_normal = np.asarray([c for f in data["face_normals"] for c in f], dtype=np.int64)
     return net
-
-
-class CutCells:
-    """A planar cut-cell mesh.
-
-    Attributes: ``points`` ``(#V, 3) float64`` (the floating-point embedding
-    of the exact cut-vertices, which keeps every order along cut lines);
-    ``cells``: per cell, its boundary polygons (point-id lists, outward);
-    ``cell_volumes`` ``(#C,) float64``.
-    """
-
-    def __init__(self, d):
-        self._summary = {k: d[k] for k in ("cut_vertices", "cut_edges", "cut_faces", "cut_cells", "euler",
-                                           "volume_relative_error")}
-        self.points = np.asarray(d["points"], dtype=np.float64).reshape(-1, 3)
-        self.cells = [[np.asarray(loop, dtype=np.int64) for face in cell for loop in face] for cell in d["cells"]]
-        self.cell_volumes = np.asarray(d["cell_volumes"], dtype=np.float64)
-
-    def summary(self) -> dict:
-        """Counts and checks, as ``septa cut --json``."""
-        return dict(self._summary)
-
-
-def cut_mesh(vertices, triangles, planes, *, threads=None):
-    """Planar cut-cell mesh of a closed, outward triangle mesh by planes (TopoCut).
-
-    ``vertices`` ``(#V, 3)``, ``triangles`` ``(#T, 3)``, ``planes`` ``(#P, 4)``
-    rows ``a b c d`` for ``a x + b y + c z + d = 0``. Returns :class:`CutCells`;
-    the combinatorics are exact, the same as ``septa cut``.
-
-    >>> import septa, numpy as np
-    >>> v = np.array([[0,0,0],[1,0,0],[0,1,0],[0,0,1]], float)
-    >>> t = np.array([[0,2,1],[0,1,3],[0,3,2],[1,2,3]])
-    >>> septa.cut_mesh(v, t, [[1, 0, 0, -0.25]]).summary()["cut_cells"]
-    2
-    """
-    v = np.ascontiguousarray(vertices, dtype=np.float64)
-    _septa.check_values(v.reshape(-1, 3), "vertices")
-    t = _inputs.integer_array(triangles, "triangles")
-    if t.ndim != 2 or t.shape[1] != 3 or (len(t) and (t.min() < 0 or t.max() >= len(v))):
-        raise _septa.InputError("triangles: expected (#T, 3) indices into vertices")
-    p = np.ascontiguousarray(planes, dtype=np.float64)
-    if p.ndim != 2 or p.shape[1] != 4:
-        raise _septa.InputError(f"planes: expected shape (#P, 4), got {p.shape}")
-    _septa.check_values(p, "planes")
-    return CutCells(json.loads(_septa.cut(v, t, p, threads=_inputs.threads(threads) or 0)))

@@ -53,6 +53,8 @@ def view(result, folder=None, *, open: bool = True, title: str | None = None) ->
     Without ``folder``, writes into ``<result folder>/viewer`` for results on
     disk, else into a new temporary folder.
     """
+    if hasattr(result, "_viewer_network"):  # septa.CutCells: its cells as a network
+        result = result._viewer_network()
     if not isinstance(result, Network) and _shown_by_library(Path(result)):
         p = Path(result)
         base = p if p.is_dir() else p.parent

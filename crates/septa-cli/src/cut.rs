@@ -1,6 +1,7 @@
 //! `septa cut MESH (--grid N | --random N --seed S | --planes FILE) -o OUTDIR`:
 //! cuts the domain of a closed triangle mesh by planes into cut-cells
-//! (TopoCut) and writes `cells.vtu`, `cells.obj` and `cut.json`.
+//! (TopoCut) and writes `cells.vtu`, `cells.obj` (`--format`: also an
+//! OpenFOAM `constant/polyMesh`) and `cut.json`.
 use crate::CliResult;
 use septa::cut::{cut_mesh, CutOptions};
 use septa::io::{cut_out, mesh::read_mesh, planes};
@@ -36,7 +37,13 @@ pub struct Args {
     /// Print one JSON object with counts, checks and timings.
     #[arg(long)]
     pub json: bool,
-    /// Skip writing cells.vtu / cells.obj (cut.json is always written).
+    /// Mesh files to write, comma-separated: vtu (cells.vtu), obj
+    /// (cells.obj), foam (OpenFOAM constant/polyMesh: points, faces, owner,
+    /// neighbour, boundary with the patch `surface`, faceZones per plane
+    /// family), or all.
+    #[arg(long, default_value = "vtu,obj", value_parser = parse_formats)]
+    pub format: MeshFormats,
+    /// Skip writing the mesh files (cut.json is always written).
     #[arg(long)]
     pub no_mesh_output: bool,
     /// Skip the exact self-intersection test of the input mesh.
@@ -61,6 +68,46 @@ pub struct Args {
     /// (`"numerator/denominator"` strings).
     #[arg(long)]
     pub exact_vertices: bool,
+}
+
+/// A mesh file `septa cut` writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// cells.vtu
+    Vtu,
+    /// cells.obj
+    Obj,
+    /// constant/polyMesh
+    Foam,
+}
+
+/// The parsed `--format` list.
+#[derive(Clone, Debug)]
+pub struct MeshFormats(pub Vec<MeshFormat>);
+
+impl Default for MeshFormats {
+    fn default() -> Self {
+        MeshFormats(vec![MeshFormat::Vtu, MeshFormat::Obj])
+    }
+}
+
+fn parse_formats(s: &str) -> Result<MeshFormats, String> {
+    let mut out = Vec::new();
+    for w in s.split(',').map(str::trim) {
+        let f: &[MeshFormat] = match w {
+            "vtu" => &[MeshFormat::Vtu],
+            "obj" => &[MeshFormat::Obj],
+            "foam" => &[MeshFormat::Foam],
+            "all" => &[MeshFormat::Vtu, MeshFormat::Obj, MeshFormat::Foam],
+            _ => return Err(format!("unknown format '{w}': expected vtu, obj, foam or all")),
+        };
+        for f in f {
+            if !out.contains(f) {
+                out.push(*f);
+            }
+        }
+    }
+    Ok(MeshFormats(out))
 }
 
 /// `septa cut FILE.vtu --verify`: the exact check of a written polyhedral mesh.
@@ -122,9 +169,20 @@ pub fn run(a: Args) -> CliResult {
     let writing = crate::progress::stage(a.json, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
-    if !a.no_mesh_output {
+    let wants = |f: MeshFormat| !a.no_mesh_output && a.format.0.contains(&f);
+    if wants(MeshFormat::Vtu) {
         dir.write("cells.vtu", cut_out::vtu(&out).as_bytes())?;
+    }
+    if wants(MeshFormat::Obj) {
         dir.write("cells.obj", cut_out::obj(&out, a.explode).as_bytes())?;
+    }
+    let mut foam_swapped = None;
+    if wants(MeshFormat::Foam) {
+        let pm = septa::io::cut_foam::poly_mesh(&out);
+        for (name, text) in pm.files() {
+            dir.write(&format!("constant/polyMesh/{name}"), text.as_bytes())?;
+        }
+        foam_swapped = Some(pm.swapped);
     }
     if a.exact_vertices {
         let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
@@ -144,7 +202,7 @@ pub fn run(a: Args) -> CliResult {
     // the polygons in memory
     let verify = if !a.verify {
         None
-    } else if a.no_mesh_output {
+    } else if !wants(MeshFormat::Vtu) {
         Some(out.verify())
     } else {
         let (points, cells) = septa::io::cut_vtu::read_polyhedra(&dir.staged_path("cells.vtu"))?;
@@ -203,6 +261,11 @@ pub fn run(a: Args) -> CliResult {
         "verify_written_file": verify,
         "seconds": seconds,
     });
+    let mut j = j;
+    if let Some(s) = foam_swapped {
+        // polyMesh cell numbers that differ from the cut-cells' (io::cut_foam)
+        j["foam_cells_swapped"] = serde_json::json!(s);
+    }
     dir.write("cut.json", serde_json::to_string_pretty(&j)?.as_bytes())?;
     dir.finish()?;
     if a.json {

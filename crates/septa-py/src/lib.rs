@@ -115,6 +115,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(regions::labels, m)?)?;
     m.add_function(wrap_pyfunction!(result::write_result, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
+    m.add_class::<cut::CutResult>()?;
     m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation_seeds_py, m)?)?;
     m.add_function(wrap_pyfunction!(continuation::continuation_blocks, m)?)?;

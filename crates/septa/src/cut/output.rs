@@ -30,17 +30,7 @@ impl super::CutCellMesh {
     pub fn cell_polygons(&self) -> Vec<Vec<Vec<u32>>> {
         let mut cells: Vec<Vec<Vec<u32>>> = vec![Vec::new(); self.num_cells];
         for (i, f) in self.faces.iter().enumerate() {
-            let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
-            let polys: Vec<Vec<u32>> = if !split {
-                vec![f.loops[0].clone()]
-            } else if let Some(t) = self.face_triangles.get(i).filter(|t| !t.is_empty()) {
-                t.iter().map(|t| t.to_vec()).collect()
-            } else {
-                super::triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f))
-                    .iter()
-                    .map(|t| t.to_vec())
-                    .collect()
-            };
+            let polys = self.face_polygons(i);
             // the face normal points away from cells[0] (negative side): outward for it
             if f.cells[1] != u32::MAX {
                 let c = &mut cells[f.cells[1] as usize];
@@ -51,6 +41,24 @@ impl super::CutCellMesh {
             }
         }
         cells
+    }
+
+    /// The polygons cut-face `i` is written as, counter-clockwise about its
+    /// support normal: the face as one polygon, or its triangles (no new
+    /// cut-vertices) when [`super::CutCellMesh::face_split`] says so.
+    pub fn face_polygons(&self, i: usize) -> Vec<Vec<u32>> {
+        let f = &self.faces[i];
+        let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
+        if !split {
+            vec![f.loops[0].clone()]
+        } else if let Some(t) = self.face_triangles.get(i).filter(|t| !t.is_empty()) {
+            t.iter().map(|t| t.to_vec()).collect()
+        } else {
+            super::triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f))
+                .iter()
+                .map(|t| t.to_vec())
+                .collect()
+        }
     }
 
     /// The exact check of [`super::verify`] on the polygons as written.

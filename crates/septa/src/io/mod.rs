@@ -1,6 +1,7 @@
 //! Readers and writers.
 
 mod atomic;
+pub mod cut_foam;
 pub mod cut_out;
 pub mod cut_vtu;
 pub mod functions;
