@@ -53,15 +53,14 @@ def view(result, folder=None, *, open: bool = True, title: str | None = None) ->
     Without ``folder``, writes into ``<result folder>/viewer`` for results on
     disk, else into a new temporary folder.
     """
-    if hasattr(result, "_viewer_network"):  # septa.CutCells: its cells as a network
-        result = result._viewer_network()
-    if not isinstance(result, Network) and _shown_by_library(Path(result)):
+    cut = hasattr(result, "_viewer_network")  # septa.CutCells: its cells as a network
+    if not cut and not isinstance(result, Network) and _shown_by_library(Path(result)):
         p = Path(result)
         base = p if p.is_dir() else p.parent
         name = title or base.resolve().name or "Septa"
         index = Path(_septa.viewer_write_result(str(p), name, None if folder is None else str(folder)))
     else:
-        net = result if isinstance(result, Network) else load(result)
+        net = result._viewer_network() if cut else result if isinstance(result, Network) else load(result)
         if folder is None:
             src = getattr(net, "source", None)
             folder = Path(src).parent / "viewer" if src else Path(tempfile.mkdtemp(prefix="septa-view-"))
