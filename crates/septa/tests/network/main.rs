@@ -13,6 +13,7 @@ mod lookup;
 mod one_answer;
 mod output;
 mod permutation;
+mod round_scenes;
 mod sparse;
 mod stream;
 mod stream_topology;

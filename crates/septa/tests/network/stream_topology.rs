@@ -22,8 +22,8 @@ use common::{cube_grid, spec};
 
 /// Per streamed polygon: sorted vertex keys and patch piece; per streamed vertex id: its key.
 #[derive(Default)]
-struct Collect {
-    faces: Vec<(Vec<VKey>, u32, [u16; 2])>,
+pub(crate) struct Collect {
+    pub faces: Vec<(Vec<VKey>, u32, [u16; 2])>,
     keys: BTreeMap<u32, VKey>,
 }
 
@@ -184,7 +184,7 @@ fn assert_same(net: &Network, sum: &NetworkSummary, c: &Collect, what: &str) {
 }
 
 /// Streams with topology and compares (returns the summary).
-fn check(
+pub(crate) fn check(
     grid: &BoxGrid,
     f: &[Primitive],
     mode: Mode,

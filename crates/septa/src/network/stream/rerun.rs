@@ -87,12 +87,30 @@ impl<'a> RerunIndex<'a> {
     /// The block holding `tet`, run again (`None`: it was never streamed,
     /// so it holds no network, or it fails now, which it did not before).
     fn block_of(&mut self, tet: &[u32; 4]) -> Option<&Rerun> {
-        let size = self.options.block.max(1);
-        let n = self.grid.res.map(|r| r.div_ceil(size));
         let ijk = tet
             .iter()
             .map(|&v| self.grid.vertex_ijk(v))
             .fold([usize::MAX; 3], |m, x| [m[0].min(x[0]), m[1].min(x[1]), m[2].min(x[2])]);
+        self.block_of_cube(ijk)
+    }
+
+    /// The blocks holding a cube with grid vertex `v` as a corner (up to 8).
+    fn blocks_at_vertex(&self, v: u32) -> SmallVec<[[usize; 3]; 8]> {
+        let p = self.grid.vertex_ijk(v);
+        let mut cubes: SmallVec<[[usize; 3]; 8]> = SmallVec::new();
+        for d in 0..8 {
+            let c = [0, 1, 2].map(|a| p[a].wrapping_sub((d >> a) & 1));
+            if (0..3).all(|a| c[a] < self.grid.res[a]) {
+                cubes.push(c);
+            }
+        }
+        cubes
+    }
+
+    /// The block holding cube `ijk`, run again.
+    fn block_of_cube(&mut self, ijk: [usize; 3]) -> Option<&Rerun> {
+        let size = self.options.block.max(1);
+        let n = self.grid.res.map(|r| r.div_ceil(size));
         let b = ijk.map(|c| c / size);
         let index = (b[0] * n[1] + b[1]) * n[2] + b[2];
         if let Some(i) = self.cache.iter().position(|r| r.index == index) {
@@ -136,19 +154,38 @@ impl Rerun {
     fn polys_at(&self, v: u32) -> &[u32] {
         &self.polys[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
     }
+
+    /// The piece of a face of this block at the vertex with key `key`.
+    fn piece_at(&self, key: &VKey) -> Option<u32> {
+        let v = *self.vmap.get(key)?;
+        match self.polys_at(v).first() {
+            Some(&p) => Some(self.piece[p as usize]),
+            // On faces paired across blocks only.
+            None => self.open.iter().find(|(vs, p)| *p != NONE && vs.contains(&v)).map(|x| x.1),
+        }
+    }
 }
 
 impl RayIndex for RerunIndex<'_> {
     fn component(&mut self, tet: &[u32; 4], key: VKey) -> Option<u32> {
         let assembled = self.assembled;
-        let r = self.block_of(tet)?;
-        let v = *r.vmap.get(&key)?;
-        let piece = match r.polys_at(v).first() {
-            Some(&p) => r.piece[p as usize],
-            // On faces paired across blocks only.
-            None => r.open.iter().find(|(vs, p)| *p != NONE && vs.contains(&v))?.1,
-        };
-        Some(assembled.piece_comp[piece as usize])
+        if let Some(piece) = self.block_of(tet).and_then(|r| r.piece_at(&key)) {
+            return Some(assembled.piece_comp[piece as usize]);
+        }
+        // A network vertex on a grid vertex or edge that this tet's block did
+        // not make (its tets there meet the network only at that point) is
+        // still a network vertex if a block around its grid element made it,
+        // as the in-memory index finds it by key alone.
+        let mut cubes: SmallVec<[[usize; 3]; 16]> = SmallVec::new();
+        for &w in key.grid.iter().filter(|&&w| w != u32::MAX) {
+            cubes.extend(self.blocks_at_vertex(w));
+        }
+        for c in cubes {
+            if let Some(piece) = self.block_of_cube(c).and_then(|r| r.piece_at(&key)) {
+                return Some(assembled.piece_comp[piece as usize]);
+            }
+        }
+        None
     }
 
     fn shell(&mut self, tet: &[u32; 4], keys: &[VKey], side: FaceSide) -> Option<u32> {
