@@ -67,12 +67,9 @@ cp -r tests/fixtures/two-planes "$ART/two-planes"
 # Two labels (f0, f1) and four patches: see scripts/make_fixture.py.
 node viewer/test/browser.mjs "$ART/two-planes/viewer" "$ART" --label-colours 2 --patch-colours 4
 
-# And on real results: every demo job with a viewer. Its screenshots
-# (test-artifacts/<job>/viewer-page.png) are the user guide's pictures
-# (docs/images/<job>.png, docs/guide.md).
-"$ROOT/target/release/septa" demo --out "$ART/demo"
-for job in cad-part apollonius-18 sphere-plane-hole cut-torus; do
-  node viewer/test/browser.mjs "$ART/demo/$job/viewer" "$ART/$job"
-done
+# And on real results: every demo job with a viewer. Its first page view is
+# the user guide's picture, written to test-artifacts/guide-images/<job>.png;
+# `bash scripts/guide_images.sh --refresh` copies them over docs/images/.
+bash scripts/guide_images.sh
 
 step "all tests passed"

@@ -61,7 +61,7 @@ def test_distributed_equals_local_and_dense(client, spec, mode):
     assert_same(dist, dense(sd.job_spec(path, mode=mode, grid=24, block=8)), f"{spec} distributed vs dense")
     blocks = dist.summary()["blocks"]
     assert blocks == local.summary()["blocks"] and blocks["bytes"] > 0
-    assert blocks["blocks"] == 27 and blocks["sampled"] + blocks["skipped"] == 27
+    assert blocks["total"] == 27 and blocks["sampled"] + blocks["skipped"] == 27
     assert blocks["active"] > 0 and not blocks["dense_fallback"]
     assert dist.summary()["faces"] > 0
 

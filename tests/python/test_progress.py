@@ -49,3 +49,22 @@ def test_stream_progress(tmp_path):
     with pytest.raises(septa.InputError, match="progress"):
         septa.stream.stream_ply(spheres, tmp_path / "c.ply", grid=16, block=4, progress="yes")
     assert not (tmp_path / "c.ply").exists()
+
+
+def test_block_statistics_have_one_set_of_names(tmp_path):
+    # The command line's --json and Python's summaries name the sparse block
+    # statistics alike (Python's used to say "blocks" where the CLI says "total").
+    import json
+    import subprocess
+
+    from conftest import SEPTA, need
+
+    need(SEPTA, "the septa binary (cargo build --release -p septa-cli)")
+    fs = [{"type": "sphere", "center": [0, 0, 0], "radius": 0.5}, {"type": "sphere", "center": [0.3, 0, 0], "radius": 0.5}]
+    (tmp_path / "f.json").write_text(json.dumps(fs))
+    out = subprocess.run([str(SEPTA), "ia", str(tmp_path / "f.json"), "--grid", "16", "--block", "4", "--json",
+                          "--no-output"], check=True, capture_output=True, text=True)
+    cli = json.loads(out.stdout)["blocks"]
+    py = septa.distributed.arrangement(fs, client=None, grid=16, block=4).summary()["blocks"]
+    assert set(cli) <= set(py) and cli["total"] == py["total"] == 64
+    assert py["sampled"] + py["skipped"] == py["total"]

@@ -4,13 +4,17 @@
 // exploded view changes the image, picking names a patch.
 //
 //   node test/browser.mjs VIEWER_DIR ARTIFACT_DIR --label-colours N --patch-colours M
+//                         [--guide-image PATH]
+//
+// --guide-image PATH also writes the whole page as a person first sees it to
+// PATH (the user guide's picture of this result; scripts/guide_images.sh).
 //
 // Prints 'N passed, N failed' and exits non-zero on any failure.
 import { chromium } from 'playwright-core';
 import { PNG } from 'pngjs';
-import { mkdtempSync, mkdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
+import { copyFileSync, mkdtempSync, mkdirSync, rmSync, writeFileSync, existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { dirname, join, resolve } from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const argv = process.argv.slice(2);
@@ -22,6 +26,7 @@ const viewerDir = resolve(argv[0] || '');
 const artifacts = resolve(argv[1] || 'test-artifacts');
 const expectLabel = Number(opt('--label-colours', 'NaN'));
 const expectPatch = Number(opt('--patch-colours', 'NaN'));
+const guideImage = opt('--guide-image', null);
 const executablePath = process.env.CHROMIUM || '/usr/bin/chromium';
 if (!existsSync(join(viewerDir, 'index.html'))) {
   console.error(`usage: node test/browser.mjs VIEWER_DIR ARTIFACT_DIR ...: ${viewerDir}/index.html not found`);
@@ -118,6 +123,10 @@ try {
   await page.waitForFunction(() => window.__septaReady === true, null, { timeout: 30000 });
   await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
   await page.screenshot({ path: join(artifacts, 'viewer-page.png') });
+  if (guideImage) {
+    mkdirSync(dirname(resolve(guideImage)), { recursive: true });
+    copyFileSync(join(artifacts, 'viewer-page.png'), resolve(guideImage));
+  }
   const lit = await shot('viewer-lit.png');
   check('first frame is not blank', nonBackground(lit) > 0.02, `${(100 * nonBackground(lit)).toFixed(1)}% non-background`);
 

@@ -23,7 +23,8 @@ pub struct Args {
 
 /// What one demo job reports for the table.
 pub struct JobRow {
-    /// Counts as in `--json` (vertices, faces, patches, chains, corners, shells, cells).
+    /// Counts as in `--json` (vertices, faces, patches, chains, corners,
+    /// shells, cells; surfaces and curves for region jobs).
     pub counts: serde_json::Value,
     /// Whether the folder gets a viewer (a streamed network is for files, not a browser).
     pub viewer: bool,
@@ -119,6 +120,10 @@ fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
     region_job("builtin:sphere-plane-hole", dir)
 }
 
+/// A region job's row: the network's patches, chains, corners, shells and
+/// cells in their own columns, the surfaces and curves of interest in theirs
+/// (before, surfaces and curves were printed as patches and chains), and
+/// the vertices and polygons written.
 fn region_job(name: &str, dir: &Path) -> JobResult {
     let scene = septa::scene::Scene::load(name)?;
     let r = septa::regions::region_surfaces(&scene, &Default::default())?;
@@ -126,8 +131,8 @@ fn region_job(name: &str, dir: &Path) -> JobResult {
     let mut c = counts(&r.network);
     c["vertices"] = septa::io::regions_out::summary(&r)["vertices"].clone();
     c["faces"] = serde_json::json!(r.faces.len());
-    c["patches"] = serde_json::json!(r.surfaces.len());
-    c["chains"] = serde_json::json!(r.curves.len());
+    c["surfaces"] = serde_json::json!(r.surfaces.len());
+    c["curves"] = serde_json::json!(r.curves.len());
     Ok(JobRow { counts: c, viewer: true })
 }
 
@@ -180,7 +185,10 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
     })
 }
 
-const COLUMNS: [&str; 7] = ["vertices", "faces", "patches", "chains", "corners", "shells", "cells"];
+/// The table's columns: the network's counts, then the region jobs' surfaces
+/// and curves of interest (`-`: the job has none; a cut's `cells` are its cut-cells).
+const COLUMNS: [&str; 9] =
+    ["vertices", "faces", "patches", "chains", "corners", "shells", "cells", "surfaces", "curves"];
 
 /// Runs `septa demo`.
 pub fn run(args: Args) -> CliResult {

@@ -32,7 +32,8 @@ pub struct Args {
     /// surface; docs/sparse.md).
     #[arg(long, conflicts_with = "sparse")]
     dense: bool,
-    /// Accepted for compatibility: sparse evaluation is the default.
+    /// Kept only for compatibility with older scripts; does nothing:
+    /// sparse evaluation is the default.
     #[arg(long)]
     sparse: bool,
 }

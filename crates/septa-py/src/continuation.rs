@@ -65,7 +65,7 @@ impl Field for PyField {
 /// the blocks holding `seeds` (a list of points), or from a coarse scan of
 /// the block corners when `seeds` is None. `dense=True` samples every
 /// vertex instead (the reference). Returns the network dict (as `network`)
-/// with `counts["blocks"]` (blocks, skipped, sampled, active, seeds, rounds).
+/// with `counts["blocks"]` (total, skipped, sampled, active, seeds, rounds).
 #[pyfunction]
 #[pyo3(signature = (f, k, mode, resolution, bounds, split = 5, block = 8, seeds = None, dense = false, threads = None))]
 #[allow(clippy::too_many_arguments)]

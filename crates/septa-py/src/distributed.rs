@@ -47,10 +47,11 @@ fn plan_of(p: (usize, Vec<usize>, bool)) -> SparsePlan {
     SparsePlan { blocks: p.0, kept: p.1, dense: p.2 }
 }
 
-/// A sparse run's block statistics as the dict Python results carry.
+/// A sparse run's block statistics as the dict Python results carry, with
+/// the command line's `--json` names (`total`, not `blocks`: one name).
 pub(crate) fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("blocks", s.blocks)?;
+    d.set_item("total", s.blocks)?;
     d.set_item("skipped", s.skipped)?;
     d.set_item("sampled", s.sampled)?;
     d.set_item("active", s.active)?;

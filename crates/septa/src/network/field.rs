@@ -40,7 +40,7 @@ pub trait Field: Sync {
     fn functions(&self) -> usize;
     /// Appends the values at `points` to `out`, row-major: `points.len() * k`
     /// values, function `f` of point `i` at `i * k + f`. An `Err` (a
-    /// message) stops the run with [`super::NetworkError::Continuation`].
+    /// message) stops the run with [`super::NetworkError::FieldFailed`].
     fn eval(&self, points: &[[f64; 3]], out: &mut Vec<f64>) -> Result<(), String>;
 }
 

@@ -87,13 +87,63 @@ pub enum NetworkError {
     /// before allocating; `grid::memory`).
     #[error(transparent)]
     Memory(#[from] crate::grid::memory::MemoryError),
-    /// Block results handed to [`finish_sparse`] do not match its plan
-    /// (missing, repeated, or from another job).
+    /// A block index that the job's grid does not have (a caller that
+    /// hands out block indices may branch on it).
+    #[error("block results: block {index} does not exist (the grid has {blocks} blocks)")]
+    NoSuchBlock {
+        /// The index asked for.
+        index: usize,
+        /// Blocks in the grid.
+        blocks: usize,
+    },
+    /// A block result computed for another job (grid, functions, mode or
+    /// options differ): `job` and `expected` describe the two jobs.
+    #[error("block results: block {index} belongs to another job ({job}, expected {expected})")]
+    ForeignBlock {
+        /// The block.
+        index: usize,
+        /// The job the result was computed for.
+        job: String,
+        /// This job.
+        expected: String,
+    },
+    /// Block results handed to [`finish_sparse`] are not the planned blocks,
+    /// once each: `missing` lists (up to five of) the planned blocks without
+    /// a result, so a caller can run them again.
+    #[error("block results: {given} block results for the {planned} planned blocks (missing e.g. {missing:?}, or a block given twice or not planned)")]
+    BlockCount {
+        /// Results given.
+        given: usize,
+        /// Blocks planned.
+        planned: usize,
+        /// Up to five planned blocks without a result.
+        missing: Vec<usize>,
+    },
+    /// Block results do not fit together (the message says where).
     #[error("block results: {0}")]
     BlockResults(String),
-    /// Continuation: a seed or the field's values are wrong (the message says which).
+    /// Continuation: the caller's field failed; its own message (a Python
+    /// function's exception, for example).
     #[error("continuation: {0}")]
-    Continuation(String),
+    FieldFailed(String),
+    /// Continuation: the field gave a wrong number of values.
+    #[error("continuation: the field returned {values} values for {points} points x {functions} functions")]
+    FieldValues {
+        /// Values returned.
+        values: usize,
+        /// Points asked for.
+        points: usize,
+        /// Functions of the field.
+        functions: usize,
+    },
+    /// Continuation: a seed point outside the grid's box.
+    #[error("continuation: seed point {seed} {point:?} is outside the grid")]
+    SeedOutside {
+        /// The seed's index.
+        seed: usize,
+        /// The point.
+        point: [f64; 3],
+    },
     /// The per-tet construction failed (an internal error: inputs are
     /// checked before; Python raises it as `RuntimeError`).
     #[error("tet {tet}: {source}")]

@@ -102,9 +102,10 @@ fn bad_fields_and_seeds_are_typed_errors() {
     let e = compute_continuation(&grid, &Bad(1), Seeds::CoarseScan, &o).unwrap_err();
     assert!(e.to_string().contains("returned 1 values"), "{e}");
     let e = compute_continuation(&grid, &Bad(2), Seeds::CoarseScan, &o).unwrap_err();
-    assert_eq!(e, NetworkError::Continuation("user function raised".into()));
+    assert_eq!(e, NetworkError::FieldFailed("user function raised".into()));
     let f = separate();
     let e = compute_continuation(&grid, &Primitives(&f), Seeds::Points(&[[0.0, 2.0, 0.0]]), &o).unwrap_err();
+    assert!(matches!(e, NetworkError::SeedOutside { seed: 0, point: [0.0, 2.0, 0.0] }), "{e}");
     assert!(e.to_string().contains("seed point 0"), "{e}");
 }
 

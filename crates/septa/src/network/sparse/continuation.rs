@@ -39,7 +39,9 @@ use std::sync::Mutex;
 use rayon::prelude::*;
 use rustc_hash::FxHashMap;
 
-use super::run::{block_at, check_functions, ctx, cubes, finish_with, BlockResult, JobKey, SparsePlan, SparseStats};
+use super::run::{
+    block_at, block_count, check_functions, ctx, cubes, finish_with, BlockResult, JobKey, SparsePlan, SparseStats,
+};
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{BlockValues, Values, Worker};
@@ -78,13 +80,9 @@ fn eval_checked(
 ) -> Result<(Vec<f64>, bool), NetworkError> {
     let k = field.functions();
     let mut data = Vec::with_capacity(points.len() * k);
-    field.eval(points, &mut data).map_err(NetworkError::Continuation)?;
+    field.eval(points, &mut data).map_err(NetworkError::FieldFailed)?;
     if data.len() != points.len() * k {
-        return Err(NetworkError::Continuation(format!(
-            "the field returned {} values for {} points x {k} functions",
-            data.len(),
-            points.len()
-        )));
+        return Err(NetworkError::FieldValues { values: data.len(), points: points.len(), functions: k });
     }
     if let Some(i) = data.iter().position(|x| !x.is_finite()) {
         return Err(NetworkError::NonFinite { vertex: ids[i / k] as usize, function: i % k, value: data[i] });
@@ -192,7 +190,7 @@ fn seed_blocks(
                 for a in 0..3 {
                     let (lo, hi) = (grid.bounds[0][a], grid.bounds[1][a]);
                     if !(lo..=hi).contains(&p[a]) {
-                        return Err(NetworkError::Continuation(format!("seed point {i} {p:?} is outside the grid")));
+                        return Err(NetworkError::SeedOutside { seed: i, point: *p });
                     }
                     // Floating point only picks where to start, never a topological answer.
                     let cube = (((p[a] - lo) / (hi - lo) * grid.res[a] as f64) as usize).min(grid.res[a] - 1);
@@ -303,7 +301,7 @@ fn continuation_block_with(
     let k = field.functions();
     let size = options.block.max(1);
     let b = block_at(grid, size, index)
-        .ok_or_else(|| NetworkError::BlockResults(format!("block {index} does not exist in this grid")))?;
+        .ok_or_else(|| NetworkError::NoSuchBlock { index, blocks: block_count(grid, size) })?;
     let (lo, hi) = cubes(&b);
     let mut ids = Vec::new();
     for i in lo[0]..=hi[0] {

@@ -245,6 +245,11 @@ pub(crate) fn cubes(b: &Block) -> ([usize; 3], [usize; 3]) {
     }
 }
 
+/// Blocks of edge `size` cubes in `grid`.
+pub(crate) fn block_count(grid: &BoxGrid, size: usize) -> usize {
+    grid.res.map(|r| r.div_ceil(size.max(1))).iter().product()
+}
+
 /// Block `index` of `grid.blocks(size)` without listing them all (same
 /// order: i outermost, k innermost).
 pub(crate) fn block_at(grid: &BoxGrid, size: usize, index: usize) -> Option<Block> {
@@ -292,12 +297,8 @@ pub(crate) fn run_block_with(
     index: usize,
 ) -> Result<BlockResult, NetworkError> {
     let k = functions.functions();
-    let b = block_at(grid, options.block, index).ok_or_else(|| {
-        NetworkError::BlockResults(format!("block {index} does not exist (the grid has {} blocks)", {
-            let n = grid.res.map(|r| r.div_ceil(options.block.max(1)));
-            n[0] * n[1] * n[2]
-        }))
-    })?;
+    let b = block_at(grid, options.block, index)
+        .ok_or_else(|| NetworkError::NoSuchBlock { index, blocks: block_count(grid, options.block) })?;
     let (lo, hi) = cubes(&b);
     let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
     let sampled_vertices = bv.data.len() / k;
@@ -359,20 +360,17 @@ pub(crate) fn finish_with(
     }
     let job = JobKey::of(grid, k, options);
     if let Some(r) = results.iter().find(|r| !r.job.same(&job)) {
-        return Err(NetworkError::BlockResults(format!(
-            "block {} belongs to another job ({:?}, expected {:?})",
-            r.index, r.job, job
-        )));
+        return Err(NetworkError::ForeignBlock {
+            index: r.index,
+            job: format!("{:?}", r.job),
+            expected: format!("{job:?}"),
+        });
     }
     results.sort_by_key(|r| r.index);
     if results.len() != plan.kept.len() || results.iter().zip(&plan.kept).any(|(r, &i)| r.index != i) {
         let have: std::collections::BTreeSet<usize> = results.iter().map(|r| r.index).collect();
         let missing: Vec<usize> = plan.kept.iter().copied().filter(|i| !have.contains(i)).take(5).collect();
-        return Err(NetworkError::BlockResults(format!(
-            "{} block results for the {} planned blocks (missing e.g. {missing:?}, or a block given twice or not planned)",
-            results.len(),
-            plan.kept.len()
-        )));
+        return Err(NetworkError::BlockCount { given: results.len(), planned: plan.kept.len(), missing });
     }
     stats.sampled = plan.kept.len();
     stats.skipped = plan.blocks - plan.kept.len();

@@ -573,21 +573,26 @@ mod tests {
         assert_eq!(stats.sampled, plan.kept.len());
         let mut missing = run_all();
         missing.pop();
+        let last = *plan.kept.last().unwrap();
         assert!(matches!(
             finish_sparse(&g, &f, &o, &plan, missing),
-            Err(crate::network::NetworkError::BlockResults(_))
+            Err(crate::network::NetworkError::BlockCount { ref missing, .. }) if missing == &[last]
         ));
         let mut twice = run_all();
         twice[0] = run_block(&g, &f, &o, plan.kept[1]).unwrap();
-        assert!(matches!(finish_sparse(&g, &f, &o, &plan, twice), Err(crate::network::NetworkError::BlockResults(_))));
+        assert!(matches!(
+            finish_sparse(&g, &f, &o, &plan, twice),
+            Err(crate::network::NetworkError::BlockCount { missing: ref m, .. }) if m == &[plan.kept[0]]
+        ));
         let mut other = o.clone();
         other.mode = Mode::Mi;
         let mut foreign = run_all();
         foreign[0] = run_block(&g, &f, &other, plan.kept[0]).unwrap();
         assert!(matches!(
             finish_sparse(&g, &f, &o, &plan, foreign),
-            Err(crate::network::NetworkError::BlockResults(_))
+            Err(crate::network::NetworkError::ForeignBlock { index, .. }) if index == plan.kept[0]
         ));
-        assert!(run_block(&g, &f, &o, plan.blocks).is_err());
+        let e = run_block(&g, &f, &o, plan.blocks).unwrap_err();
+        assert_eq!(e, crate::network::NetworkError::NoSuchBlock { index: plan.blocks, blocks: plan.blocks });
     }
 }
