@@ -40,9 +40,9 @@ use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene
 
 pub use clean::{clean, CleanStats};
 pub use curves::Curve;
-pub use labels::{label_surfaces, label_surfaces_with_progress};
 #[doc(hidden)]
 pub use labels::label_surfaces_listing_triples;
+pub use labels::{label_surfaces, label_surfaces_with_progress};
 pub use surfaces::Surface;
 
 /// Options of [`region_surfaces`].
