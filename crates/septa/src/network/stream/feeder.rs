@@ -60,8 +60,10 @@ pub(crate) fn prepare(
     r: &mut BlockResult,
     topology: bool,
 ) -> Result<Prepared, NetworkError> {
-    let b = block_at(grid, options.block, r.index)
-        .ok_or_else(|| NetworkError::BlockResults(format!("block {} is not a block of this grid", r.index)))?;
+    let b = block_at(grid, options.block, r.index).ok_or_else(|| {
+        let size = options.block.max(1);
+        NetworkError::NoSuchBlock { index: r.index, blocks: grid.res.iter().map(|&n| n.div_ceil(size)).product() }
+    })?;
     let (lo, hi) = cubes(&b);
     let open = pair_in_block(&mut r.out, options.mode, grid, lo, hi);
     let summary = topology.then(|| summarize(&r.out, &open));
@@ -188,10 +190,11 @@ impl<'a> StreamFeeder<'a> {
         sink: &mut S,
     ) -> Result<(), StreamError> {
         if !r.job.same(&self.job) {
-            return Err(NetworkError::BlockResults(format!(
-                "block {} belongs to another job ({:?}, expected {:?})",
-                r.index, r.job, self.job
-            ))
+            return Err(NetworkError::ForeignBlock {
+                index: r.index,
+                job: format!("{:?}", r.job),
+                expected: format!("{:?}", self.job),
+            }
             .into());
         }
         match self.kept.get(self.next) {
