@@ -133,7 +133,8 @@ fn stream_takes_faces_lying_in_tet_faces() {
         (&mem["patches"], &mem["chains"], &mem["corners"], &mem["cells"]),
         (&32.into(), &24.into(), &13.into(), &16.into())
     );
-    for out in ["s.ply", "s.vtu"] {
+    // Into a folder that does not exist yet: made, as -o folders are.
+    for out in ["new/s.ply", "s.vtu"] {
         let s =
             septa(&["ia", f, "--grid", "16", "--block", "4", "--json", "--stream", dir.join(out).to_str().unwrap()]);
         for k in ["vertices", "faces", "edges", "patches", "chains", "corners", "shells", "cells", "components"] {
