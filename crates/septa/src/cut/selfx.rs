@@ -9,6 +9,12 @@ use rayon::prelude::*;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_exact(x, a, b, c, d))
+}
+
+/// [`orient`] when its static filter decides it, else `None` (no exact
+/// fallback: for quick rejections that may give up).
+fn orient_filtered(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Option<Sign> {
     // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
     // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
     // permanent of absolute values of the same products.
@@ -38,13 +44,13 @@ pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
         // orient3d(a,b,c,d) with d as origin equals -det(a-d, b-d, c-d) ... sign
         // convention fixed below against the generic version
         if det > bound {
-            return Sign::Negative;
+            return Some(Sign::Negative);
         }
         if -det > bound {
-            return Sign::Positive;
+            return Some(Sign::Positive);
         }
     }
-    orient_exact(x, a, b, c, d)
+    None
 }
 
 fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
@@ -212,8 +218,34 @@ fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
     false
 }
 
+/// Quick sufficient test that two triangles meet at most in shared
+/// vertices: the corners of `t2` that `t1` does not share lie strictly on
+/// one side of `t1`'s plane, as proven by orient3d's static filter (`false`
+/// when the filter cannot tell; no exact fallback). `t2` then meets `t1`'s
+/// plane only in the shared vertices (none, one, or the shared edge).
+/// Most candidate pairs of a cut-cell mesh (triangles of different faces
+/// in one grid cell) end here, before the 2D projection tests.
+fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    let mut side = None;
+    let mut free = 0;
+    for &w in t2 {
+        if t1.contains(&w) {
+            continue;
+        }
+        free += 1;
+        match orient_filtered(x, t1[0], t1[1], t1[2], w) {
+            Some(s) if s != Sign::Zero && side.is_none_or(|t| t == s) => side = Some(s),
+            _ => return false,
+        }
+    }
+    free >= 1
+}
+
 /// Do two triangles meet anywhere besides their shared vertices?
 pub(crate) fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    if plane_separated(x, t1, t2) || plane_separated(x, t2, t1) {
+        return false;
+    }
     if projections_separated(x, t1, t2) {
         return false;
     }
@@ -324,11 +356,24 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
             hi[k] = hi[k].max(b.1[k]);
         }
     }
-    // cells about the size of a triangle: a surface mesh then puts a few
-    // triangles in each occupied cell
-    let mean: f64 = boxes.iter().map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)).sum::<f64>() / n as f64;
+    // cells about the size of a typical (median) triangle: a surface mesh
+    // then puts a few triangles in each occupied cell. The mean would let
+    // the long triangles of a large cut-face's triangulation coarsen the
+    // grid for all; they enter many cells instead, as long as the entries
+    // stay within a budget (else the grid is coarsened).
+    let mut extents: Vec<f64> = boxes.iter().map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)).collect();
+    let mid = extents.len() / 2;
+    let median = *extents.select_nth_unstable_by(mid, f64::total_cmp).1;
     let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-    let res = ((ext / (1.5 * mean).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
+    let mut res = ((ext / (1.5 * median).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
+    let entries_at = |res: usize| -> usize {
+        let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
+        let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
+        boxes.iter().map(|b| (0..3).map(|k| cell(b.1[k], k) - cell(b.0[k], k) + 1).product::<usize>()).sum()
+    };
+    while res > 1 && entries_at(res) > 8 * n {
+        res = res * 3 / 4;
+    }
     let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
     let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
     let key = |c: [usize; 3]| ((c[0] as u64 * res as u64 + c[1] as u64) * res as u64) + c[2] as u64;
