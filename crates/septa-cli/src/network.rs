@@ -200,7 +200,8 @@ fn run_stream(
     let t_read = t0.elapsed().as_secs_f64();
     // The stream's folder is made as `-o` folders are.
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| format!("--stream: cannot create the folder {}: {e}", dir.display()))?;
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("--stream: cannot create the folder {}: {e}", dir.display()))?;
     }
     let mut sink = septa::io::vtu_stream::StreamFile::create(out, &g, mode, funcs.len(), args.triangles)?;
     let (stats, topology) = if args.polygons_only {
