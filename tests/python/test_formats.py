@@ -302,7 +302,9 @@ def test_progress_callback_and_logger(caplog):
     calls = []
     with caplog.at_level(logging.INFO, logger="septa"):
         net = septa.arrangement(g, f, progress=lambda done, total: calls.append((done, total)))
-    assert calls and calls[-1][0] == calls[-1][1] and all(d <= t for d, t in calls)  # ends at all blocks
+    # Blocks finish on several threads, so the calls may arrive out of order;
+    # they reach all blocks.
+    assert calls and max(d for d, _ in calls) == calls[0][1] and all(d <= t for d, t in calls)
     assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
     with pytest.raises(septa.InputError, match="progress"):
         septa.arrangement(g, f, progress=3)
@@ -314,7 +316,8 @@ def test_region_progress_callback_and_logger(caplog):
     calls = []
     with caplog.at_level(logging.INFO, logger="septa"):
         net = septa.region_surfaces("builtin:sphere-plane-hole", progress=lambda done, total: calls.append((done, total)))
-    assert calls and calls[-1][0] == calls[-1][1] and all(0 < d <= t for d, t in calls)
+    # Every block counted once (threads may report out of order).
+    assert calls and sorted(d for d, _ in calls) == list(range(1, calls[0][1] + 1))
     assert any(f"{len(net)} faces" in r.getMessage() for r in caplog.records)
     with pytest.raises(septa.InputError, match="progress"):
         septa.region_surfaces("builtin:sphere-plane-hole", progress="yes")

@@ -14,7 +14,8 @@ def _recorder():
 
 def _ends_at_all_blocks(calls):
     assert calls, "progress was never called"
-    assert calls[-1][0] == calls[-1][1] > 0
+    # Blocks finish on several threads: the calls may arrive out of order.
+    assert max(d for d, _ in calls) == calls[0][1] > 0
     assert all(0 < d <= t for d, t in calls) and len({t for _, t in calls}) == 1
 
 

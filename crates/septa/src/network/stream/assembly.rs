@@ -380,6 +380,7 @@ impl Assembler {
         mut self,
         vertices: usize,
         rays: impl FnOnce(&Assembled) -> Option<(Vec<u32>, usize)>,
+        contact: impl FnOnce(&Assembled, &[u32], u32, u32) -> Option<[f64; 3]>,
         row0: &[f64],
     ) -> Result<NetworkSummary, NetworkError> {
         self.close(usize::MAX);
@@ -426,7 +427,7 @@ impl Assembler {
         let a = Assembled { piece_label, piece_comp, half_shell, starts, num_shells: shells.len() };
         // Ray shooting assumes the pieces of one component meet along edges.
         if sheets != ncomp {
-            return Err(touching_at_points(&a.piece_comp, &piece_sheet, &a.piece_label, self.mode));
+            return Err(touching_at_points(&a, &piece_sheet, self.mode, contact));
         }
         let cells_of = if a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
         let Some((shell_cell, ncells)) = cells_of else {
@@ -549,22 +550,32 @@ pub(crate) struct Assembled {
 /// The error for a component whose pieces touch only at points (two
 /// spheres tangent at a point): names the functions (IA) or materials (MI)
 /// of the surfaces that touch.
-fn touching_at_points(piece_comp: &[u32], piece_sheet: &[u32], piece_label: &[[u16; 2]], mode: Mode) -> NetworkError {
-    // The first component holding two sheets, and the labels of its sheets.
+fn touching_at_points(
+    a: &Assembled,
+    piece_sheet: &[u32],
+    mode: Mode,
+    contact: impl FnOnce(&Assembled, &[u32], u32, u32) -> Option<[f64; 3]>,
+) -> NetworkError {
+    // The first component holding two sheets, and the labels of its pieces.
     let mut first_sheet: FxHashMap<u32, u32> = FxHashMap::default();
-    let mut comp = None;
-    for (&c, &s) in piece_comp.iter().zip(piece_sheet) {
-        if *first_sheet.entry(c).or_insert(s) != s {
-            comp = Some(c);
+    let mut two = None;
+    for (&c, &s) in a.piece_comp.iter().zip(piece_sheet) {
+        let first = *first_sheet.entry(c).or_insert(s);
+        if first != s {
+            two = Some((c, first, s));
             break;
         }
     }
     let mut names: Vec<u16> = Vec::new();
-    if let Some(c) = comp {
-        for (p, &pc) in piece_comp.iter().enumerate() {
+    let mut at = String::new();
+    if let Some((c, s1, s2)) = two {
+        for (p, &pc) in a.piece_comp.iter().enumerate() {
             if pc == c {
-                names.extend(piece_label[p]);
+                names.extend(a.piece_label[p]);
             }
+        }
+        if let Some(q) = contact(a, piece_sheet, s1, s2) {
+            at = format!(", e.g. at ({}, {}, {})", q[0], q[1], q[2]);
         }
     }
     names.sort_unstable();
@@ -574,7 +585,7 @@ fn touching_at_points(piece_comp: &[u32], piece_sheet: &[u32], piece_label: &[[u
         Mode::Mi => "materials",
     };
     NetworkError::BlockResults(format!(
-        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points \
+        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points{at} \
          (tangent at a vertex), which ray shooting cannot see across: stream the polygons only \
          (--polygons-only), or run in memory (without --stream), which groups cells there"
     ))

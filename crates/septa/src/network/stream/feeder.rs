@@ -413,6 +413,13 @@ impl<'a> StreamFeeder<'a> {
                 reruns = index.reruns;
                 r
             },
+            |a, piece_sheet, s1, s2| {
+                super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, &halves, a).contact(
+                    piece_sheet,
+                    s1,
+                    s2,
+                )
+            },
             &row0,
         )?;
         stats.reruns = reruns;

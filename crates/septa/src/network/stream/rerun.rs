@@ -112,7 +112,45 @@ impl<'a> RerunIndex<'a> {
         let size = self.options.block.max(1);
         let n = self.grid.res.map(|r| r.div_ceil(size));
         let b = ijk.map(|c| c / size);
-        let index = (b[0] * n[1] + b[1]) * n[2] + b[2];
+        self.block_by_index((b[0] * n[1] + b[1]) * n[2] + b[2])
+    }
+
+    /// A point where the surfaces of sheets `s1` and `s2` (edge-connected
+    /// piece sets, `piece_sheet`) of one component touch: a vertex of both,
+    /// searched in the blocks holding them that are equal or neighbours (at
+    /// most 64 block pairs looked at), for the error that names it.
+    pub(crate) fn contact(&mut self, piece_sheet: &[u32], s1: u32, s2: u32) -> Option<[f64; 3]> {
+        let total = piece_sheet.len() as u32;
+        let mut with: [Vec<usize>; 2] = [Vec::new(), Vec::new()];
+        for (i, &(index, first)) in self.block_pieces.iter().enumerate() {
+            let end = self.block_pieces.get(i + 1).map_or(total, |x| x.1);
+            for (k, s) in [s1, s2].into_iter().enumerate() {
+                if (first..end).any(|p| piece_sheet[p as usize] == s) {
+                    with[k].push(index);
+                }
+            }
+        }
+        let size = self.options.block.max(1);
+        let n = self.grid.res.map(|r| r.div_ceil(size));
+        let ijk = |i: usize| [i / (n[1] * n[2]), i / n[2] % n[1], i % n[2]];
+        let near = |a: usize, b: usize| (0..3).all(|x| ijk(a)[x].abs_diff(ijk(b)[x]) <= 1);
+        let pairs: Vec<(usize, usize)> = with[0]
+            .iter()
+            .flat_map(|&a| with[1].iter().filter(move |&&b| near(a, b)).map(move |&b| (a, b)))
+            .take(64)
+            .collect();
+        for (a, b) in pairs {
+            let first: FxHashMap<VKey, [f64; 3]> = self.block_by_index(a)?.sheet_vertices(piece_sheet, s1).collect();
+            let hit = self.block_by_index(b)?.sheet_vertices(piece_sheet, s2).find_map(|(k, _)| first.get(&k).copied());
+            if hit.is_some() {
+                return hit;
+            }
+        }
+        None
+    }
+
+    /// Block `index`, run again.
+    fn block_by_index(&mut self, index: usize) -> Option<&Rerun> {
         if let Some(i) = self.cache.iter().position(|r| r.index == index) {
             let r = self.cache.remove(i);
             self.cache.push(r);
@@ -153,6 +191,15 @@ impl<'a> RerunIndex<'a> {
 impl Rerun {
     fn polys_at(&self, v: u32) -> &[u32] {
         &self.polys[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+    }
+
+    /// The vertices (keys, positions) of this block's polygons on sheet `sheet`.
+    fn sheet_vertices<'s>(&'s self, piece_sheet: &'s [u32], sheet: u32) -> impl Iterator<Item = (VKey, [f64; 3])> + 's {
+        let o = &self.out;
+        (0..o.poly_label.len())
+            .filter(move |&p| piece_sheet[self.piece[p] as usize] == sheet)
+            .flat_map(move |p| o.poly_verts[o.poly_start[p] as usize..o.poly_start[p + 1] as usize].iter())
+            .map(move |&v| (o.keys[v as usize], o.points[v as usize]))
     }
 
     /// The piece of a face of this block at the vertex with key `key`.
