@@ -57,6 +57,7 @@ fn main() {
     // Ctrl-C: remove the partial files of writes in progress and say so; the
     // output folder keeps no manifest.json, so readers see it as incomplete.
     let _ = ctrlc::set_handler(|| {
+        INTERRUPTED.store(true, std::sync::atomic::Ordering::SeqCst);
         let n = septa::io::remove_pending_temps();
         eprintln!(
             "\ninterrupted: stopped{}; the output folder is incomplete (no manifest.json) until the job is run again",
@@ -77,10 +78,18 @@ fn main() {
         Command::View(a) => view::run(a),
     };
     if let Err(e) = result {
+        // A write that failed because Ctrl-C removed its partial file is
+        // the interrupt's doing: the handler reports it and exits with 130.
+        while INTERRUPTED.load(std::sync::atomic::Ordering::SeqCst) {
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
         eprintln!("error: {e}");
         std::process::exit(2);
     }
 }
+
+/// Set by the Ctrl-C handler before it removes partial files.
+static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
 /// Every subcommand returns this; the message is printed as `error: ...`.
 pub type CliResult = Result<(), Box<dyn std::error::Error>>;
