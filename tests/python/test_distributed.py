@@ -159,9 +159,19 @@ def test_distributed_stream_writes_the_local_files(client, tmp_path):
     dist = sd.stream_ply(planes, tmp_path / "dplane.ply", client=client, grid=8, block=4, mode="ia")
     assert dist["counts"] == local["counts"] and dist["counts"]["cells"] == 4
     assert (tmp_path / "dplane.ply").read_bytes() == (tmp_path / "plane.ply").read_bytes()
-    # A job the stream refuses (two spheres touching at a point: no cells by
-    # ray shooting) leaves no file.
+    # Two spheres touching at a grid vertex (sheets meeting at a point, their
+    # shells linked there): the same answer as in memory.
     tangent = [septa.shapes.sphere([-0.5, 0, 0], 0.5), septa.shapes.sphere([0.5, 0, 0], 0.5)]
-    with pytest.raises(septa.InputError, match="ray shooting"):
-        sd.stream_ply(tangent, tmp_path / "bad.ply", client=client, grid=8, block=4)
+    net = dense(sd.job_spec(tangent, grid=8, block=4))
+    local = septa.stream.stream_ply(tangent, tmp_path / "tangent.ply", grid=8, block=4, mode="ia")
+    dist = sd.stream_ply(tangent, tmp_path / "dtangent.ply", client=client, grid=8, block=4)
+    assert dist["counts"] == local["counts"] and local["counts"]["cells"] == len(net.cells) == 3
+    assert (tmp_path / "dtangent.ply").read_bytes() == (tmp_path / "tangent.ply").read_bytes()
+    # A job stopped part way (an error raised from the progress callback
+    # after the first results) leaves no file.
+    def stop(done, total):
+        raise RuntimeError("stopped by the test")
+
+    with pytest.raises(RuntimeError, match="stopped by the test"):
+        sd.stream_ply(tangent, tmp_path / "bad.ply", client=client, grid=8, block=4, progress=stop)
     assert not list(tmp_path.glob("*bad*")) and not list(tmp_path.glob(".bad*"))

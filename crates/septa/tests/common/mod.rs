@@ -64,3 +64,37 @@ pub fn assert_same_network(a: &septa::network::Network, b: &septa::network::Netw
     assert_eq!(a.cells_method, b.cells_method, "{what}: cells method");
     assert!(network_json(a, &format!("{what}-a")) == network_json(b, &format!("{what}-b")), "{what}: network.json");
 }
+
+/// Cells as a partition of shells, with their labels, for comparing methods.
+pub fn cell_partition(net: &septa::network::Network) -> Vec<(Vec<u32>, Vec<u64>)> {
+    let mut p: Vec<(Vec<u32>, Vec<u64>)> = net
+        .cells
+        .iter()
+        .map(|c| {
+            let mut s = c.shells.clone();
+            s.sort();
+            (s, c.label.to_vec())
+        })
+        .collect();
+    p.sort();
+    p
+}
+
+/// Whether `net` has an edge of one face off the boundary of the box grid
+/// `grid` (a crack: one point reached under two vertex keys).
+pub fn cracked(net: &septa::network::Network, grid: &septa::grid::BoxGrid) -> bool {
+    let mut count: std::collections::HashMap<[u32; 2], u32> = Default::default();
+    for f in 0..net.num_faces() {
+        let vs = net.face(f);
+        for j in 0..vs.len() {
+            let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
+            *count.entry([a.min(b), a.max(b)]).or_default() += 1;
+        }
+    }
+    let [lo, hi] = grid.bounds;
+    count.iter().any(|(e, &n)| {
+        let (p, q) = (net.points[e[0] as usize], net.points[e[1] as usize]);
+        let on = (0..3).any(|x| (p[x] == lo[x] && q[x] == lo[x]) || (p[x] == hi[x] && q[x] == hi[x]));
+        n == 1 && !on
+    })
+}

@@ -121,7 +121,7 @@ fn sampled_values_analytic_functions_and_the_stream_agree_with_the_reference() {
                 assert_eq!(summary.counts(), dense.counts(), "{name}: streamed");
                 assert_eq!(sink.0, dense.num_faces(), "{name}: streamed faces");
             }
-            // Cell grouping in memory (pieces touching only at points): refused clearly.
+            // Cell grouping in memory (a crack next to sheets touching at points): refused clearly.
             Err(e) => {
                 assert_ne!(sparse.cells_method, "raytrace", "{name}: the stream refused: {e}");
                 assert!(e.to_string().contains("touch only at points"), "{name}: {e}");

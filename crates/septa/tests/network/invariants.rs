@@ -275,21 +275,6 @@ fn bad_values_are_named() {
     assert!(matches!(e, NetworkError::ValueCount { .. }), "{e}");
 }
 
-/// Cells as a partition of shells, with their labels, for comparing methods.
-fn cell_partition(net: &Network) -> Vec<(Vec<u32>, Vec<u64>)> {
-    let mut p: Vec<(Vec<u32>, Vec<u64>)> = net
-        .cells
-        .iter()
-        .map(|c| {
-            let mut s = c.shells.clone();
-            s.sort();
-            (s, c.label.to_vec())
-        })
-        .collect();
-    p.sort();
-    p
-}
-
 #[test]
 fn raytrace_equals_grouping() {
     let Some(dir) = data_dir() else { return };
@@ -305,19 +290,19 @@ fn raytrace_equals_grouping() {
         assert_eq!(ray.cells_method, "raytrace", "{name}");
         assert_eq!(grouping.cells_method, "grouping", "{name}");
         assert_eq!(ray.cells.len(), exp["cells"].as_u64().unwrap() as usize, "{name}");
-        let (a, b) = (cell_partition(&ray), cell_partition(&grouping));
+        let (a, b) = (common::cell_partition(&ray), common::cell_partition(&grouping));
         if let Some(i) = (0..a.len()).find(|&i| a[i] != b[i]) {
             panic!("{name}: cell {i}: ray {:?} vs grouping {:?}", a[i], b[i]);
         }
     }
     // Network vertices at grid vertices: the same cells as grouping, and the
     // method each input must take (ray shooting handles the paper's round
-    // spheres, planes lying in tet faces and nested spheres meeting at grid
-    // vertices; it declines for tangent spheres, pieces touching at a point).
+    // spheres, planes lying in tet faces, nested spheres meeting at grid
+    // vertices, and tangent spheres, sheets touching at a point).
     for split in [Split::Five, Split::Six] {
         let grid = box4(split);
         for (f, want) in [
-            (vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)], ["grouping"; 2]),
+            (vec![sphere([-0.5, 0.0, 0.0], 0.5), sphere([0.5, 0.0, 0.0], 0.5)], ["raytrace"; 2]),
             (vec![plane([1.0, 0.0, 0.0]), plane([0.0, 1.0, 0.0]), plane([0.0, 0.0, 1.0])], ["raytrace"; 2]),
             (vec![sphere([0.0; 3], 0.5), sphere([0.0; 3], 0.75), sphere([0.5, 0.5, 0.0], 0.25)], ["raytrace"; 2]),
             (
@@ -339,7 +324,7 @@ fn raytrace_equals_grouping() {
             let want = want[(split == Split::Six) as usize];
             assert_eq!(ray.cells_method, want, "{split:?} {f:?}");
             assert_eq!(grouping.cells_method, "grouping", "{split:?} {f:?}");
-            assert_eq!(cell_partition(&ray), cell_partition(&grouping), "{split:?} {f:?}");
+            assert_eq!(common::cell_partition(&ray), common::cell_partition(&grouping), "{split:?} {f:?}");
         }
     }
     // A tet mesh: grouping.
@@ -368,7 +353,7 @@ fn nested_spheres_off_grid_raytrace() {
     let ray = compute(&grid, &values, 4, &o).unwrap();
     assert_eq!(ray.cells_method, "raytrace");
     expect(&ray, &[("cells", 5), ("shells", 8), ("patches", 4), ("components", 4)], "nested");
-    assert_eq!(cell_partition(&ray), cell_partition(&grouping));
+    assert_eq!(common::cell_partition(&ray), common::cell_partition(&grouping));
 }
 
 /// Spheres in the pattern of Du et al. Sec. 8.3 (IA: unit spheres at the

@@ -153,8 +153,46 @@ fn cases() -> Vec<Case> {
                            {"type": "sphere", "center": [0.5, 0, 0], "radius": 0.5}]"#,
             mode: Mode::Ia,
             n: 8,
-            sparse_holds: false, // shells touching at a point: grouping
-            streams: false,
+            sparse_holds: true, // shells linked at the contact point
+            streams: true,
+            counts: &[("patches", 2), ("cells", 3)],
+        },
+        // A sphere inside another, tangent at grid vertex (0.5, 0, 0).
+        Case {
+            name: "internally tangent spheres IA",
+            functions: r#"[{"type": "sphere", "center": [0, 0, 0], "radius": 0.5},
+                           {"type": "sphere", "center": [0.25, 0, 0], "radius": 0.25}]"#,
+            mode: Mode::Ia,
+            n: 8,
+            sparse_holds: true,
+            streams: true,
+            counts: &[("patches", 2), ("cells", 3)],
+        },
+        // Three spheres pairwise tangent at grid vertices, and a fourth
+        // crossing one of them (its sheet has a chain).
+        Case {
+            name: "chain of tangent spheres IA",
+            functions: r#"[{"type": "sphere", "center": [-0.5, 0, 0], "radius": 0.5},
+                           {"type": "sphere", "center": [0.5, 0, 0], "radius": 0.5},
+                           {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5},
+                           {"type": "sphere", "center": [0.5, 0.5, 0.5], "radius": 0.3}]"#,
+            mode: Mode::Ia,
+            n: 8,
+            sparse_holds: true,
+            streams: true,
+            counts: &[],
+        },
+        // MI: two tangent balls in a background (three materials tie at the
+        // contact point).
+        Case {
+            name: "tangent spheres MI",
+            functions: r#"[{"type": "sphere", "center": [-0.5, 0, 0], "radius": 0.5},
+                           {"type": "sphere", "center": [0.5, 0, 0], "radius": 0.5},
+                           {"type": "zero"}]"#,
+            mode: Mode::Mi,
+            n: 8,
+            sparse_holds: true,
+            streams: true,
             counts: &[("patches", 2), ("cells", 3)],
         },
     ]

@@ -33,10 +33,11 @@ use super::numbering::max_x;
 use super::summary::{BlockSummary, ShellNode};
 use crate::complex::Mode;
 use crate::complex::NONE;
+use crate::grid::BoxGrid;
 use crate::network::block::{BlockOut, Label, OpenT};
 use crate::network::dense::label_free_cells;
-use crate::network::topology::ray_start;
 use crate::network::topology::{cell_cycle, chains, min_rotation, wedge_cycle};
+use crate::network::topology::{edge_on_grid_boundary, ray_start};
 use crate::network::{named_counts, CellInfo, NetworkError, Patch, VKey};
 use crate::uf::UnionFind;
 
@@ -104,6 +105,8 @@ struct OpenEdge {
     pieces: SmallVec<[u32; 4]>,
     /// It is closed once the current slab starts right of this x index.
     retire: u32,
+    /// It lies on the grid's boundary (else one polygon means a crack).
+    on_boundary: bool,
 }
 
 /// The assembly state (module doc).
@@ -111,6 +114,10 @@ pub(crate) struct Assembler {
     mode: Mode,
     functions: usize,
     plane: u64,
+    grid: BoxGrid,
+    /// Some block had an edge of one polygon off the grid boundary, or an
+    /// open edge closed with one polygon there (a crack).
+    cracked: bool,
     slab: usize,
     // Per piece.
     piece_label: Vec<[u16; 2]>,
@@ -145,11 +152,13 @@ pub(crate) struct Assembler {
 }
 
 impl Assembler {
-    pub(crate) fn new(mode: Mode, functions: usize, plane: u64) -> Assembler {
+    pub(crate) fn new(mode: Mode, functions: usize, plane: u64, grid: BoxGrid) -> Assembler {
         Assembler {
             mode,
             functions,
             plane,
+            grid,
+            cracked: false,
             slab: 0,
             piece_label: Vec::new(),
             piece_faces: Vec::new(),
@@ -253,6 +262,7 @@ impl Assembler {
             }
         }
         self.edges += s.inner_edges;
+        self.cracked |= s.cracked;
         let gid = |v: u32| ids[v as usize];
         for ([a, b], around) in &s.chain_edges {
             let (x, y) = (gid(*a), gid(*b));
@@ -266,6 +276,7 @@ impl Assembler {
                 faces: 0,
                 pieces: SmallVec::new(),
                 retire: max_x(self.plane, &out.keys[*a as usize]).min(max_x(self.plane, &out.keys[*b as usize])) as u32,
+                on_boundary: edge_on_grid_boundary(&self.grid, &out.keys[*a as usize], &out.keys[*b as usize]),
             });
             if e.faces == 0 {
                 self.edges += 1;
@@ -328,10 +339,12 @@ impl Assembler {
             let k = (j + 1) % ids.len();
             let (x, y) = (ids[j], ids[k]);
             let retire = max_x(self.plane, &keys[j]).min(max_x(self.plane, &keys[k])) as u32;
+            let on_boundary = edge_on_grid_boundary(&self.grid, &keys[j], &keys[k]);
             let e = self.open_edges.entry([x.min(y), x.max(y)]).or_insert_with(|| OpenEdge {
                 faces: 0,
                 pieces: SmallVec::new(),
                 retire,
+                on_boundary,
             });
             if e.faces == 0 {
                 self.edges += 1;
@@ -352,14 +365,14 @@ impl Assembler {
 
     /// Closes the open edges and tet-face pieces no block from x index `slab` on can reach.
     fn close(&mut self, slab: usize) {
-        let Assembler { open_edges, patch_uf, chain_edges, chain_pieces, open_t, plane, .. } = self;
+        let Assembler { open_edges, patch_uf, chain_edges, chain_pieces, open_t, plane, cracked, .. } = self;
         open_edges.retain(|key, e| {
             if (e.retire as usize) >= slab {
                 return true;
             }
             match e.faces {
                 2 => patch_uf.union(e.pieces[0], e.pieces[1]),
-                1 => {}
+                1 => *cracked |= !e.on_boundary,
                 _ => {
                     chain_edges.push(*key);
                     chain_pieces.insert(*key, std::mem::take(&mut e.pieces));
@@ -379,7 +392,7 @@ impl Assembler {
     pub(crate) fn finish(
         mut self,
         vertices: usize,
-        rays: impl FnOnce(&Assembled) -> Option<(Vec<u32>, usize)>,
+        rays: impl FnOnce(&Assembled, &[u32], &[bool]) -> Option<(Vec<u32>, usize)>,
         contact: impl FnOnce(&Assembled, &[u32], u32, u32) -> Option<[f64; 3]>,
         row0: &[f64],
     ) -> Result<NetworkSummary, NetworkError> {
@@ -425,12 +438,35 @@ impl Assembler {
         let half_shell: Vec<u32> = (0..2 * np).map(|h| shell_of_hp[2 * piece_patch[h / 2] as usize + h % 2]).collect();
         let piece_label = std::mem::take(&mut self.piece_label);
         let a = Assembled { piece_label, piece_comp, half_shell, starts, num_shells: shells.len() };
-        // Ray shooting assumes the pieces of one component meet along edges.
-        if sheets != ncomp {
+        // Sheets of one component touching only at points (tangent spheres)
+        // have their shells linked there first: `several` marks the sheets
+        // of such components (empty when every component is one sheet).
+        let mut several = Vec::new();
+        if sheets != ncomp && self.cracked {
+            // Behind a crack sheets may only seem to touch at points.
             return Err(touching_at_points(&a, &piece_sheet, self.mode, contact));
         }
-        let cells_of = if a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a) } else { None };
+        if sheets != ncomp {
+            let mut first = vec![NONE; ncomp];
+            several = vec![false; sheets];
+            for (&c, &s) in a.piece_comp.iter().zip(&piece_sheet) {
+                let f = &mut first[c as usize];
+                if *f == NONE {
+                    *f = s;
+                } else if *f != s {
+                    several[s as usize] = true;
+                    several[*f as usize] = true;
+                }
+            }
+            for (&c, &s) in a.piece_comp.iter().zip(&piece_sheet) {
+                several[s as usize] |= several[first[c as usize] as usize];
+            }
+        }
+        let cells_of = if a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a, &piece_sheet, &several) } else { None };
         let Some((shell_cell, ncells)) = cells_of else {
+            if sheets != ncomp {
+                return Err(touching_at_points(&a, &piece_sheet, self.mode, contact));
+            }
             return Err(NetworkError::BlockResults(
                 "cells could not be found by ray shooting (a ray running along the network): \
                  stream the polygons only, or run in memory (cell grouping)"
@@ -547,9 +583,9 @@ pub(crate) struct Assembled {
     pub num_shells: usize,
 }
 
-/// The error for a component whose pieces touch only at points (two
-/// spheres tangent at a point): names the functions (IA) or materials (MI)
-/// of the surfaces that touch.
+/// The error for a component whose sheets touch only at points where the
+/// shells cannot be linked (a crack nearby, `topology::edge_on_grid_boundary`):
+/// names the functions (IA) or materials (MI) of the surfaces that touch.
 fn touching_at_points(
     a: &Assembled,
     piece_sheet: &[u32],
@@ -585,9 +621,10 @@ fn touching_at_points(
         Mode::Mi => "materials",
     };
     NetworkError::BlockResults(format!(
-        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points{at} \
-         (tangent at a vertex), which ray shooting cannot see across: stream the polygons only \
-         (--polygons-only), or run in memory (without --stream), which groups cells there"
+        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points{at}, \
+         and the network is not closed near them (several of the {what} vanish or tie at one point there, \
+         named by different planes in neighbouring tets): stream the polygons only (--polygons-only), \
+         or run in memory (without --stream), which groups cells there"
     ))
 }
 

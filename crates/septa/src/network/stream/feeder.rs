@@ -20,7 +20,7 @@ use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{FaceKey, Label, PointValues};
 use crate::network::field::BoundedField;
 use crate::network::sparse::{block_at, check_functions, ctx, cubes, BlockResult, JobKey, SparsePlan};
-use crate::network::topology::ray_cells;
+use crate::network::topology::{contact_links, ray_cells};
 use crate::network::{NetworkError, NetworkOptions, VKey};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
@@ -66,7 +66,7 @@ pub(crate) fn prepare(
     })?;
     let (lo, hi) = cubes(&b);
     let open = pair_in_block(&mut r.out, options.mode, grid, lo, hi);
-    let summary = topology.then(|| summarize(&r.out, &open));
+    let summary = topology.then(|| summarize(grid, &r.out, &open));
     Ok(Prepared { open, summary })
 }
 
@@ -132,7 +132,7 @@ impl<'a> StreamFeeder<'a> {
             ));
         }
         let numbering = VertexNumbering::new(grid);
-        let assembler = topology.then(|| Assembler::new(options.mode, k, numbering.plane()));
+        let assembler = topology.then(|| Assembler::new(options.mode, k, numbering.plane(), grid.clone()));
         let stats = StreamStats {
             blocks: plan.blocks,
             sampled: plan.kept.len(),
@@ -407,9 +407,15 @@ impl<'a> StreamFeeder<'a> {
         let mut reruns = 0;
         let summary = asm.finish(
             stats.vertices as usize,
-            |a| {
+            |a, piece_sheet, several| {
                 let mut index = super::rerun::RerunIndex::new(grid, &g, functions, options, &block_pieces, &halves, a);
-                let r = ray_cells(&ctx, &mut index, &a.starts, a.num_shells);
+                let mut links = Vec::new();
+                if several.iter().any(|&x| x) {
+                    for key in index.contact_keys(piece_sheet, several)? {
+                        links.extend(contact_links(&ctx, &mut index, &key)?);
+                    }
+                }
+                let r = ray_cells(&ctx, &mut index, &a.starts, a.num_shells, &links);
                 reruns = index.reruns;
                 r
             },

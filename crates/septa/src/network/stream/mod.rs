@@ -32,8 +32,12 @@
 //! Network faces lying in tet faces (a function vanishing on a whole tet
 //! face, two materials tied on one) are paired inside a block and across
 //! block boundaries by the merge's rules (`halves.rs`). Cells come from ray
-//! shooting: a network whose pieces touch only at points (the in-memory path
-//! groups cells there) stops the run with [`NetworkError::BlockResults`].
+//! shooting. Sheets touching only at points (tangent spheres) have their
+//! shells linked at the contact points, found by running again the blocks
+//! that hold them (`rerun.rs`, `topology/contact.rs`). A network that is not
+//! closed near such points (a crack, where several functions vanish or tie at
+//! one point named by different planes in neighbouring tets; the in-memory
+//! path groups cells there) stops the run with [`NetworkError::BlockResults`].
 
 mod assembly;
 mod feeder;

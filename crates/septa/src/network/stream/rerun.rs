@@ -149,6 +149,76 @@ impl<'a> RerunIndex<'a> {
         None
     }
 
+    /// Keys of the vertices where sheets (edge-connected piece sets,
+    /// `piece_sheet`) touch: a vertex of pieces of two sheets. Only the
+    /// blocks holding pieces of sheets marked in `several` (components of
+    /// more than one sheet) are run again; a vertex on a block boundary is
+    /// compared across blocks through a map of such vertices alone.
+    pub(crate) fn contact_keys(&mut self, piece_sheet: &[u32], several: &[bool]) -> Option<Vec<VKey>> {
+        let total = piece_sheet.len() as u32;
+        let wanted = |p: u32| p != NONE && several[piece_sheet[p as usize] as usize];
+        let blocks: Vec<usize> = (0..self.block_pieces.len())
+            .filter(|&i| {
+                let end = self.block_pieces.get(i + 1).map_or(total, |x| x.1);
+                (self.block_pieces[i].1..end).any(wanted)
+            })
+            .map(|i| self.block_pieces[i].0)
+            .collect();
+        let size = self.options.block.max(1);
+        let grid = self.grid;
+        // Whether a key's grid element lies in a plane between blocks.
+        let on_boundary = |k: &VKey| {
+            let ijk: SmallVec<[[usize; 3]; 4]> =
+                k.grid.iter().filter(|&&v| v != u32::MAX).map(|&v| grid.vertex_ijk(v)).collect();
+            (0..3).any(|a| ijk.iter().all(|x| x[a] == ijk[0][a]) && ijk[0][a] % size == 0)
+        };
+        let mut across: FxHashMap<VKey, u32> = FxHashMap::default();
+        let mut keys = Vec::new();
+        for index in blocks {
+            let r = self.block_by_index(index)?;
+            let o = &r.out;
+            let mut sheet_at = vec![NONE; o.keys.len()];
+            let mut touch = vec![false; o.keys.len()];
+            let mut see = |v: u32, p: u32| {
+                let s = piece_sheet[p as usize];
+                let at = &mut sheet_at[v as usize];
+                if *at == NONE {
+                    *at = s;
+                } else if *at != s {
+                    touch[v as usize] = true;
+                }
+            };
+            for (poly, &p) in r.piece.iter().enumerate() {
+                if wanted(p) {
+                    for &v in &o.poly_verts[o.poly_start[poly] as usize..o.poly_start[poly + 1] as usize] {
+                        see(v, p);
+                    }
+                }
+            }
+            for (verts, p) in &r.open {
+                if wanted(*p) {
+                    for &v in verts {
+                        see(v, *p);
+                    }
+                }
+            }
+            for (v, &s) in sheet_at.iter().enumerate() {
+                let k = o.keys[v];
+                if touch[v] {
+                    keys.push(k);
+                } else if s != NONE && on_boundary(&k) {
+                    let first = *across.entry(k).or_insert(s);
+                    if first != s {
+                        keys.push(k);
+                    }
+                }
+            }
+        }
+        keys.sort_unstable();
+        keys.dedup();
+        Some(keys)
+    }
+
     /// Block `index`, run again.
     fn block_by_index(&mut self, index: usize) -> Option<&Rerun> {
         if let Some(i) = self.cache.iter().position(|r| r.index == index) {

@@ -21,8 +21,9 @@ use smallvec::SmallVec;
 
 use super::halves::OpenHalf;
 use crate::complex::NONE;
+use crate::grid::BoxGrid;
 use crate::network::block::{BlockOut, Label, OpenT, SRef};
-use crate::network::topology::ray_start;
+use crate::network::topology::{edge_on_grid_boundary, ray_start};
 use crate::uf::UnionFind;
 
 /// A node of the shell union-find a block hands on for an open tet-face piece.
@@ -54,6 +55,9 @@ pub(crate) struct BlockSummary {
     pub open_edges: Vec<([u32; 2], SmallVec<[u32; 4]>)>,
     /// Number of edges that are not open.
     pub inner_edges: usize,
+    /// An edge of one polygon off the block's and the grid's boundary (a
+    /// crack: `topology::edge_on_grid_boundary`).
+    pub cracked: bool,
     /// Chain edges (three or more polygons) that are not open, with the
     /// piece of each polygon around them (for the cyclic patch order where
     /// no wedge gives it: chains on tet faces and tet edges).
@@ -78,7 +82,7 @@ pub(crate) struct BlockSummary {
 
 /// The summary of a block's output (module doc), after its halves were
 /// paired inside the block (`halves::pair_in_block`, which returned `open`).
-pub(crate) fn summarize(out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
+pub(crate) fn summarize(grid: &BoxGrid, out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
     assert!(out.halves.is_empty(), "halves are paired before a block is summarised");
     let np = out.poly_label.len();
     let poly = |p: usize| &out.poly_verts[out.poly_start[p] as usize..out.poly_start[p + 1] as usize];
@@ -100,7 +104,7 @@ pub(crate) fn summarize(out: &BlockOut, open: &[OpenHalf]) -> BlockSummary {
         } else {
             s.inner_edges += 1;
             match j - i {
-                1 => {}
+                1 => s.cracked |= !edge_on_grid_boundary(grid, &out.keys[a as usize], &out.keys[b as usize]),
                 2 => uf.union(sides[i].2, sides[i + 1].2),
                 _ => {
                     runs.push((i, j));

@@ -3,6 +3,7 @@
 
 use super::merge::Merged;
 use crate::complex::NONE;
+use crate::grid::Grid;
 use crate::network::block::Ctx;
 use crate::network::{CellInfo, CellMethod, Patch};
 use crate::uf::UnionFind;
@@ -60,6 +61,11 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     let mut vert_uf = UnionFind::new(nv);
     let mut chain_edges = Vec::new();
     let mut sheet_uf = UnionFind::new(nf);
+    let mut cracked = false;
+    let box_grid = match ray.map(|c| c.grid) {
+        Some(Grid::Box(g)) => Some(g),
+        _ => None,
+    };
     // Faces around each chain edge (3 or more), for the cyclic order.
     let mut chain_faces: rustc_hash::FxHashMap<[u32; 2], Vec<u32>> = Default::default();
     for a in 0..nv {
@@ -80,7 +86,11 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
             }
             match j - i {
                 2 => patch_uf.union(bucket[i].1, bucket[i + 1].1),
-                1 => {}
+                1 => {
+                    if let Some(g) = box_grid {
+                        cracked |= !super::contact::edge_on_grid_boundary(g, &m.keys[a as usize], &m.keys[b as usize]);
+                    }
+                }
                 _ => {
                     chain_edges.push([a, b]);
                     chain_faces.insert([a, b], bucket[i..j].iter().map(|x| x.1).collect());
@@ -138,10 +148,13 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         shell_of_hp[hp] = s;
     }
     // Cells: by ray shooting where it applies, else by region groups.
-    // Ray shooting assumes shells of one component meet along edges: two
-    // pieces touching only at points (tangent spheres) break it.
-    let edge_connected = sheet_uf.components().1 == components;
-    let rays = ray.filter(|_| edge_connected).and_then(|ctx| {
+    // Sheets of one component touching only at points (tangent spheres)
+    // have their shells linked at those points first.
+    let (face_sheet, sheets) = sheet_uf.components();
+    // Behind a crack (an edge of one face off the grid boundary) the sheets
+    // may only seem to touch at points: cells are grouped there.
+    let contacts = if sheets == components { Vec::new() } else { contact_points(m, &face_sheet) };
+    let rays = ray.filter(|_| sheets == components || !cracked).and_then(|ctx| {
         let inp = super::raytrace::RayInput {
             keys: &m.keys,
             face_start: &m.face_start,
@@ -153,7 +166,12 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
             num_comps: components,
         };
         let starts = inp.starts()?;
-        super::raytrace::ray_cells(ctx, &mut super::raytrace::MergedIndex::new(&inp), &starts, shells.len())
+        let mut index = super::raytrace::MergedIndex::new(&inp);
+        let mut links = Vec::new();
+        for &v in &contacts {
+            links.extend(super::contact::contact_links(ctx, &mut index, &m.keys[v as usize])?);
+        }
+        super::raytrace::ray_cells(ctx, &mut index, &starts, shells.len(), &links)
     });
     if let Some((shell_cell, ncells)) = rays {
         let mut t = ray_topology(
@@ -425,4 +443,23 @@ pub(crate) fn cell_cycle(faces: &[u32], face_cells: &[[u32; 2]], face_patch: &[u
         }
     }
     (cur == start && out.len() == faces.len()).then_some(out)
+}
+
+/// Vertices where faces of two or more sheets (faces joined across edges,
+/// `face_sheet`) meet: the points where sheets touch.
+fn contact_points(m: &Merged, face_sheet: &[u32]) -> Vec<u32> {
+    let nv = m.keys.len();
+    let mut sheet_at = vec![NONE; nv];
+    let mut contact = vec![false; nv];
+    for (f, &sh) in face_sheet.iter().enumerate() {
+        for &v in &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize] {
+            let at = &mut sheet_at[v as usize];
+            if *at == NONE {
+                *at = sh;
+            } else if *at != sh {
+                contact[v as usize] = true;
+            }
+        }
+    }
+    (0..nv as u32).filter(|&v| contact[v as usize]).collect()
 }

@@ -6,10 +6,12 @@
 
 mod build;
 mod canon;
+mod contact;
 mod merge;
 mod raytrace;
 
 pub(crate) use build::{cell_cycle, chains, topology, wedge_cycle, Topology};
 pub(crate) use canon::{canonicalize_merged, canonicalize_topology, min_rotation};
+pub(crate) use contact::{contact_links, edge_on_grid_boundary};
 pub(crate) use merge::{merge, Merged, Merger};
 pub(crate) use raytrace::{faces_at_vertices, ray_cells, ray_start, FaceSide, RayIndex};

@@ -24,10 +24,10 @@
 //! only at that corner).
 //!
 //! Preconditions, checked: a box grid (convex boundary, no cavities or
-//! handles), and components whose faces connect across edges (pieces
-//! touching only at points make the caller group cells instead). Where the
-//! local picture is still ambiguous the answer is `None` and the caller
-//! falls back to cell grouping.
+//! handles). Components whose sheets touch only at points need the shells
+//! that meet there linked first (`contact.rs`). Where the local picture is
+//! still ambiguous the answer is `None` and the caller falls back to cell
+//! grouping.
 
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
@@ -215,26 +215,32 @@ impl<'a> KeyIndex<'a> {
 }
 
 /// A per-tet complex built on demand along a ray.
-struct TetView {
-    tet: [u32; 4],
-    active: Vec<u16>,
+pub(super) struct TetView {
+    pub(super) tet: [u32; 4],
+    pub(super) active: Vec<u16>,
     /// Values of the active functions at the tet's corners.
-    vals: Vec<[f64; 4]>,
-    complex: Complex,
+    pub(super) vals: Vec<[f64; 4]>,
+    pub(super) complex: Complex,
 }
 
 /// Cell of each of the `num_shells` shells and the number of cells, or
 /// `None` when the preconditions do not hold. `starts` holds, per network
 /// component, the smallest grid edge `(v, u)` carrying one of its
-/// edge-points (components numbered as `index` numbers them).
+/// edge-points (components numbered as `index` numbers them). `links`
+/// pairs shells known to bound one cell already (sheets touching at
+/// points: `contact.rs`).
 pub(crate) fn ray_cells(
     ctx: &Ctx,
     index: &mut dyn RayIndex,
     starts: &[(u32, u32)],
     num_shells: usize,
+    links: &[[u32; 2]],
 ) -> Option<(Vec<u32>, usize)> {
     let Grid::Box(g) = ctx.grid else { return None };
     let mut uf = UnionFind::new(num_shells + 1);
+    for &[a, b] in links {
+        uf.union(a, b);
+    }
     for (c, &(v, u)) in starts.iter().enumerate() {
         let c = c as u32;
         // A start at grid vertex `w = v` runs along the edge to w's lowest
@@ -333,7 +339,7 @@ fn lowest_neighbour(g: &BoxGrid, v: u32) -> u32 {
 }
 
 /// Calls `f` on every tet containing grid vertex `v` until it returns true.
-fn for_tets_at(g: &BoxGrid, v: u32, mut f: impl FnMut([u32; 4]) -> bool) {
+pub(super) fn for_tets_at(g: &BoxGrid, v: u32, mut f: impl FnMut([u32; 4]) -> bool) {
     let ijk = g.vertex_ijk(v);
     let per = g.split.tets_per_cube();
     for di in 0..2 {
@@ -370,7 +376,7 @@ fn tet_view(ctx: &Ctx, g: &BoxGrid, a: u32, b: u32) -> Option<TetView> {
 }
 
 /// The complex of grid tet `tet`.
-fn view_of(ctx: &Ctx, tet: [u32; 4]) -> Option<TetView> {
+pub(super) fn view_of(ctx: &Ctx, tet: [u32; 4]) -> Option<TetView> {
     let mut active = Vec::new();
     active_functions(ctx, 0, &tet, &mut active).ok()?;
     let vals: Vec<[f64; 4]> = active.iter().map(|&f| tet.map(|v| ctx.val(v, f as usize))).collect();
@@ -568,7 +574,7 @@ fn facing_shell(
 
 /// The shell of network face `face` of the tet's complex on the side of
 /// cell `cell`, or `None` if the face is no part of the network.
-fn shell_of_face(
+pub(super) fn shell_of_face(
     ctx: &Ctx,
     index: &mut dyn RayIndex,
     view: &TetView,
@@ -584,7 +590,7 @@ fn shell_of_face(
 /// The side of network face `face` of the tet's complex that cell `cell`
 /// is on, or `None` if the face is no part of the network (a tet face the
 /// network does not contain).
-fn face_side(ctx: &Ctx, view: &TetView, face: &crate::complex::Face, cell: u32) -> Option<FaceSide> {
+pub(super) fn face_side(ctx: &Ctx, view: &TetView, face: &crate::complex::Face, cell: u32) -> Option<FaceSide> {
     let Plane::TetFace(i) = face.plane else {
         return Some(FaceSide::Of(if face.cells[0] == cell { 0 } else { 1 }));
     };
