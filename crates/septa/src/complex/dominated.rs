@@ -62,7 +62,6 @@ impl WinnerSums {
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::WinnerSums;
