@@ -40,7 +40,7 @@ mod check;
 mod coords;
 mod dominated;
 pub(crate) use coords::barycentric;
-pub(crate) use dominated::average_dominates;
+pub(crate) use dominated::WinnerSums;
 mod lookup;
 #[doc(hidden)]
 #[cfg(feature = "tools")]

@@ -51,7 +51,7 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     // The 4 corner values of every function, read once: the tests below
     // compare every pair of functions at every corner (4 k^2 reads), and a
     // sparse read goes through a row look-up each time.
-    let mut rows: SmallVec<[[f64; 4]; 8]> = SmallVec::new();
+    let mut rows = super::values::CornerRows::new();
     ctx.corner_rows(tet, &mut rows);
     let dominates = |g: usize, f: usize| (0..4).all(|i| rows[g][i] > rows[f][i]);
     if ctx.average_domination && k >= 3 {
@@ -64,9 +64,10 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
         let is_winner = |r: &[f64; 4]| (0..4).any(|i| r[i] == max[i]);
         let winners: SmallVec<[[f64; 4]; 8]> = rows.iter().filter(|r| is_winner(r)).copied().collect();
         if winners.len() >= 2 {
+            let sums = crate::complex::WinnerSums::new(&winners);
             for (f, r) in rows.iter().enumerate() {
                 let winner = is_winner(r);
-                if winner || !crate::complex::average_dominates(&winners, r) {
+                if winner || !sums.dominates(r) {
                     // A winner is never dominated; the others still may be
                     // by a single function, as below.
                     if winner || !(0..k).any(|g| g != f && dominates(g, f)) {

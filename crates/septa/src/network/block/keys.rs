@@ -68,15 +68,86 @@ pub(crate) fn position_on(ctx: &Ctx, tet: &[u32; 4], simplex: u8, funcs: &[u16],
     p
 }
 
+/// The commonest vertices packed into one word for the block's vertex map:
+/// a function's zero on a grid edge (IA: 2 grid vertices, 1 function; MI: 2
+/// grid vertices, 2 functions). The edge is its smaller grid vertex and the
+/// difference to the larger one, which is small on box grids (at most
+/// `(R+1)^2 + R + 2`). Keys that do not fit go to the full-key map; a key
+/// either always fits or never does, so each vertex lives in one map and
+/// gets one id. Hashing and comparing one word instead of 24 bytes is what
+/// the per-tet extraction spends its vertex look-ups on.
+fn packed(key: &VKey) -> Option<u64> {
+    let [g0, g1, g2, _] = key.grid;
+    if g1 == u32::MAX || g2 != u32::MAX {
+        return None;
+    }
+    let d = (g1 - g0) as u64;
+    let [f0, f1, f2, _] = key.funcs.map(|f| f as u64);
+    if f0 == u16::MAX as u64 || f2 != u16::MAX as u64 {
+        return None;
+    }
+    if f1 == u16::MAX as u64 {
+        // Tag bit 63 clear: 22 bits of difference, 9 of function.
+        (d < 1 << 22 && f0 < 1 << 9).then(|| g0 as u64 | d << 32 | f0 << 54)
+    } else {
+        // Tag bit 63 set: 17 bits of difference, 7 bits per function.
+        (d < 1 << 17 && f1 < 1 << 7).then(|| g0 as u64 | d << 32 | f0 << 49 | f1 << 56 | 1 << 63)
+    }
+}
+
 /// Block id of the vertex with global key `key`; `position` is asked for
 /// only when the key is new to the block.
 pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
     let next = st.out.keys.len() as u32;
-    let id = *st.vmap.entry(key).or_insert(next);
+    let id = match packed(&key) {
+        Some(p) => *st.emap.entry(p).or_insert(next),
+        None => *st.vmap.entry(key).or_insert(next),
+    };
     if id == next {
         st.out.keys.push(key);
         st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
         st.out.points.push(position());
     }
     id
+}
+
+#[cfg(test)]
+mod tests {
+    use super::packed;
+    use crate::network::VKey;
+
+    fn key(grid: &[u32], funcs: &[u16]) -> VKey {
+        let mut k = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
+        k.grid[..grid.len()].copy_from_slice(grid);
+        k.funcs[..funcs.len()].copy_from_slice(funcs);
+        k
+    }
+
+    #[test]
+    fn packed_keys_are_distinct_and_only_for_edge_vertices() {
+        // Distinct edge keys never share a word (ids must not merge).
+        let mut seen = std::collections::HashMap::new();
+        for g0 in [0u32, 1, 7, 1 << 20, u32::MAX - (1 << 22)] {
+            for d in [1u32, 2, 101, 10_303, (1 << 17) - 1, (1 << 22) - 1] {
+                for f in [[0u16, u16::MAX], [5, u16::MAX], [511, u16::MAX], [0, 1], [3, 127], [126, 127]] {
+                    let k = key(&[g0, g0 + d], if f[1] == u16::MAX { &f[..1] } else { &f });
+                    if let Some(p) = packed(&k) {
+                        assert_eq!(*seen.entry(p).or_insert(k), k, "{k:?}");
+                    }
+                }
+            }
+        }
+        assert!(seen.len() > 100);
+        // Too large to pack: the full-key map takes them.
+        assert_eq!(packed(&key(&[0, 1 << 22], &[0])), None);
+        assert_eq!(packed(&key(&[0, 1], &[512])), None);
+        assert_eq!(packed(&key(&[0, 1 << 17], &[0, 1])), None);
+        assert_eq!(packed(&key(&[0, 1], &[0, 128])), None);
+        // Grid vertices, face and tet vertices are not packed.
+        assert_eq!(packed(&key(&[4], &[])), None);
+        assert_eq!(packed(&key(&[4], &[1, 2, 3])), None);
+        assert_eq!(packed(&key(&[1, 2, 3], &[0, 1])), None);
+        assert_eq!(packed(&key(&[1, 2, 3, 4], &[0, 1, 2])), None);
+        assert_eq!(packed(&key(&[1, 2], &[0, 1, 2])), None);
+    }
 }

@@ -14,6 +14,9 @@
 //! anything tet-specific (pieces of tet faces, transparent face nodes) is
 //! never programmed. Programs apply only without cell grouping and volumes.
 
+use std::sync::{Arc, OnceLock, RwLock};
+
+use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::keys::{key_of, position_on, vertex_id_by_key};
@@ -48,6 +51,30 @@ pub(crate) struct Program {
     unions: Vec<([u32; 2], [u32; 2])>,
     /// Wedges: edge end points (indices into `verts`) and two polygon sides.
     wedges: Vec<([u32; 2], [u32; 2], [u32; 2])>,
+}
+
+/// Programs recorded by any worker of the process, by template key. A
+/// program is a function of its template alone (the module docs), so a
+/// worker meeting a template for the first time takes it from here instead
+/// of building the complex again: the block runner makes a fresh worker for
+/// every piece of work it splits off (more of them with more threads), and
+/// each used to record every template again. Only programs are shared;
+/// templates that cannot be programmed stay with the worker that found so.
+fn shared_programs() -> &'static RwLock<FxHashMap<u64, Arc<Program>>> {
+    static SHARED: OnceLock<RwLock<FxHashMap<u64, Arc<Program>>>> = OnceLock::new();
+    SHARED.get_or_init(Default::default)
+}
+
+/// The program of template `key` recorded by any worker, if one was.
+pub(crate) fn shared(key: u64) -> Option<Arc<Program>> {
+    shared_programs().read().ok()?.get(&key).cloned()
+}
+
+/// Offers a program to the other workers (the first one recorded stays).
+pub(crate) fn share(key: u64, program: &Arc<Program>) {
+    if let Ok(mut map) = shared_programs().write() {
+        map.entry(key).or_insert_with(|| program.clone());
+    }
 }
 
 /// Lengths of the block output before a tet, to find what the tet added.

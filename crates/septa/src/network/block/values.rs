@@ -19,6 +19,11 @@ pub(crate) trait Values: Sync {
     }
 }
 
+/// The 4 corner values of every function of a tet, inline up to 32
+/// functions (an MI tet reads them for every tet of a mixed cube; a heap
+/// array per tet cost more than the comparisons).
+pub(crate) type CornerRows = smallvec::SmallVec<[[f64; 4]; 32]>;
+
 /// Run-wide inputs.
 pub(crate) struct Ctx<'a> {
     pub grid: &'a Grid,
@@ -65,7 +70,7 @@ impl Ctx<'_> {
 
     /// The values of every function at the 4 corners of `tet`
     /// (`out[f][i]`: function `f` at corner `i`), one row look-up per corner.
-    pub(crate) fn corner_rows(&self, tet: &[u32; 4], out: &mut smallvec::SmallVec<[[f64; 4]; 8]>) {
+    pub(crate) fn corner_rows(&self, tet: &[u32; 4], out: &mut CornerRows) {
         out.clear();
         out.resize(self.k, [0.0; 4]);
         let mut buf = Vec::new();

@@ -3,6 +3,8 @@
 //! shell unions and wedges; fast paths (`simple`, `program`, `boxfast`)
 //! slot in before the general construction.
 
+use std::sync::Arc;
+
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
@@ -33,11 +35,12 @@ pub(crate) struct Worker {
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
-    /// The block's vertex map, kept between blocks so its table is
-    /// allocated once per thread.
+    /// The block's vertex maps (full and packed keys, `keys::packed`), kept
+    /// between blocks so their tables are allocated once per thread.
     vmap: FxHashMap<VKey, u32>,
+    emap: FxHashMap<u64, u32>,
     /// Tet programs by look-up table template (`None`: not programmable).
-    programs: FxHashMap<u64, Option<super::program::Program>>,
+    programs: FxHashMap<u64, Option<Arc<super::program::Program>>>,
 }
 
 /// Block-local maps, dropped with the block.
@@ -45,6 +48,8 @@ pub(crate) struct Worker {
 pub(crate) struct State {
     pub out: BlockOut,
     pub(crate) vmap: FxHashMap<VKey, u32>,
+    /// Edge vertices by packed key (`keys::packed`).
+    pub(crate) emap: FxHashMap<u64, u32>,
     contacts: FxHashMap<(FaceKey, Label), u32>,
     tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
     pub uf: UnionFind,
@@ -75,6 +80,7 @@ impl Worker {
                 Block::Tets(_) => None,
             },
             vmap: std::mem::take(&mut self.vmap),
+            emap: std::mem::take(&mut self.emap),
             ..State::default()
         };
         if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
@@ -100,6 +106,9 @@ impl Worker {
         let mut vmap = std::mem::take(&mut st.vmap);
         vmap.clear();
         self.vmap = vmap;
+        let mut emap = std::mem::take(&mut st.emap);
+        emap.clear();
+        self.emap = emap;
         finish(st)
     }
 
@@ -157,9 +166,18 @@ impl Worker {
         let template =
             if st.grouping || ctx.volumes { None } else { Complex::template_key(ctx.mode, &self.vals, &ctx.options) };
         if let Some(key) = template {
+            // Borrowed, not cloned: an `Arc` count touched per tet from two
+            // threads would bounce its cache line between the cores.
             if let Some(Some(p)) = self.programs.get(&key) {
                 super::program::run(p, ctx, st, &tet, &self.active, &self.vals, &self.base_label);
                 return Ok(());
+            }
+            if !self.programs.contains_key(&key) {
+                if let Some(p) = super::program::shared(key) {
+                    super::program::run(&p, ctx, st, &tet, &self.active, &self.vals, &self.base_label);
+                    self.programs.insert(key, Some(p));
+                    return Ok(());
+                }
             }
         }
         let mark = super::program::Mark::of(st);
@@ -337,7 +355,10 @@ impl Worker {
             }
         }
         if let Some(key) = template {
-            let program = super::program::record(c, &self.active, &self.vid, st, mark);
+            let program = super::program::record(c, &self.active, &self.vid, st, mark).map(Arc::new);
+            if let Some(p) = &program {
+                super::program::share(key, p);
+            }
             self.programs.insert(key, program);
         }
         self.complex = owned;
