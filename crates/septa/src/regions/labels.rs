@@ -170,6 +170,20 @@ impl BoundedField for LabelField<'_> {
         out
     }
 
+    /// The indicators' winner per point: the index of its voxel's label
+    /// (so a block keeps one label per vertex, not `k` values).
+    fn sample_labels(&self, points: &[[f64; 3]], out: &mut Vec<u32>) -> bool {
+        let mut last = (i64::MIN, 0u32);
+        for (i, &p) in points.iter().enumerate() {
+            let l = self.labels[self.voxel(p)];
+            if l != last.0 || i == 0 {
+                last = (l, self.ids.binary_search(&l).expect("a label of the volume") as u32);
+            }
+            out.push(last.1);
+        }
+        true
+    }
+
     /// MI: proven empty when every voxel of the box (widened to whole
     /// voxels) has one label, whose indicator is then 1 against 0.
     fn may_be_active(&self, _mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {

@@ -30,6 +30,9 @@ pub(crate) struct Worker {
     pub(super) active_hint: Option<u64>,
     /// IA: the sign bits at corner 0 of the next tet (k <= 63), if known.
     pub(super) base_hint: Option<u64>,
+    /// MI: the next tet's two active functions (ascending), if known
+    /// (label indicators with two labels at its corners).
+    pub(super) pair_hint: Option<[u16; 2]>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -109,6 +112,16 @@ impl Worker {
         let tet = ctx.grid.tet(t);
         let row = |f: usize| tet.map(|v| ctx.val(v, f));
         match self.active_hint {
+            _ if self.pair_hint.is_some() => {
+                self.active.clear();
+                self.active.extend_from_slice(&self.pair_hint.unwrap());
+                #[cfg(debug_assertions)]
+                {
+                    let mut check = Vec::new();
+                    active_functions(ctx, t, &tet, &mut check)?;
+                    debug_assert_eq!(check, self.active, "pair hint of tet {t}");
+                }
+            }
             Some(mut mask) => {
                 self.active.clear();
                 while mask != 0 {
