@@ -111,10 +111,10 @@ impl Worker {
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
         let row = |f: usize| tet.map(|v| ctx.val(v, f));
-        match self.active_hint {
-            _ if self.pair_hint.is_some() => {
+        match (self.pair_hint, self.active_hint) {
+            (Some(pair), _) => {
                 self.active.clear();
-                self.active.extend_from_slice(&self.pair_hint.unwrap());
+                self.active.extend_from_slice(&pair);
                 #[cfg(debug_assertions)]
                 {
                     let mut check = Vec::new();
@@ -122,14 +122,14 @@ impl Worker {
                     debug_assert_eq!(check, self.active, "pair hint of tet {t}");
                 }
             }
-            Some(mut mask) => {
+            (None, Some(mut mask)) => {
                 self.active.clear();
                 while mask != 0 {
                     self.active.push(mask.trailing_zeros() as u16);
                     mask &= mask - 1;
                 }
             }
-            None => active_functions(ctx, t, &tet, &mut self.active)?,
+            (None, None) => active_functions(ctx, t, &tet, &mut self.active)?,
         }
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),
