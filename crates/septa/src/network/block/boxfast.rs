@@ -111,13 +111,8 @@ pub(super) fn run_box(
         }
     }
     let per = g.split.tets_per_cube();
-    // MI on label indicators with the average domination rule: a tet's
-    // active functions are exactly the distinct labels at its corners (each
-    // is 1 at some corner, so never dominated; an absent label is 0 at all 4
-    // corners, below the winners' average, which is 1 / labels there).
-    let indicators = ctx.mode == Mode::Mi
-        && (ctx.average_domination || ctx.k == 2)
-        && vl.first().is_some_and(|_| ctx.label(g.vertex_index(lo)).is_some());
+    // Label volumes: tets decided by their corner labels (voxels.rs).
+    let indicators = super::voxels::applies(ctx, g.vertex_index(lo));
     let cube_vol =
         if ctx.volumes { (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product() } else { 0.0 };
     let mut node = vec![NONE; n[0] * n[1] * n[2]];
@@ -158,20 +153,13 @@ pub(super) fn run_box(
                         w.base_hint = None;
                         w.pair_hint = None;
                         if indicators {
-                            // Label indicators: the labels at the 4 corners
-                            // are the active functions (below).
                             let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                            let mut corners = g.tet_corners(gc, lt).map(|p| {
+                            let corners = g.tet_corners(gc, lt).map(|p| {
                                 let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
                                 vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
                             });
-                            corners.sort_unstable();
-                            if corners[0] == corners[3] && !st.grouping {
-                                continue; // one label: an empty tet, nobody's region
-                            }
-                            let distinct = 1 + (1..4).filter(|&c| corners[c] != corners[c - 1]).count();
-                            if distinct == 2 {
-                                w.pair_hint = Some([corners[0] as u16, corners[3] as u16]);
+                            if super::voxels::indicator_tet(w, ctx, st, t, &g.tet(t), corners)? {
+                                continue;
                             }
                         }
                         if ctx.mode == Mode::Ia {

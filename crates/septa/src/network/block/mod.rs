@@ -13,6 +13,7 @@ mod program;
 mod simple;
 mod types;
 mod values;
+mod voxels;
 mod worker;
 
 pub(crate) use active::active_functions;

@@ -115,12 +115,6 @@ impl Worker {
             (Some(pair), _) => {
                 self.active.clear();
                 self.active.extend_from_slice(&pair);
-                #[cfg(debug_assertions)]
-                {
-                    let mut check = Vec::new();
-                    active_functions(ctx, t, &tet, &mut check)?;
-                    debug_assert_eq!(check, self.active, "pair hint of tet {t}");
-                }
             }
             (None, Some(mut mask)) => {
                 self.active.clear();
