@@ -83,11 +83,16 @@ fn sample_block_labels(
         return None;
     }
     let mut labels = Vec::with_capacity(vn[0] * vn[1] * vn[2]);
+    // A vertex's coordinate on an axis depends on its index on that axis
+    // alone: the last axis' coordinates once per block, the others per row
+    // (the same bits as `grid.vertex` per point, without its divisions).
+    let zs: Vec<f64> = (lo[2]..=hi[2]).map(|l| grid.vertex(grid.vertex_index([lo[0], lo[1], l]))[2]).collect();
     let mut points = Vec::with_capacity(vn[2]);
     for i in lo[0]..=hi[0] {
         for j in lo[1]..=hi[1] {
+            let [x, y, _] = grid.vertex(grid.vertex_index([i, j, lo[2]]));
             points.clear();
-            points.extend((lo[2]..=hi[2]).map(|l| grid.vertex(grid.vertex_index([i, j, l]))));
+            points.extend(zs.iter().map(|&z| [x, y, z]));
             if !functions.sample_labels(&points, &mut labels) {
                 return None;
             }
