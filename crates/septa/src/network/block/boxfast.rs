@@ -154,11 +154,13 @@ pub(super) fn run_box(
                         w.pair_hint = None;
                         if indicators {
                             let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                            let corners = g.tet_corners(gc, lt).map(|p| {
-                                let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
-                                vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
-                            });
-                            if super::voxels::indicator_tet(w, ctx, st, t, &g.tet(t), corners)? {
+                            let offsets = g
+                                .tet_corners(gc, lt)
+                                .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
+                            let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
+                            // `g.tet(t)` without its divisions.
+                            let tet = offsets.map(|[a, b, c]| g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c]));
+                            if super::voxels::indicator_tet(w, ctx, st, t, &tet, corners)? {
                                 continue;
                             }
                         }

@@ -61,6 +61,7 @@ pub(super) fn indicator_tet(
         let mut check = Vec::new();
         super::active::active_functions(ctx, t, tet, &mut check)?;
         debug_assert_eq!(check, pair, "active functions of tet {t}");
+        debug_assert_eq!(*tet, ctx.grid.tet(t), "grid vertices of tet {t}");
     }
     st.out.active_tets += 1;
     if simple_tet(ctx, st, tet, &pair, &vals, &Label::new()) {
