@@ -31,6 +31,14 @@ pub trait BoundedField: Sync {
     /// only if proven empty (IA: every function keeps one strict sign on
     /// the box; MI: one function exceeds every other on it).
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool;
+    /// Label volumes: when every function is an indicator (at each point
+    /// one function is 1 and the others 0), appends the index of that
+    /// function at each of `points` to `out` and returns true, so a block
+    /// holds one label per vertex instead of `k` values. The default
+    /// (and any other field) returns false and appends nothing.
+    fn sample_labels(&self, _points: &[[f64; 3]], _out: &mut Vec<u32>) -> bool {
+        false
+    }
 }
 
 /// `k` real functions evaluable at points, without any bound (a user's
@@ -60,5 +68,8 @@ impl<F: BoundedField + ?Sized> BoundedField for ByRef<'_, F> {
     }
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
         self.0.may_be_active(mode, min, max)
+    }
+    fn sample_labels(&self, points: &[[f64; 3]], out: &mut Vec<u32>) -> bool {
+        self.0.sample_labels(points, out)
     }
 }

@@ -170,6 +170,39 @@ impl BoundedField for LabelField<'_> {
         out
     }
 
+    /// The indicators' winner per point: the index of its voxel's label
+    /// (so a block keeps one label per vertex, not `k` values).
+    fn sample_labels(&self, points: &[[f64; 3]], out: &mut Vec<u32>) -> bool {
+        let mut last = (i64::MIN, 0u32);
+        // A row of grid vertices along the last axis (how blocks ask) is a
+        // run of consecutive voxels: read it as a slice, no rounding per point.
+        let row = points.first().and_then(|&p0| {
+            let v0 = self.voxel(p0);
+            let whole = (0..3).all(|a| p0[a] == p0[a].round() && p0[a] >= 0.0);
+            let fits = p0[2] as usize + points.len() <= self.shape[2];
+            let along =
+                points.iter().enumerate().all(|(n, p)| p[0] == p0[0] && p[1] == p0[1] && p[2] == p0[2] + n as f64);
+            (whole && fits && along).then_some(v0)
+        });
+        if let Some(v0) = row {
+            for (i, &l) in self.labels[v0..v0 + points.len()].iter().enumerate() {
+                if l != last.0 || i == 0 {
+                    last = (l, self.ids.binary_search(&l).expect("a label of the volume") as u32);
+                }
+                out.push(last.1);
+            }
+            return true;
+        }
+        for (i, &p) in points.iter().enumerate() {
+            let l = self.labels[self.voxel(p)];
+            if l != last.0 || i == 0 {
+                last = (l, self.ids.binary_search(&l).expect("a label of the volume") as u32);
+            }
+            out.push(last.1);
+        }
+        true
+    }
+
     /// MI: proven empty when every voxel of the box (widened to whole
     /// voxels) has one label, whose indicator is then 1 against 0.
     fn may_be_active(&self, _mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {

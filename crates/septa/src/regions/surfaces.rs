@@ -92,8 +92,70 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     for i in 0..n {
         surfaces[comp[i] as usize].regions = pairs[i];
     }
-    count_surfaces(&mut surfaces, &loop_start, &loops, &comp);
+    count_sorted(&mut surfaces, &by_edge, &loop_start, &loops, &comp, net.points.len());
     Extracted { faces, loop_start, loops, face_surface: comp, surfaces }
+}
+
+/// [`count_surfaces`] from the sorted (edge, pair, polygon) entries of
+/// [`extract`], without sorting again: the entries of one edge and one pair
+/// are a run whose polygons were joined, so each run is one edge of one
+/// surface (a boundary edge when the run has one entry); vertices are
+/// counted per surface with a mark per vertex, the polygons visited
+/// surface by surface (a counting sort by surface).
+fn count_sorted(
+    surfaces: &mut [Surface],
+    by_edge: &[u128],
+    loop_start: &[u32],
+    loops: &[u32],
+    face_surface: &[u32],
+    points: usize,
+) {
+    let count = surfaces.len();
+    let mut distinct = vec![0i64; count];
+    let mut boundary: Vec<Vec<(u32, u32)>> = vec![Vec::new(); count];
+    let mut i = 0;
+    while i < by_edge.len() {
+        let mut j = i + 1;
+        while j < by_edge.len() && by_edge[j] >> 32 == by_edge[i] >> 32 {
+            j += 1;
+        }
+        let s = face_surface[by_edge[i] as u32 as usize] as usize;
+        distinct[s] += 1;
+        if j - i == 1 {
+            boundary[s].push(((by_edge[i] >> 96) as u32, (by_edge[i] >> 64) as u32));
+        }
+        i = j;
+    }
+    // Polygons by surface (stable), then distinct vertices per surface.
+    let mut start = vec![0u32; count + 1];
+    for &s in face_surface {
+        start[s as usize + 1] += 1;
+    }
+    for s in 0..count {
+        start[s + 1] += start[s];
+    }
+    let mut order = vec![0u32; face_surface.len()];
+    let mut next = start.clone();
+    for (f, &s) in face_surface.iter().enumerate() {
+        order[next[s as usize] as usize] = f as u32;
+        next[s as usize] += 1;
+    }
+    let mut mark = vec![u32::MAX; points];
+    for s in 0..count {
+        let mut verts = 0i64;
+        for &f in &order[start[s] as usize..start[s + 1] as usize] {
+            for &v in &loops[loop_start[f as usize] as usize..loop_start[f as usize + 1] as usize] {
+                if mark[v as usize] != s as u32 {
+                    mark[v as usize] = s as u32;
+                    verts += 1;
+                }
+            }
+        }
+        let faces = (start[s + 1] - start[s]) as i64;
+        surfaces[s].faces = faces as usize;
+        surfaces[s].euler = verts - distinct[s] + faces;
+        surfaces[s].boundary_loops = count_loops(&boundary[s]);
+    }
 }
 
 /// Recounts the surfaces of `r` (faces, Euler characteristic, boundary

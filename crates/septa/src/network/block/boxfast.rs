@@ -28,6 +28,10 @@ pub(crate) fn applies(ctx: &Ctx) -> bool {
 
 fn vertex_label(ctx: &Ctx, v: u32, buf: &mut Vec<f64>) -> u64 {
     let k = ctx.k;
+    if let Some(l) = ctx.label(v) {
+        // Indicators: the 1 is the unique strict maximum.
+        return l as u64;
+    }
     let row = ctx.row(v, buf);
     match ctx.mode {
         Mode::Ia => {
@@ -107,6 +111,8 @@ pub(super) fn run_box(
         }
     }
     let per = g.split.tets_per_cube();
+    // Label volumes: tets decided by their corner labels (voxels.rs).
+    let indicators = super::voxels::applies(ctx, g.vertex_index(lo));
     let cube_vol =
         if ctx.volumes { (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product() } else { 0.0 };
     let mut node = vec![NONE; n[0] * n[1] * n[2]];
@@ -145,6 +151,19 @@ pub(super) fn run_box(
                         // base of its cells' labels (when no value is zero).
                         w.active_hint = None;
                         w.base_hint = None;
+                        w.pair_hint = None;
+                        if indicators {
+                            let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                            let offsets = g
+                                .tet_corners(gc, lt)
+                                .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
+                            let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
+                            // `g.tet(t)` without its divisions.
+                            let tet = offsets.map(|[a, b, c]| g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c]));
+                            if super::voxels::indicator_tet(w, ctx, st, t, &tet, corners)? {
+                                continue;
+                            }
+                        }
                         if ctx.mode == Mode::Ia {
                             let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
                             let corners = g.tet_corners(gc, lt).map(|p| {
@@ -165,6 +184,7 @@ pub(super) fn run_box(
                     }
                     w.active_hint = None;
                     w.base_hint = None;
+                    w.pair_hint = None;
                 }
             }
         }

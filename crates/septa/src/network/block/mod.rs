@@ -13,10 +13,11 @@ mod program;
 mod simple;
 mod types;
 mod values;
+mod voxels;
 mod worker;
 
 pub(crate) use active::active_functions;
 pub(crate) use keys::vertex_key;
 pub(crate) use types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
-pub(crate) use values::{BlockValues, Ctx, PointValues, Values};
+pub(crate) use values::{BlockLabels, BlockValues, Ctx, PointValues, Values};
 pub(crate) use worker::{degenerate_face, Worker, FACE_OF};

@@ -17,6 +17,12 @@ pub(crate) trait Values: Sync {
     fn row(&self, _v: u32) -> Option<&[f64]> {
         None
     }
+    /// When every function is an indicator (1 for one function at each
+    /// vertex, 0 for the others: a label volume), the function that is 1
+    /// at grid vertex `v`; `None` otherwise.
+    fn label(&self, _v: u32) -> Option<u32> {
+        None
+    }
 }
 
 /// The 4 corner values of every function of a tet, inline up to 32
@@ -68,6 +74,13 @@ impl Ctx<'_> {
         }
     }
 
+    /// The function that is 1 at grid vertex `v` when the values are
+    /// indicators ([`Values::label`]).
+    #[inline]
+    pub(crate) fn label(&self, v: u32) -> Option<u32> {
+        self.sparse.and_then(|s| s.label(v))
+    }
+
     /// The values of every function at the 4 corners of `tet`
     /// (`out[f][i]`: function `f` at corner `i`), one row look-up per corner.
     pub(crate) fn corner_rows(&self, tet: &[u32; 4], out: &mut CornerRows) {
@@ -85,10 +98,15 @@ impl Ctx<'_> {
 
 /// The values of one block's vertices, `lo..=hi` in grid coordinates.
 pub(crate) struct BlockValues {
-    lo: [usize; 3],
-    vn: [usize; 3],
     k: usize,
     pub(crate) data: Vec<f64>,
+    at: LocalIndex,
+}
+
+/// Grid vertex id to a block's local vertex index, with a small cache.
+struct LocalIndex {
+    lo: [usize; 3],
+    vn: [usize; 3],
     /// Vertex id strides of i and j.
     stride: [u32; 2],
     /// Recently looked-up rows, `v << 32 | local row`, hashed by `v`: the
@@ -101,9 +119,15 @@ pub(crate) struct BlockValues {
 
 impl BlockValues {
     pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
+        BlockValues { k, data, at: LocalIndex::new(grid, lo, vn) }
+    }
+}
+
+impl LocalIndex {
+    fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3]) -> LocalIndex {
         let b = grid.res[2] as u32 + 1;
         let a = (grid.res[1] as u32 + 1) * b;
-        BlockValues { lo, vn, k, data, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
+        LocalIndex { lo, vn, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
     }
 
     #[inline]
@@ -125,13 +149,40 @@ impl BlockValues {
 impl Values for BlockValues {
     #[inline]
     fn val(&self, v: u32, f: usize) -> f64 {
-        self.data[self.local(v) * self.k + f]
+        self.data[self.at.local(v) * self.k + f]
     }
 
     #[inline]
     fn row(&self, v: u32) -> Option<&[f64]> {
-        let at = self.local(v) * self.k;
+        let at = self.at.local(v) * self.k;
         Some(&self.data[at..at + self.k])
+    }
+}
+
+/// One block's vertices of a label volume: the index of the label at each
+/// vertex, `lo..=hi` in grid coordinates, instead of `k` values per vertex
+/// (the label indicators: 1 for that label, 0 for the others, every value
+/// exact). 4 bytes a vertex where the rows took `8 k`.
+pub(crate) struct BlockLabels {
+    pub(crate) labels: Vec<u32>,
+    at: LocalIndex,
+}
+
+impl BlockLabels {
+    pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], labels: Vec<u32>) -> BlockLabels {
+        BlockLabels { labels, at: LocalIndex::new(grid, lo, vn) }
+    }
+}
+
+impl Values for BlockLabels {
+    #[inline]
+    fn val(&self, v: u32, f: usize) -> f64 {
+        (self.labels[self.at.local(v)] as usize == f) as u8 as f64
+    }
+
+    #[inline]
+    fn label(&self, v: u32) -> Option<u32> {
+        Some(self.labels[self.at.local(v)])
     }
 }
 

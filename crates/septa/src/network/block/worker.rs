@@ -32,6 +32,9 @@ pub(crate) struct Worker {
     pub(super) active_hint: Option<u64>,
     /// IA: the sign bits at corner 0 of the next tet (k <= 63), if known.
     pub(super) base_hint: Option<u64>,
+    /// MI: the next tet's two active functions (ascending), if known
+    /// (label indicators with two labels at its corners).
+    pub(super) pair_hint: Option<[u16; 2]>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -117,15 +120,19 @@ impl Worker {
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
         let tet = ctx.grid.tet(t);
         let row = |f: usize| tet.map(|v| ctx.val(v, f));
-        match self.active_hint {
-            Some(mut mask) => {
+        match (self.pair_hint, self.active_hint) {
+            (Some(pair), _) => {
+                self.active.clear();
+                self.active.extend_from_slice(&pair);
+            }
+            (None, Some(mut mask)) => {
                 self.active.clear();
                 while mask != 0 {
                     self.active.push(mask.trailing_zeros() as u16);
                     mask &= mask - 1;
                 }
             }
-            None => active_functions(ctx, t, &tet, &mut self.active)?,
+            (None, None) => active_functions(ctx, t, &tet, &mut self.active)?,
         }
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),

@@ -29,7 +29,7 @@ use rayon::prelude::*;
 
 use crate::complex::{Mode, Options};
 use crate::grid::{Block, BoxGrid, Grid};
-use crate::network::block::{BlockOut, BlockValues, Ctx, PointValues, Values, Worker};
+use crate::network::block::{BlockLabels, BlockOut, BlockValues, Ctx, PointValues, Values, Worker};
 use crate::network::dense::{assemble, label_free_cells};
 use crate::network::field::{BoundedField, ByRef};
 use crate::network::topology::{canonicalize_merged, canonicalize_topology, merge, topology, Merged, Merger};
@@ -61,6 +61,46 @@ fn may_be_active(grid: &BoxGrid, functions: &dyn BoundedField, mode: Mode, lo: [
     functions.may_be_active(mode, a, b)
 }
 
+/// A block's samples: `k` values per vertex, or (label volumes, MI) the
+/// one indicator that is 1 per vertex.
+enum Sampled {
+    Rows(BlockValues),
+    Labels(BlockLabels),
+}
+
+/// The vertices of cubes `lo..hi` as label indices, when the field is a
+/// label volume's indicators and the mode MI (one strict maximum at every
+/// vertex, so ray shooting's precondition holds).
+fn sample_block_labels(
+    grid: &BoxGrid,
+    functions: &dyn BoundedField,
+    mode: Mode,
+    lo: [usize; 3],
+    hi: [usize; 3],
+) -> Option<BlockLabels> {
+    let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
+    if mode != Mode::Mi {
+        return None;
+    }
+    let mut labels = Vec::with_capacity(vn[0] * vn[1] * vn[2]);
+    // A vertex's coordinate on an axis depends on its index on that axis
+    // alone: the last axis' coordinates once per block, the others per row
+    // (the same bits as `grid.vertex` per point, without its divisions).
+    let zs: Vec<f64> = (lo[2]..=hi[2]).map(|l| grid.vertex(grid.vertex_index([lo[0], lo[1], l]))[2]).collect();
+    let mut points = Vec::with_capacity(vn[2]);
+    for i in lo[0]..=hi[0] {
+        for j in lo[1]..=hi[1] {
+            let [x, y, _] = grid.vertex(grid.vertex_index([i, j, lo[2]]));
+            points.clear();
+            points.extend(zs.iter().map(|&z| [x, y, z]));
+            if !functions.sample_labels(&points, &mut labels) {
+                return None;
+            }
+        }
+    }
+    Some(BlockLabels::new(grid, lo, vn, labels))
+}
+
 /// Samples the vertices of cubes `lo..hi`; also says whether ray shooting's
 /// precondition holds there (IA no value 0, MI a unique strict maximum).
 fn sample_block(
@@ -69,7 +109,10 @@ fn sample_block(
     mode: Mode,
     lo: [usize; 3],
     hi: [usize; 3],
-) -> Result<(BlockValues, bool), NetworkError> {
+) -> Result<(Sampled, bool), NetworkError> {
+    if let Some(labels) = sample_block_labels(grid, functions, mode, lo, hi) {
+        return Ok((Sampled::Labels(labels), true));
+    }
     let k = functions.functions();
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
     let mut data = Vec::with_capacity(vn[0] * vn[1] * vn[2] * k);
@@ -99,7 +142,7 @@ fn sample_block(
             data.extend_from_slice(&rows);
         }
     }
-    Ok((BlockValues::new(grid, lo, vn, k, data), clean))
+    Ok((Sampled::Rows(BlockValues::new(grid, lo, vn, k, data)), clean))
 }
 
 pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
@@ -300,9 +343,12 @@ pub(crate) fn run_block_with(
     let b = block_at(grid, options.block, index)
         .ok_or_else(|| NetworkError::NoSuchBlock { index, blocks: block_count(grid, options.block) })?;
     let (lo, hi) = cubes(&b);
-    let (bv, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
-    let sampled_vertices = bv.data.len() / k;
-    let c = ctx(g, k, options, &bv);
+    let (sampled, clean) = sample_block(grid, functions, options.mode, lo, hi)?;
+    let (values, sampled_vertices): (&dyn Values, usize) = match &sampled {
+        Sampled::Rows(bv) => (bv, bv.data.len() / k),
+        Sampled::Labels(bl) => (bl, bl.labels.len()),
+    };
+    let c = ctx(g, k, options, values);
     let out = w.run(&c, &b)?;
     Ok(BlockResult { job: JobKey::of(grid, k, options), index, out, clean, sampled_vertices })
 }
