@@ -157,6 +157,17 @@ pub(crate) fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign 
             return Sign::Negative;
         }
     }
+    // Exact zeros the filter cannot see, common on axis-aligned cut-faces
+    // (cube A10 used to send ~15k of them to the exact fallback): three
+    // points on one axis-parallel line, or two of them the same projected
+    // point, are exactly collinear.
+    let eq = |p: &[f64; 3], q: &[f64; 3]| p[i] == q[i] && p[j] == q[j];
+    if (pa[i] == pb[i] && pa[i] == pc[i]) || (pa[j] == pb[j] && pa[j] == pc[j]) {
+        return Sign::Zero;
+    }
+    if eq(pa, pb) || eq(pa, pc) || eq(pb, pc) {
+        return Sign::Zero;
+    }
     fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
         let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
         let (pa, pb, pc) = (p(a), p(b), p(c));
@@ -587,6 +598,16 @@ mod tests {
         let x = [[0.1, 0.3, 0.7], [0.9, -2.5, 0.7], [1e-30, 4.0, 0.7], [3.3, 1.0 / 3.0, 0.7]];
         assert_eq!(orient(&x, 0, 1, 2, 3), Sign::Zero);
         assert_eq!(orient_exact(&x, 0, 1, 2, 3), Sign::Zero);
+        // 2D: on an axis-parallel line, or a repeated projected point
+        let y = [[0.1, 0.3, 0.7], [0.1, -2.5, 9.0], [0.1, 4.0, 1e-300], [5.0, 0.3, 0.7]];
+        for k in 0..3 {
+            assert_eq!(orient2(&y, k, 0, 0, 3), Sign::Zero);
+        }
+        assert_eq!(orient2(&y, 1, 0, 1, 2), Sign::Zero);
+        assert_eq!(orient2(&y, 2, 0, 1, 2), Sign::Zero);
+        // a projection where they are not collinear still gets its sign
+        assert_ne!(orient2(&y, 2, 0, 1, 3), Sign::Zero);
+        assert_ne!(orient2(&y, 0, 0, 1, 2), Sign::Zero);
     }
 }
 
