@@ -9,7 +9,71 @@ use rayon::prelude::*;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
-    orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_exact(x, a, b, c, d))
+    orient_filtered(x, a, b, c, d).unwrap_or_else(|| {
+        // Four points with one coordinate exactly equal lie in one axis
+        // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
+        // cut-vertices are snapped onto them) are all of this kind; without
+        // this shortcut each of their planarity and coplanar-pair tests
+        // went through the interval and exact determinants.
+        let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
+        if (0..3).any(same) {
+            return Sign::Zero;
+        }
+        orient_exact(x, a, b, c, d)
+    })
+}
+
+/// A triangle's plane prepared once for many [`TriPlane::side`] queries:
+/// the corner `a`, the edge vectors' cross product `n = (b - a) x (c - a)`
+/// and the three partial permanents of Shewchuk's orient3d bound, all in
+/// floating point exactly as `orient_filtered` forms them.
+#[derive(Clone, Copy)]
+pub(crate) struct TriPlane {
+    a: [f64; 3],
+    n: [f64; 3],
+    perm: [f64; 3],
+}
+
+impl TriPlane {
+    pub(crate) fn new(x: &[[f64; 3]], t: &[u32; 3]) -> Self {
+        let (a, b, c) = (x[t[0] as usize], x[t[1] as usize], x[t[2] as usize]);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let (yz, zy) = (u[1] * v[2], u[2] * v[1]);
+        let (zx, xz) = (u[2] * v[0], u[0] * v[2]);
+        let (xy, yx) = (u[0] * v[1], u[1] * v[0]);
+        TriPlane {
+            a,
+            n: [yz - zy, zx - xz, xy - yx],
+            perm: [yz.abs() + zy.abs(), zx.abs() + xz.abs(), xy.abs() + yx.abs()],
+        }
+    }
+
+    /// Side of `q`: the sign of `det(b - a, c - a, q - a)` when the static
+    /// filter proves it, else `None` (never an exact fallback). This is
+    /// Shewchuk's orient3d filter (`o3derrboundA = 7u + 56u^2`) on the
+    /// transposed matrix: the nine entries are the same kind of rounded
+    /// differences, the determinant is expanded along `q - a` with the 2x2
+    /// minors of `b - a, c - a` in the same order of operations, and the
+    /// permanent is formed alike, so the bound carries over unchanged.
+    /// Only the strict sign is used (a zero is never claimed).
+    #[inline]
+    pub(crate) fn side(&self, q: &[f64; 3]) -> Option<Sign> {
+        let w = [q[0] - self.a[0], q[1] - self.a[1], q[2] - self.a[2]];
+        let det = w[0] * self.n[0] + w[1] * self.n[1] + w[2] * self.n[2];
+        let perm = self.perm[0] * w[0].abs() + self.perm[1] * w[1].abs() + self.perm[2] * w[2].abs();
+        const U: f64 = f64::EPSILON / 2.0;
+        let bound = (7.0 * U + 56.0 * U * U) * perm;
+        if det.is_finite() && perm.is_finite() && perm > 1e-280 {
+            if det > bound {
+                return Some(Sign::Positive);
+            }
+            if -det > bound {
+                return Some(Sign::Negative);
+            }
+        }
+        None
+    }
 }
 
 /// [`orient`] when its static filter decides it, else `None` (no exact
@@ -92,6 +156,17 @@ pub(crate) fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign 
         if -det > bound {
             return Sign::Negative;
         }
+    }
+    // Exact zeros the filter cannot see, common on axis-aligned cut-faces
+    // (cube A10 used to send ~15k of them to the exact fallback): three
+    // points on one axis-parallel line, or two of them the same projected
+    // point, are exactly collinear.
+    let eq = |p: &[f64; 3], q: &[f64; 3]| p[i] == q[i] && p[j] == q[j];
+    if (pa[i] == pb[i] && pa[i] == pc[i]) || (pa[j] == pb[j] && pa[j] == pc[j]) {
+        return Sign::Zero;
+    }
+    if eq(pa, pb) || eq(pa, pc) || eq(pb, pc) {
+        return Sign::Zero;
     }
     fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
         let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
@@ -187,12 +262,8 @@ fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
 /// the line). Exact (2D orientations of input coordinates), and cheap where
 /// the 3D predicates are nearly degenerate (flat fans of nearly coplanar
 /// triangles).
-fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
-    let n = {
-        let (a, b, c) = (x[t1[0] as usize], x[t1[1] as usize], x[t1[2] as usize]);
-        let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [c[0] - a[0], c[1] - a[1], c[2] - a[2]]);
-        [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-    };
+fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], n: &[f64; 3], t2: &[u32; 3]) -> bool {
+    // `n`: t1's floating-point normal; it only picks the projection axis
     let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
     for (ta, tb) in [(t1, t2), (t2, t1)] {
         let inner = orient2(x, k, ta[0], ta[1], ta[2]);
@@ -225,7 +296,7 @@ fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
 /// plane only in the shared vertices (none, one, or the shared edge).
 /// Most candidate pairs of a cut-cell mesh (triangles of different faces
 /// in one grid cell) end here, before the 2D projection tests.
-fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u32; 3]) -> bool {
     let mut side = None;
     let mut free = 0;
     for &w in t2 {
@@ -233,7 +304,7 @@ fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
             continue;
         }
         free += 1;
-        match orient_filtered(x, t1[0], t1[1], t1[2], w) {
+        match p1.side(&x[w as usize]) {
             Some(s) if s != Sign::Zero && side.is_none_or(|t| t == s) => side = Some(s),
             _ => return false,
         }
@@ -243,10 +314,15 @@ fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
 
 /// Do two triangles meet anywhere besides their shared vertices?
 pub(crate) fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
-    if plane_separated(x, t1, t2) || plane_separated(x, t2, t1) {
+    pair_intersects_planes(x, t1, &TriPlane::new(x, t1), t2, &TriPlane::new(x, t2))
+}
+
+/// [`pair_intersects`] with both triangles' planes prepared.
+fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u32; 3], p2: &TriPlane) -> bool {
+    if plane_separated(x, t1, p1, t2) || plane_separated(x, t2, p2, t1) {
         return false;
     }
-    if projections_separated(x, t1, t2) {
+    if projections_separated(x, t1, &p1.n, t2) {
         return false;
     }
     let mut shared = [0u32; 3];
@@ -377,9 +453,14 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
     let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
     let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
     let key = |c: [usize; 3]| ((c[0] as u64 * res as u64 + c[1] as u64) * res as u64) + c[2] as u64;
+    // each triangle's low grid corner, once: `cell` is monotonic, so the
+    // cell of the low corner of two boxes' overlap is the larger of their
+    // low cells, per axis (no division per pair)
+    let low_cell: Vec<[u32; 3]> = boxes.iter().map(|b| [0, 1, 2].map(|k| cell(b.0[k], k) as u32)).collect();
+    let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
     let mut entries: Vec<(u64, u32)> = Vec::new();
     for (t, b) in boxes.iter().enumerate() {
-        let (c0, c1) = ([0, 1, 2].map(|k| cell(b.0[k], k)), [0, 1, 2].map(|k| cell(b.1[k], k)));
+        let (c0, c1) = (low_cell[t].map(|c| c as usize), [0, 1, 2].map(|k| cell(b.1[k], k)));
         for i in c0[0]..=c1[0] {
             for j in c0[1]..=c1[1] {
                 for l in c0[2]..=c1[2] {
@@ -399,22 +480,37 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
         groups.push((s, e));
         s = e;
     }
-    let per_group = |&(s, e): &(usize, usize)| -> Vec<(u32, u32)> {
+    // One grid cell's triangles, copied next to each other (box, low cell,
+    // id) and swept along x: sorted by the low x of their boxes, each
+    // triangle meets only the following ones that start before it ends,
+    // instead of every other triangle of the cell. The found pairs are
+    // sorted at the end, so the order of the tests changes nothing.
+    type Local = ([f64; 3], [f64; 3], [u32; 3], u32);
+    let per_group = |buf: &mut Vec<Local>, &(s, e): &(usize, usize)| -> Vec<(u32, u32)> {
         let here = entries[s].0;
+        buf.clear();
+        buf.extend(entries[s..e].iter().map(|&(_, t)| {
+            let b = &boxes[t as usize];
+            (b.0, b.1, low_cell[t as usize], t)
+        }));
+        buf.sort_unstable_by(|p, q| p.0[0].total_cmp(&q.0[0]));
         let mut found: Vec<(u32, u32)> = Vec::new();
-        for a in s..e {
-            for b in a + 1..e {
-                let (t1, t2) = (entries[a].1, entries[b].1);
-                let (b1, b2) = (&boxes[t1 as usize], &boxes[t2 as usize]);
-                if (0..3).any(|k| b1.0[k] > b2.1[k] || b2.0[k] > b1.1[k]) {
+        for a in 0..buf.len() {
+            let (lo1, hi1, l1, t1) = buf[a];
+            for &(lo2, hi2, l2, t2) in &buf[a + 1..] {
+                if lo2[0] > hi1[0] {
+                    break;
+                }
+                if lo1[1] > hi2[1] || lo2[1] > hi1[1] || lo1[2] > hi2[2] || lo2[2] > hi1[2] {
                     continue;
                 }
                 // test each pair once: in the cell of the overlap's low corner
-                let low = key([0, 1, 2].map(|k| cell(b1.0[k].max(b2.0[k]), k)));
+                let low = key([0, 1, 2].map(|k| l1[k].max(l2[k]) as usize));
                 if low != here {
                     continue;
                 }
-                if pair_intersects(x, &tris[t1 as usize], &tris[t2 as usize]) {
+                let (u1, u2) = (t1 as usize, t2 as usize);
+                if pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]) {
                     let p = (t1.min(t2), t1.max(t2));
                     if !first_only {
                         found.push(p);
@@ -427,9 +523,15 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
         found
     };
     if first_only {
-        return groups.par_iter().map(per_group).filter_map(|v| v.first().copied()).min().into_iter().collect();
+        return groups
+            .par_iter()
+            .map_init(Vec::new, per_group)
+            .filter_map(|v| v.first().copied())
+            .min()
+            .into_iter()
+            .collect();
     }
-    let mut all: Vec<(u32, u32)> = groups.par_iter().map(per_group).flatten().collect();
+    let mut all: Vec<(u32, u32)> = groups.par_iter().map_init(Vec::new, per_group).flatten().collect();
     all.sort_unstable();
     all
 }
@@ -450,6 +552,62 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn prepared_plane_filter_never_contradicts_exact_orientation() {
+        // random triangles and query points on, one ulp off, and far from
+        // their planes; the filter may give up but never be wrong
+        let mut s = 0x9e3779b97f4a7c15u64;
+        let mut rnd = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut decided, mut undecided) = (0, 0);
+        for i in 0..4000 {
+            let mut x: Vec<[f64; 3]> = (0..3).map(|_| [rnd(), rnd(), rnd()]).collect();
+            let (l, m) = (rnd().abs(), rnd().abs());
+            // a point of the plane (rounded), then nudged by `i % 3` ulps
+            let q: [f64; 3] = std::array::from_fn(|k| {
+                let v = x[0][k] + l * (x[1][k] - x[0][k]) + m * (x[2][k] - x[0][k]);
+                let bits = v.to_bits() as i64 + (i % 3) as i64 - 1;
+                if i % 5 == 0 {
+                    v + rnd()
+                } else {
+                    f64::from_bits(bits as u64)
+                }
+            });
+            x.push(q);
+            let p = TriPlane::new(&x, &[0, 1, 2]);
+            match p.side(&x[3]) {
+                Some(sg) => {
+                    decided += 1;
+                    assert_eq!(sg, orient_exact(&x, 0, 1, 2, 3), "case {i}");
+                }
+                None => undecided += 1,
+            }
+        }
+        // both branches exercised
+        assert!(decided > 100 && undecided > 100, "{decided} {undecided}");
+    }
+
+    #[test]
+    fn axis_plane_points_are_exactly_coplanar() {
+        let x = [[0.1, 0.3, 0.7], [0.9, -2.5, 0.7], [1e-30, 4.0, 0.7], [3.3, 1.0 / 3.0, 0.7]];
+        assert_eq!(orient(&x, 0, 1, 2, 3), Sign::Zero);
+        assert_eq!(orient_exact(&x, 0, 1, 2, 3), Sign::Zero);
+        // 2D: on an axis-parallel line, or a repeated projected point
+        let y = [[0.1, 0.3, 0.7], [0.1, -2.5, 9.0], [0.1, 4.0, 1e-300], [5.0, 0.3, 0.7]];
+        for k in 0..3 {
+            assert_eq!(orient2(&y, k, 0, 0, 3), Sign::Zero);
+        }
+        assert_eq!(orient2(&y, 1, 0, 1, 2), Sign::Zero);
+        assert_eq!(orient2(&y, 2, 0, 1, 2), Sign::Zero);
+        // a projection where they are not collinear still gets its sign
+        assert_ne!(orient2(&y, 2, 0, 1, 3), Sign::Zero);
+        assert_ne!(orient2(&y, 0, 0, 1, 2), Sign::Zero);
     }
 }
 

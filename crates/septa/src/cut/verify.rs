@@ -120,12 +120,10 @@ fn newell(x: &[[f64; 3]], poly: &[u32]) -> [f64; 3] {
 fn face_key(poly: &[u32]) -> (Vec<u32>, bool) {
     let n = poly.len();
     let m = (0..n).min_by_key(|&i| poly[i]).unwrap_or(0);
-    let fwd: Vec<u32> = (0..n).map(|i| poly[(m + i) % n]).collect();
-    let bwd: Vec<u32> = (0..n).map(|i| poly[(m + n - i) % n]).collect();
-    if n > 1 && bwd[1] < fwd[1] {
-        (bwd, true)
+    if n > 1 && poly[(m + n - 1) % n] < poly[(m + 1) % n] {
+        ((0..n).map(|i| poly[(m + n - i) % n]).collect(), true)
     } else {
-        (fwd, false)
+        ((0..n).map(|i| poly[(m + i) % n]).collect(), false)
     }
 }
 
