@@ -11,8 +11,8 @@ use std::path::{Path, PathBuf};
 use septa::complex::Mode;
 use septa::io::ply_stream::PlyStreamSink;
 use septa::network::compute_sparse;
-use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamError, StreamSink};
-use septa::network::{Network, NetworkError, NetworkOptions, VKey};
+use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamSink};
+use septa::network::{Network, NetworkOptions, VKey};
 use septa::scene::load_function_list;
 
 use common::{cube_grid, spec};
