@@ -141,7 +141,10 @@ def _distributed(job: dict, client, batch, regions=False, normals=False):
                 threads = sum(client.nthreads().values()) or 1
                 batch = max(1, math.ceil(len(kept) / (4 * threads)))
             batches = [kept[i:i + batch] for i in range(0, len(kept), batch)]
-            [job_future] = client.scatter([text], broadcast=True)
+            # A key of its own (hash=False): a job scattered by content shares its
+            # key with an earlier run of the same job, which the scheduler may be
+            # releasing ("lost dependencies").
+            [job_future] = client.scatter([text], broadcast=True, hash=False)
             futures = client.map(_run_blocks, [job_future] * len(batches), batches, pure=False)
             results = [b for part in client.gather(futures) for b in part]
     t2 = time.perf_counter()
@@ -244,7 +247,7 @@ def stream_ply(scene_or_functions, path, *, client, mode=None, grid=None, block=
         batch = max(1, math.ceil(len(kept) / (16 * threads)))
     in_flight = in_flight or 2 * threads
     batches = iter([kept[i:i + batch] for i in range(0, len(kept), batch)])
-    [job_future] = client.scatter([text], broadcast=True)
+    [job_future] = client.scatter([text], broadcast=True, hash=False)  # a key of its own, as above
     pending = deque()
 
     def submit():
