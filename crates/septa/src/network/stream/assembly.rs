@@ -444,28 +444,26 @@ impl Assembler {
         let mut several = Vec::new();
         if sheets != ncomp && self.cracked {
             // Behind a crack sheets may only seem to touch at points.
-            return Err(touching_at_points(&a, &piece_sheet, self.mode, contact));
+            return Err(touching_at_points(&a, &piece_sheet, self.mode, self.cracked, contact));
         }
         if sheets != ncomp {
-            let mut first = vec![NONE; ncomp];
-            several = vec![false; sheets];
+            let (mut first, mut multi) = (vec![NONE; ncomp], vec![false; ncomp]);
             for (&c, &s) in a.piece_comp.iter().zip(&piece_sheet) {
                 let f = &mut first[c as usize];
                 if *f == NONE {
                     *f = s;
-                } else if *f != s {
-                    several[s as usize] = true;
-                    several[*f as usize] = true;
                 }
+                multi[c as usize] |= *f != s;
             }
+            several = vec![false; sheets];
             for (&c, &s) in a.piece_comp.iter().zip(&piece_sheet) {
-                several[s as usize] |= several[first[c as usize] as usize];
+                several[s as usize] |= multi[c as usize];
             }
         }
         let cells_of = if a.starts.iter().all(|s| s.0 != u32::MAX) { rays(&a, &piece_sheet, &several) } else { None };
         let Some((shell_cell, ncells)) = cells_of else {
             if sheets != ncomp {
-                return Err(touching_at_points(&a, &piece_sheet, self.mode, contact));
+                return Err(touching_at_points(&a, &piece_sheet, self.mode, self.cracked, contact));
             }
             return Err(NetworkError::BlockResults(
                 "cells could not be found by ray shooting (a ray running along the network): \
@@ -584,12 +582,13 @@ pub(crate) struct Assembled {
 }
 
 /// The error for a component whose sheets touch only at points where the
-/// shells cannot be linked (a crack nearby, `topology::edge_on_grid_boundary`):
-/// names the functions (IA) or materials (MI) of the surfaces that touch.
+/// shells cannot be linked (a crack nearby, `topology::edge_on_grid_boundary`, or a
+/// local picture that cannot be read): names the functions (IA) or materials (MI) that touch.
 fn touching_at_points(
     a: &Assembled,
     piece_sheet: &[u32],
     mode: Mode,
+    cracked: bool,
     contact: impl FnOnce(&Assembled, &[u32], u32, u32) -> Option<[f64; 3]>,
 ) -> NetworkError {
     // The first component holding two sheets, and the labels of its pieces.
@@ -616,15 +615,20 @@ fn touching_at_points(
     }
     names.sort_unstable();
     names.dedup();
+    let why = if cracked {
+        "and the network is not closed near them (several of them vanish or tie at one point there, \
+         named by different planes in neighbouring tets)"
+    } else {
+        "and the shells meeting there could not be read from the tets around them"
+    };
     let what = match mode {
         Mode::Ia => "functions",
         Mode::Mi => "materials",
     };
     NetworkError::BlockResults(format!(
         "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points{at}, \
-         and the network is not closed near them (several of the {what} vanish or tie at one point there, \
-         named by different planes in neighbouring tets): stream the polygons only (--polygons-only), \
-         or run in memory (without --stream), which groups cells there"
+         {why}: stream the polygons only (--polygons-only), or run in memory (without --stream), which \
+         groups cells there"
     ))
 }
 

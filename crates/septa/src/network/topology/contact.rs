@@ -117,6 +117,11 @@ pub(crate) fn contact_links(ctx: &Ctx, index: &mut dyn RayIndex, key: &VKey) -> 
 /// different planes in different tets. Links at contact points are not
 /// trusted there (cells are then grouped).
 pub(crate) fn edge_on_grid_boundary(g: &BoxGrid, a: &VKey, b: &VKey) -> bool {
+    // Most edges are inside: their first grid vertex is off every boundary plane.
+    let p = g.vertex_ijk(a.grid[0]);
+    if (0..3).all(|x| p[x] != 0 && p[x] != g.res[x]) {
+        return false;
+    }
     let ijk: SmallVec<[[usize; 3]; 8]> =
         a.grid.iter().chain(&b.grid).filter(|&&v| v != u32::MAX).map(|&v| g.vertex_ijk(v)).collect();
     (0..3).any(|x| [0, g.res[x]].iter().any(|&side| ijk.iter().all(|p| p[x] == side)))
