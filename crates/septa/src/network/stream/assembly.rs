@@ -616,8 +616,8 @@ fn touching_at_points(
     names.sort_unstable();
     names.dedup();
     let why = if cracked {
-        "and the network is not closed near them (several of them vanish or tie at one point there, \
-         named by different planes in neighbouring tets)"
+        "and the network is not closed near them (an edge of one face off the grid boundary; vertex \
+         keys name each point by the point alone, so this is a defect: please report the input)"
     } else {
         "and the shells meeting there could not be read from the tets around them"
     };
