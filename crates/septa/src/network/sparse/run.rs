@@ -498,6 +498,27 @@ fn finish_merged(
     Ok((net, stats))
 }
 
+/// A block worker taken from `pool` for one task of the parallel loop and
+/// put back when the task ends, so the next window's tasks reuse its
+/// tables and its record of the last block's lengths (the parallel loop
+/// makes a fresh state for every piece of work it splits off).
+struct Pooled<'a>(Worker, &'a std::sync::Mutex<Vec<Worker>>);
+
+impl<'a> Pooled<'a> {
+    fn take(pool: &'a std::sync::Mutex<Vec<Worker>>) -> Pooled<'a> {
+        let w = pool.lock().ok().and_then(|mut p| p.pop()).unwrap_or_default();
+        Pooled(w, pool)
+    }
+}
+
+impl Drop for Pooled<'_> {
+    fn drop(&mut self) {
+        if let Ok(mut p) = self.1.lock() {
+            p.push(std::mem::take(&mut self.0));
+        }
+    }
+}
+
 /// Merges a window of block results (in block order) and counts them;
 /// returns the time it took.
 fn merge_window(merger: &mut Merger, stats: &mut SparseStats, results: Vec<BlockResult>) -> std::time::Duration {
@@ -543,17 +564,18 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
     let mut merger = Merger::new(options.mode);
     let mut merge_time = std::time::Duration::ZERO;
     let mut pending: Vec<BlockResult> = Vec::new();
+    let pool = std::sync::Mutex::new(Vec::new());
     for chunk in plan.kept.chunks(window) {
         let (merged, results) = rayon::join(
             || merge_window(&mut merger, &mut stats, std::mem::take(&mut pending)),
             || {
                 chunk
                     .par_iter()
-                    .map_init(Worker::default, |w, &i| {
+                    .map_init(|| Pooled::take(&pool), |w, &i| {
                         if options.cancelled() {
                             return Err(NetworkError::Cancelled);
                         }
-                        let r = run_block_with(w, &g, grid, functions, options, i)?;
+                        let r = run_block_with(&mut w.0, &g, grid, functions, options, i)?;
                         if let Some(p) = &options.progress {
                             p.tick(&done, plan.kept.len());
                         }
@@ -566,6 +588,8 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
         pending = results?;
     }
     merge_time += merge_window(&mut merger, &mut stats, pending);
+    // The workers' tables go before the merged network's topology.
+    drop(pool);
     let t = Instant::now();
     let m = merger.finish();
     merge_time += t.elapsed();
