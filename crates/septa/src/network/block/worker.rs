@@ -241,11 +241,6 @@ impl Worker {
             .map_err(|source| NetworkError::Tet { tet: t, source })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
-        // Degenerate tet faces: the network contains the whole face.
-        let mut deg = [None::<u16>; 4];
-        for (i, d) in deg.iter_mut().enumerate() {
-            *d = degenerate_face(ctx.mode, &self.vals, &self.active, FACE_OF[i]);
-        }
         // Region labels and nodes.
         let base = st.uf.len() as u32;
         let base_label = std::mem::take(&mut self.base_label);
@@ -288,7 +283,8 @@ impl Worker {
             match face.plane {
                 Plane::TetFace(i) => {
                     let i = i as usize;
-                    if let Some(z) = deg[i] {
+                    let material = c.cells()[face.cells[0] as usize].material();
+                    if let Some(z) = tet_face_zero(ctx.mode, &self.vals, &self.active, FACE_OF[i], material) {
                         let verts = face.vertices.iter().map(|&v| vertex_id(self, c, ctx, st, &tet, v)).collect();
                         let h = st.out.halves.len() as u32;
                         st.out.halves.push(HalfPoly {
@@ -465,7 +461,7 @@ fn on_tet_edge(c: &Complex, e: u32) -> bool {
 fn zero_set(mode: Mode, c: &Complex, vals: &[[f64; 4]], v: u32) -> SmallVec<[u16; 8]> {
     let vert = &c.vertices()[v as usize];
     if vert.dim() > 0 {
-        return vert.functions().iter().copied().collect();
+        return c.tied_functions(v, vals);
     }
     let corner = vert.simplex().trailing_zeros() as usize;
     match mode {
@@ -521,17 +517,25 @@ pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
     }
 }
 
-/// Whether tet face `corners` lies in the network: IA, the smallest active
-/// function vanishing at its 3 corners; MI, two active functions tied for
-/// the maximum at all 3 corners (returns the first of them).
-pub(crate) fn degenerate_face(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3]) -> Option<u16> {
+/// The function naming the network face that a piece of tet face
+/// `corners` lies on, seen from the piece's cell of material `material`
+/// (MI, a local index; IA ignores it), or `None` if the piece is off the
+/// network.
+/// - IA: a function vanishing at the face's three corners vanishes on the
+///   whole face, so every piece lies on its zero set.
+/// - MI: another function equal to the material at the three corners ties
+///   with it on the whole face (their pair plane is the tet face). Where the
+///   material wins on the face, that tie is an interface to the cell across
+///   the face; the piece is named by the smaller of the two. Where a third
+///   function wins on part of the face, only the rest lies on the network,
+///   and the tet across names the same pieces by the same vertex keys.
+pub(crate) fn tet_face_zero(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3], material: u16) -> Option<u16> {
     match mode {
         Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
         Mode::Mi => {
-            let max = corners.map(|i| vals.iter().map(|r| r[i]).fold(f64::NEG_INFINITY, f64::max));
-            let tied: SmallVec<[usize; 4]> =
-                (0..vals.len()).filter(|&f| (0..3).all(|j| vals[f][corners[j]] == max[j])).collect();
-            (tied.len() >= 2).then(|| active[tied[0]])
+            let m = material as usize;
+            let tied = |f: usize| f != m && corners.iter().all(|&i| vals[f][i] == vals[m][i]);
+            (0..vals.len()).find(|&f| tied(f)).map(|f| active[f.min(m)])
         }
     }
 }

@@ -34,7 +34,7 @@ use smallvec::SmallVec;
 
 use crate::complex::{Complex, Mode, Plane, NONE};
 use crate::grid::{BoxGrid, Grid};
-use crate::network::block::{active_functions, degenerate_face, vertex_key, Ctx, FACE_OF};
+use crate::network::block::{active_functions, tet_face_zero, vertex_key, Ctx, FACE_OF};
 use crate::network::VKey;
 use crate::uf::UnionFind;
 
@@ -594,8 +594,8 @@ pub(super) fn face_side(ctx: &Ctx, view: &TetView, face: &crate::complex::Face, 
     let Plane::TetFace(i) = face.plane else {
         return Some(FaceSide::Of(if face.cells[0] == cell { 0 } else { 1 }));
     };
-    let z = degenerate_face(ctx.mode, &view.vals, &view.active, FACE_OF[i as usize])?;
     let c = &view.complex.cells()[cell as usize];
+    let z = tet_face_zero(ctx.mode, &view.vals, &view.active, FACE_OF[i as usize], c.material())?;
     Some(match ctx.mode {
         Mode::Ia => {
             let local = view.active.iter().position(|&f| f == z)? as u16;
