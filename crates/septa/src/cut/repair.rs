@@ -104,7 +104,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
                 out.face_triangles[*f as usize] = t.clone();
                 out.face_split[*f as usize] = true;
             }
-            let r2 = out.verify();
+            let r2 = out.verify_since(&r);
             if r2.violations() < r.violations() {
                 for (f, _) in &faces {
                     shaped[*f as usize] = true;
@@ -144,7 +144,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
             out.face_triangles[f as usize] = tris;
             out.face_split[f as usize] = true;
         }
-        let r2 = out.verify();
+        let r2 = out.verify_since(&r);
         if r2.violations() < r.violations() {
             for &f in &faces {
                 fanned[f as usize] = true;
