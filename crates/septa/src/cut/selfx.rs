@@ -9,18 +9,76 @@ use rayon::prelude::*;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
-    orient_filtered(x, a, b, c, d).unwrap_or_else(|| {
-        // Four points with one coordinate exactly equal lie in one axis
-        // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
-        // cut-vertices are snapped onto them) are all of this kind; without
-        // this shortcut each of their planarity and coplanar-pair tests
-        // went through the interval and exact determinants.
-        let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
-        if (0..3).any(same) {
-            return Sign::Zero;
+    orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_slow(x, a, b, c, d))
+}
+
+/// [`orient`] after its static filter gave up.
+fn orient_slow(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    // Four points with one coordinate exactly equal lie in one axis
+    // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
+    // cut-vertices are snapped onto them) are all of this kind; without
+    // this shortcut each of their planarity and coplanar-pair tests
+    // went through the interval and exact determinants.
+    let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
+    if (0..3).any(same) {
+        return Sign::Zero;
+    }
+    orient_exact(x, a, b, c, d)
+}
+
+/// The orientations one triangle pair's test asks for, remembered while it
+/// runs: the edge-against-triangle tests ask for the same determinant
+/// several times (each corner against the other triangle's plane once per
+/// edge through it; an edge against an edge from both triangles' sides),
+/// and on nearly degenerate pairs (rounded cut-vertices along a nearly
+/// straight chain next to a nearly perpendicular face: plate_genus9,
+/// staircase) each of them went through intervals and the exact
+/// determinant again. Only signs the static filter cannot decide are kept,
+/// under the sorted vertex ids (the sign flips with the permutation's
+/// parity, exactly).
+struct PairOrients<'a> {
+    x: &'a [[f64; 3]],
+    keys: [[u32; 4]; 16],
+    signs: [Sign; 16],
+    n: usize,
+}
+
+impl<'a> PairOrients<'a> {
+    fn new(x: &'a [[f64; 3]]) -> Self {
+        PairOrients { x, keys: [[0; 4]; 16], signs: [Sign::Zero; 16], n: 0 }
+    }
+
+    fn orient(&mut self, a: u32, b: u32, c: u32, d: u32) -> Sign {
+        if let Some(s) = orient_filtered(self.x, a, b, c, d) {
+            return s;
         }
-        orient_exact(x, a, b, c, d)
-    })
+        let mut k = [a, b, c, d];
+        let mut odd = false;
+        for i in 0..3 {
+            for j in 0..3 - i {
+                if k[j] > k[j + 1] {
+                    k.swap(j, j + 1);
+                    odd = !odd;
+                }
+            }
+        }
+        let s = match self.keys[..self.n].iter().position(|q| *q == k) {
+            Some(i) => self.signs[i],
+            None => {
+                let s = orient_slow(self.x, k[0], k[1], k[2], k[3]);
+                if self.n < self.keys.len() {
+                    (self.keys[self.n], self.signs[self.n]) = (k, s);
+                    self.n += 1;
+                }
+                s
+            }
+        };
+        if odd {
+            s.flip()
+        } else {
+            s
+        }
+    }
 }
 
 /// A triangle's plane prepared once for many [`TriPlane::side`] queries:
@@ -224,9 +282,10 @@ fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
 }
 
 /// Closed segment `pq` against closed triangle `t`.
-fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
-    let o1 = orient(x, t[0], t[1], t[2], p);
-    let o2 = orient(x, t[0], t[1], t[2], q);
+fn seg_tri(o: &mut PairOrients, p: u32, q: u32, t: &[u32; 3]) -> bool {
+    let x = o.x;
+    let o1 = o.orient(t[0], t[1], t[2], p);
+    let o2 = o.orient(t[0], t[1], t[2], q);
     if o1 != Sign::Zero && o1 == o2 {
         return false;
     }
@@ -236,7 +295,7 @@ fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
             || in_tri2(x, k, q, t)
             || (0..3).any(|e| seg_seg2(x, k, p, q, t[e], t[(e + 1) % 3]));
     }
-    let s = [orient(x, p, q, t[0], t[1]), orient(x, p, q, t[1], t[2]), orient(x, p, q, t[2], t[0])];
+    let s = [o.orient(p, q, t[0], t[1]), o.orient(p, q, t[1], t[2]), o.orient(p, q, t[2], t[0])];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
@@ -325,6 +384,7 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
     if projections_separated(x, t1, &p1.n, t2) {
         return false;
     }
+    let mut o = PairOrients::new(x);
     let mut shared = [0u32; 3];
     let mut ns = 0;
     for &v in t1 {
@@ -335,8 +395,8 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
     }
     match ns {
         0 => {
-            (0..3).any(|e| seg_tri(x, t1[e], t1[(e + 1) % 3], t2))
-                || (0..3).any(|e| seg_tri(x, t2[e], t2[(e + 1) % 3], t1))
+            (0..3).any(|e| seg_tri(&mut o, t1[e], t1[(e + 1) % 3], t2))
+                || (0..3).any(|e| seg_tri(&mut o, t2[e], t2[(e + 1) % 3], t1))
         }
         1 => {
             let v = shared[0];
@@ -345,13 +405,13 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
                 [t[(k + 1) % 3], t[(k + 2) % 3]]
             };
             let (o1, o2) = (other(t1), other(t2));
-            if seg_tri(x, o1[0], o1[1], t2) || seg_tri(x, o2[0], o2[1], t1) {
+            if seg_tri(&mut o, o1[0], o1[1], t2) || seg_tri(&mut o, o2[0], o2[1], t1) {
                 return true;
             }
             // an edge from v lying in the other triangle's plane may run into it
             for (os, t) in [(&o1, t2), (&o2, t1)] {
                 for &w in os.iter() {
-                    if orient(x, t[0], t[1], t[2], w) == Sign::Zero {
+                    if o.orient(t[0], t[1], t[2], w) == Sign::Zero {
                         let k = proj_axis(x, t);
                         let opp = other(t);
                         if in_tri2(x, k, w, t) || seg_seg2(x, k, v, w, opp[0], opp[1]) {
