@@ -19,7 +19,11 @@
 //!    c. by certified vertex moves of a few ulps ([`super::nudge`]).
 //!
 //! The final exact report is kept in [`RepairStats`]: the guarantee is that
-//! report, not this heuristic.
+//! report, not this heuristic. Steps a and b move no vertex, so their
+//! re-check ([`super::verify::verify_cells_since`]) tests only the pairs
+//! with a re-written triangle and takes the others from the previous check
+//! (the same report as a full check); step c moves vertices and re-checks
+//! everything.
 
 use super::nudge::nudge;
 use super::triangulate::triangulate_shaped;
