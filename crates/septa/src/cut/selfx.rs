@@ -548,9 +548,11 @@ pub fn intersecting_pairs_touching(
         Some(fresh) => {
             // the cells of the fresh triangles, then every triangle in them
             let mut hot: rustc_hash::FxHashSet<u64> = Default::default();
-            (0..n).filter(|&t| fresh[t]).for_each(|t| cells_of(t, &mut |k| {
-                hot.insert(k);
-            }));
+            (0..n).filter(|&t| fresh[t]).for_each(|t| {
+                cells_of(t, &mut |k| {
+                    hot.insert(k);
+                })
+            });
             for t in 0..n {
                 cells_of(t, &mut |k| {
                     if fresh[t] || hot.contains(&k) {

@@ -186,5 +186,8 @@ fn recheck_after_rewriting_faces_equals_full_check() {
     same(&verify_cells_since(&y, &c, Some(&prev)), &full);
     // a re-check of a re-check
     let again = verify_cells_since(&y, &c, Some(&full));
-    same(&verify_cells_since(&y, &cells[..cells.len() - 1], Some(&again)), &verify_cells(&y, &cells[..cells.len() - 1]));
+    same(
+        &verify_cells_since(&y, &cells[..cells.len() - 1], Some(&again)),
+        &verify_cells(&y, &cells[..cells.len() - 1]),
+    );
 }
