@@ -79,6 +79,38 @@ mod overlap {
     use super::super::*;
 
     #[test]
+    fn remembered_orientations_match_direct_ones() {
+        // nearly coplanar points (a plane through rounded points, corners one
+        // ulp off) so that the static filter gives up and the memo is used;
+        // every ordering of every 4 of them, twice, including repeated ids
+        let mut x: Vec<[f64; 3]> = Vec::new();
+        for i in 0..6 {
+            let (u, v) = (0.1 + 0.37 * i as f64, 0.3 - 0.21 * i as f64);
+            let z: f64 = 0.3 * u + 0.7 * v + 0.1;
+            let z = f64::from_bits((z.to_bits() as i64 + (i % 3) as i64 - 1) as u64);
+            x.push([u, v, z]);
+        }
+        let mut o = PairOrients::new(&x);
+        let (mut slow, mut nonzero) = (0, 0);
+        for _ in 0..2 {
+            for a in 0..6u32 {
+                for b in 0..6u32 {
+                    for c in 0..6u32 {
+                        for d in 0..6u32 {
+                            let s = orient(&x, a, b, c, d);
+                            assert_eq!(o.orient(a, b, c, d), s, "{a} {b} {c} {d}");
+                            slow += orient_filtered(&x, a, b, c, d).is_none() as usize;
+                            nonzero += (s != Sign::Zero) as usize;
+                        }
+                    }
+                }
+            }
+            o = PairOrients::new(&x);
+        }
+        assert!(slow > 100 && nonzero > 0, "{slow} {nonzero}");
+    }
+
+    #[test]
     fn coplanar_triangles_sharing_a_vertex() {
         // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
         let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
