@@ -65,4 +65,10 @@ impl super::CutCellMesh {
     pub fn verify(&self) -> super::verify::VerifyReport {
         super::verify::verify_cells(&self.vertices, &self.cell_polygons())
     }
+
+    /// [`Self::verify`] after re-writing faces of the mesh that `prev`
+    /// checked, no vertex moved ([`super::verify::verify_cells_since`]).
+    pub fn verify_since(&self, prev: &super::verify::VerifyReport) -> super::verify::VerifyReport {
+        super::verify::verify_cells_since(&self.vertices, &self.cell_polygons(), Some(prev))
+    }
 }

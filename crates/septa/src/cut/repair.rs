@@ -19,7 +19,11 @@
 //!    c. by certified vertex moves of a few ulps ([`super::nudge`]).
 //!
 //! The final exact report is kept in [`RepairStats`]: the guarantee is that
-//! report, not this heuristic.
+//! report, not this heuristic. Steps a and b move no vertex, so their
+//! re-check ([`super::verify::verify_cells_since`]) tests only the pairs
+//! with a re-written triangle and takes the others from the previous check
+//! (the same report as a full check); step c moves vertices and re-checks
+//! everything.
 
 use super::nudge::nudge;
 use super::triangulate::triangulate_shaped;
@@ -104,7 +108,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
                 out.face_triangles[*f as usize] = t.clone();
                 out.face_split[*f as usize] = true;
             }
-            let r2 = out.verify();
+            let r2 = out.verify_since(&r);
             if r2.violations() < r.violations() {
                 for (f, _) in &faces {
                     shaped[*f as usize] = true;
@@ -144,7 +148,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
             out.face_triangles[f as usize] = tris;
             out.face_split[f as usize] = true;
         }
-        let r2 = out.verify();
+        let r2 = out.verify_since(&r);
         if r2.violations() < r.violations() {
             for &f in &faces {
                 fanned[f as usize] = true;

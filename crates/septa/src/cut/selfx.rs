@@ -9,18 +9,76 @@ use rayon::prelude::*;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
 pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
-    orient_filtered(x, a, b, c, d).unwrap_or_else(|| {
-        // Four points with one coordinate exactly equal lie in one axis
-        // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
-        // cut-vertices are snapped onto them) are all of this kind; without
-        // this shortcut each of their planarity and coplanar-pair tests
-        // went through the interval and exact determinants.
-        let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
-        if (0..3).any(same) {
-            return Sign::Zero;
+    orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_slow(x, a, b, c, d))
+}
+
+/// [`orient`] after its static filter gave up.
+fn orient_slow(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    // Four points with one coordinate exactly equal lie in one axis
+    // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
+    // cut-vertices are snapped onto them) are all of this kind; without
+    // this shortcut each of their planarity and coplanar-pair tests
+    // went through the interval and exact determinants.
+    let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
+    if (0..3).any(same) {
+        return Sign::Zero;
+    }
+    orient_exact(x, a, b, c, d)
+}
+
+/// The orientations one triangle pair's test asks for, remembered while it
+/// runs: the edge-against-triangle tests ask for the same determinant
+/// several times (each corner against the other triangle's plane once per
+/// edge through it; an edge against an edge from both triangles' sides),
+/// and on nearly degenerate pairs (rounded cut-vertices along a nearly
+/// straight chain next to a nearly perpendicular face: plate_genus9,
+/// staircase) each of them went through intervals and the exact
+/// determinant again. Only signs the static filter cannot decide are kept,
+/// under the sorted vertex ids (the sign flips with the permutation's
+/// parity, exactly).
+struct PairOrients<'a> {
+    x: &'a [[f64; 3]],
+    keys: [[u32; 4]; 16],
+    signs: [Sign; 16],
+    n: usize,
+}
+
+impl<'a> PairOrients<'a> {
+    fn new(x: &'a [[f64; 3]]) -> Self {
+        PairOrients { x, keys: [[0; 4]; 16], signs: [Sign::Zero; 16], n: 0 }
+    }
+
+    fn orient(&mut self, a: u32, b: u32, c: u32, d: u32) -> Sign {
+        if let Some(s) = orient_filtered(self.x, a, b, c, d) {
+            return s;
         }
-        orient_exact(x, a, b, c, d)
-    })
+        let mut k = [a, b, c, d];
+        let mut odd = false;
+        for i in 0..3 {
+            for j in 0..3 - i {
+                if k[j] > k[j + 1] {
+                    k.swap(j, j + 1);
+                    odd = !odd;
+                }
+            }
+        }
+        let s = match self.keys[..self.n].iter().position(|q| *q == k) {
+            Some(i) => self.signs[i],
+            None => {
+                let s = orient_slow(self.x, k[0], k[1], k[2], k[3]);
+                if self.n < self.keys.len() {
+                    (self.keys[self.n], self.signs[self.n]) = (k, s);
+                    self.n += 1;
+                }
+                s
+            }
+        };
+        if odd {
+            s.flip()
+        } else {
+            s
+        }
+    }
 }
 
 /// A triangle's plane prepared once for many [`TriPlane::side`] queries:
@@ -168,12 +226,12 @@ pub(crate) fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign 
     if eq(pa, pb) || eq(pa, pc) || eq(pb, pc) {
         return Sign::Zero;
     }
-    fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, a: u32, b: u32, c: u32) -> R {
-        let p = |t: u32| (R::of(x[t as usize][i]), R::of(x[t as usize][j]));
-        let (pa, pb, pc) = (p(a), p(b), p(c));
-        pb.0.sub(&pa.0).mul(&pc.1.sub(&pa.1)).sub(&pb.1.sub(&pa.1).mul(&pc.0.sub(&pa.0)))
-    }
-    filtered_sign(|| f::<Interval>(x, i, j, a, b, c), || f::<Exact>(x, i, j, a, b, c))
+    // det [b - a; c - a] with the differences formed inside the exact
+    // predicate (its own filter, then i128 or expansion arithmetic, bignums
+    // only outside their exponent window): nearly collinear rounded rims of
+    // flat cut-faces (plate_genus9: ~11k signs per check) used to go through
+    // intervals and then allocating bignums.
+    septa_exact::det_sign_diff::<2>(&[[pb[i], pb[j]], [pc[i], pc[j]]], &[[pa[i], pa[j]], [pa[i], pa[j]]])
 }
 
 /// Sign of `(w - v) . (o - v)` in the projection dropping axis `k`.
@@ -224,9 +282,10 @@ fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
 }
 
 /// Closed segment `pq` against closed triangle `t`.
-fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
-    let o1 = orient(x, t[0], t[1], t[2], p);
-    let o2 = orient(x, t[0], t[1], t[2], q);
+fn seg_tri(o: &mut PairOrients, p: u32, q: u32, t: &[u32; 3]) -> bool {
+    let x = o.x;
+    let o1 = o.orient(t[0], t[1], t[2], p);
+    let o2 = o.orient(t[0], t[1], t[2], q);
     if o1 != Sign::Zero && o1 == o2 {
         return false;
     }
@@ -236,7 +295,7 @@ fn seg_tri(x: &[[f64; 3]], p: u32, q: u32, t: &[u32; 3]) -> bool {
             || in_tri2(x, k, q, t)
             || (0..3).any(|e| seg_seg2(x, k, p, q, t[e], t[(e + 1) % 3]));
     }
-    let s = [orient(x, p, q, t[0], t[1]), orient(x, p, q, t[1], t[2]), orient(x, p, q, t[2], t[0])];
+    let s = [o.orient(p, q, t[0], t[1]), o.orient(p, q, t[1], t[2]), o.orient(p, q, t[2], t[0])];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
@@ -325,6 +384,7 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
     if projections_separated(x, t1, &p1.n, t2) {
         return false;
     }
+    let mut o = PairOrients::new(x);
     let mut shared = [0u32; 3];
     let mut ns = 0;
     for &v in t1 {
@@ -335,8 +395,8 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
     }
     match ns {
         0 => {
-            (0..3).any(|e| seg_tri(x, t1[e], t1[(e + 1) % 3], t2))
-                || (0..3).any(|e| seg_tri(x, t2[e], t2[(e + 1) % 3], t1))
+            (0..3).any(|e| seg_tri(&mut o, t1[e], t1[(e + 1) % 3], t2))
+                || (0..3).any(|e| seg_tri(&mut o, t2[e], t2[(e + 1) % 3], t1))
         }
         1 => {
             let v = shared[0];
@@ -345,13 +405,13 @@ fn pair_intersects_planes(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u3
                 [t[(k + 1) % 3], t[(k + 2) % 3]]
             };
             let (o1, o2) = (other(t1), other(t2));
-            if seg_tri(x, o1[0], o1[1], t2) || seg_tri(x, o2[0], o2[1], t1) {
+            if seg_tri(&mut o, o1[0], o1[1], t2) || seg_tri(&mut o, o2[0], o2[1], t1) {
                 return true;
             }
             // an edge from v lying in the other triangle's plane may run into it
             for (os, t) in [(&o1, t2), (&o2, t1)] {
                 for &w in os.iter() {
-                    if orient(x, t[0], t[1], t[2], w) == Sign::Zero {
+                    if o.orient(t[0], t[1], t[2], w) == Sign::Zero {
                         let k = proj_axis(x, t);
                         let opp = other(t);
                         if in_tri2(x, k, w, t) || seg_seg2(x, k, v, w, opp[0], opp[1]) {
@@ -407,6 +467,20 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
 /// with `first_only` just the smallest pair (or none). Triangles must not be
 /// degenerate (collinear corners).
 pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -> Vec<(u32, u32)> {
+    intersecting_pairs_touching(x, tris, None, first_only)
+}
+
+/// [`intersecting_pairs`] restricted to the pairs with at least one `fresh`
+/// triangle (all pairs with `None`): a re-check after some faces were
+/// re-written, the other pairs being known from the previous check (their
+/// coordinates unchanged). Only grid cells holding a fresh triangle are
+/// filled and swept.
+pub fn intersecting_pairs_touching(
+    x: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    fresh: Option<&[bool]>,
+    first_only: bool,
+) -> Vec<(u32, u32)> {
     let n = tris.len();
     if n < 2 {
         return Vec::new();
@@ -459,17 +533,37 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
     let low_cell: Vec<[u32; 3]> = boxes.iter().map(|b| [0, 1, 2].map(|k| cell(b.0[k], k) as u32)).collect();
     let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
     let mut entries: Vec<(u64, u32)> = Vec::new();
-    for (t, b) in boxes.iter().enumerate() {
-        let (c0, c1) = (low_cell[t].map(|c| c as usize), [0, 1, 2].map(|k| cell(b.1[k], k)));
+    let cells_of = |t: usize, f: &mut dyn FnMut(u64)| {
+        let (c0, c1) = (low_cell[t].map(|c| c as usize), [0, 1, 2].map(|k| cell(boxes[t].1[k], k)));
         for i in c0[0]..=c1[0] {
             for j in c0[1]..=c1[1] {
                 for l in c0[2]..=c1[2] {
-                    entries.push((key([i, j, l]), t as u32));
+                    f(key([i, j, l]));
                 }
             }
         }
+    };
+    match fresh {
+        None => (0..n).for_each(|t| cells_of(t, &mut |k| entries.push((k, t as u32)))),
+        Some(fresh) => {
+            // the cells of the fresh triangles, then every triangle in them
+            let mut hot: rustc_hash::FxHashSet<u64> = Default::default();
+            (0..n).filter(|&t| fresh[t]).for_each(|t| {
+                cells_of(t, &mut |k| {
+                    hot.insert(k);
+                })
+            });
+            for t in 0..n {
+                cells_of(t, &mut |k| {
+                    if fresh[t] || hot.contains(&k) {
+                        entries.push((k, t as u32))
+                    }
+                });
+            }
+        }
     }
-    entries.sort_unstable();
+    // the order inside a cell is irrelevant (it is sorted by x below)
+    entries.sort_unstable_by_key(|e| e.0);
     let mut groups: Vec<(usize, usize)> = Vec::new();
     let mut s = 0;
     while s < entries.len() {
@@ -497,9 +591,13 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
         let mut found: Vec<(u32, u32)> = Vec::new();
         for a in 0..buf.len() {
             let (lo1, hi1, l1, t1) = buf[a];
+            let old1 = fresh.is_some_and(|f| !f[t1 as usize]);
             for &(lo2, hi2, l2, t2) in &buf[a + 1..] {
                 if lo2[0] > hi1[0] {
                     break;
+                }
+                if old1 && fresh.is_some_and(|f| !f[t2 as usize]) {
+                    continue;
                 }
                 if lo1[1] > hi2[1] || lo2[1] > hi1[1] || lo1[2] > hi2[2] || lo2[2] > hi1[2] {
                     continue;
@@ -537,94 +635,5 @@ pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn static_filter_agrees_with_exact_orientation() {
-        let x = [[0.1, 0.2, 0.3], [1.7, -0.4, 0.2], [0.3, 2.1, -0.6], [0.5, 0.5, 1.9], [0.9, 0.7, 0.05]];
-        for a in 0..5u32 {
-            for b in 0..5u32 {
-                for c in 0..5u32 {
-                    for d in 0..5u32 {
-                        assert_eq!(orient(&x, a, b, c, d), orient_exact(&x, a, b, c, d));
-                    }
-                }
-            }
-        }
-    }
-
-    #[test]
-    fn prepared_plane_filter_never_contradicts_exact_orientation() {
-        // random triangles and query points on, one ulp off, and far from
-        // their planes; the filter may give up but never be wrong
-        let mut s = 0x9e3779b97f4a7c15u64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
-        let (mut decided, mut undecided) = (0, 0);
-        for i in 0..4000 {
-            let mut x: Vec<[f64; 3]> = (0..3).map(|_| [rnd(), rnd(), rnd()]).collect();
-            let (l, m) = (rnd().abs(), rnd().abs());
-            // a point of the plane (rounded), then nudged by `i % 3` ulps
-            let q: [f64; 3] = std::array::from_fn(|k| {
-                let v = x[0][k] + l * (x[1][k] - x[0][k]) + m * (x[2][k] - x[0][k]);
-                let bits = v.to_bits() as i64 + (i % 3) as i64 - 1;
-                if i % 5 == 0 {
-                    v + rnd()
-                } else {
-                    f64::from_bits(bits as u64)
-                }
-            });
-            x.push(q);
-            let p = TriPlane::new(&x, &[0, 1, 2]);
-            match p.side(&x[3]) {
-                Some(sg) => {
-                    decided += 1;
-                    assert_eq!(sg, orient_exact(&x, 0, 1, 2, 3), "case {i}");
-                }
-                None => undecided += 1,
-            }
-        }
-        // both branches exercised
-        assert!(decided > 100 && undecided > 100, "{decided} {undecided}");
-    }
-
-    #[test]
-    fn axis_plane_points_are_exactly_coplanar() {
-        let x = [[0.1, 0.3, 0.7], [0.9, -2.5, 0.7], [1e-30, 4.0, 0.7], [3.3, 1.0 / 3.0, 0.7]];
-        assert_eq!(orient(&x, 0, 1, 2, 3), Sign::Zero);
-        assert_eq!(orient_exact(&x, 0, 1, 2, 3), Sign::Zero);
-        // 2D: on an axis-parallel line, or a repeated projected point
-        let y = [[0.1, 0.3, 0.7], [0.1, -2.5, 9.0], [0.1, 4.0, 1e-300], [5.0, 0.3, 0.7]];
-        for k in 0..3 {
-            assert_eq!(orient2(&y, k, 0, 0, 3), Sign::Zero);
-        }
-        assert_eq!(orient2(&y, 1, 0, 1, 2), Sign::Zero);
-        assert_eq!(orient2(&y, 2, 0, 1, 2), Sign::Zero);
-        // a projection where they are not collinear still gets its sign
-        assert_ne!(orient2(&y, 2, 0, 1, 3), Sign::Zero);
-        assert_ne!(orient2(&y, 0, 0, 1, 2), Sign::Zero);
-    }
-}
-
-#[cfg(test)]
-mod overlap_tests {
-    use super::*;
-
-    #[test]
-    fn coplanar_triangles_sharing_a_vertex() {
-        // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
-        let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
-        // edge 0-3 runs along edge 0-1: overlapping
-        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
-        // (0, 5, ..) pokes into t1's angle
-        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
-        // mirrored below the x axis: touch only at the shared vertex
-        let y = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.5, 0.0], [1.0, -1.0, 0.0]];
-        assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
-    }
-}
+#[path = "selfx_tests.rs"]
+mod tests;

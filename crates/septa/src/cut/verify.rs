@@ -27,7 +27,7 @@
 //! a poor triangulation of a valid polygon can only add reported
 //! intersections, never hide one, so a zero report is a proof.
 
-use super::selfx::{intersecting_pairs, orient, orient2};
+use super::selfx::{intersecting_pairs, intersecting_pairs_touching, orient, orient2};
 use super::triangulate::triangulate;
 use rustc_hash::FxHashMap;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
@@ -64,6 +64,24 @@ pub struct VerifyReport {
     /// would re-triangulate.
     #[serde(skip)]
     pub offending_polygons: Vec<Vec<u32>>,
+    /// The triangles tested and the intersecting pairs found, by vertex
+    /// ids, for a re-check of a changed mesh ([`verify_cells_since`]).
+    #[serde(skip)]
+    pub(crate) memo: Option<std::sync::Arc<PairMemo>>,
+}
+
+/// What the triangle-triangle test of one check saw: its triangles (each
+/// as its sorted vertex ids) and its intersecting pairs.
+#[derive(Debug, Default)]
+pub(crate) struct PairMemo {
+    triangles: rustc_hash::FxHashSet<[u32; 3]>,
+    pairs: Vec<([u32; 3], [u32; 3])>,
+}
+
+fn tri_key(t: &[u32; 3]) -> [u32; 3] {
+    let mut k = *t;
+    k.sort_unstable();
+    k
 }
 
 impl VerifyReport {
@@ -151,6 +169,17 @@ fn volume_sign(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Sign {
 /// Checks `cells` (each a list of polygons of vertex ids into `x`, oriented
 /// outwards) exactly on the doubles `x`; see the module doc for what.
 pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
+    verify_cells_since(x, cells, None)
+}
+
+/// [`verify_cells`] after a change to a mesh that `prev` checked, where no
+/// vertex id `prev` saw has moved (new vertices may have been appended):
+/// the same report, but only pairs of triangles with at least one triangle
+/// that `prev` did not test go through the intersection test; the pairs of
+/// triangles tested before are taken from `prev` (whether two triangles
+/// meet depends only on their corners' coordinates). The repair re-writes a
+/// few faces and re-checks: this re-check used to test every pair again.
+pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<&VerifyReport>) -> VerifyReport {
     let mut r = VerifyReport { cells: cells.len(), ..Default::default() };
     // distinct faces, triangulated once; each cell refers to them with a direction
     let mut face_of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
@@ -263,7 +292,7 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
         }
     }
     r.triangles = all.len() + r.degenerate_triangles;
-    let pairs = intersecting_pairs(x, &all, false);
+    let pairs = triangle_pairs(x, &all, prev.and_then(|p| p.memo.as_deref()), &mut r);
     r.intersecting_pairs = pairs.len();
     bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
     for &(a, b) in pairs.iter().take(3) {
@@ -287,4 +316,33 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
     bad_faces.dedup();
     r.offending_polygons = bad_faces.iter().map(|&f| face_keys[f as usize].clone()).collect();
     r
+}
+
+/// The intersecting pairs of `all` (indices, sorted), through the memo of a
+/// previous check when there is one; records this check's memo in `r`.
+fn triangle_pairs(x: &[[f64; 3]], all: &[[u32; 3]], prev: Option<&PairMemo>, r: &mut VerifyReport) -> Vec<(u32, u32)> {
+    let keys: Vec<[u32; 3]> = all.iter().map(tri_key).collect();
+    let index: FxHashMap<[u32; 3], u32> = keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
+    if index.len() != keys.len() {
+        // a triangle written twice: no memo (pairs are named by vertex ids)
+        return intersecting_pairs(x, all, false);
+    }
+    let mut pairs = match prev {
+        None => intersecting_pairs(x, all, false),
+        Some(m) => {
+            let fresh: Vec<bool> = keys.iter().map(|k| !m.triangles.contains(k)).collect();
+            let mut p = intersecting_pairs_touching(x, all, Some(&fresh), false);
+            for (a, b) in &m.pairs {
+                if let (Some(&i), Some(&j)) = (index.get(a), index.get(b)) {
+                    p.push((i.min(j), i.max(j)));
+                }
+            }
+            p.sort_unstable();
+            p
+        }
+    };
+    pairs.dedup();
+    let memo_pairs = pairs.iter().map(|&(a, b)| (keys[a as usize], keys[b as usize])).collect();
+    r.memo = Some(std::sync::Arc::new(PairMemo { triangles: index.into_keys().collect(), pairs: memo_pairs }));
+    pairs
 }

@@ -6,7 +6,7 @@
 
 use crate::common;
 
-use septa::cut::verify::{polygon_planar, verify_cells};
+use septa::cut::verify::{polygon_planar, verify_cells, verify_cells_since, VerifyReport};
 use septa::cut::{cut_mesh, CutOptions};
 use septa::io::{mesh::read_mesh, planes::read_planes};
 
@@ -139,4 +139,55 @@ fn verify_catches_broken_embeddings() {
     let w = f[2] as usize;
     y[w] = y[w].map(|c| f64::from_bits(c.to_bits() + 1));
     assert!(verify_cells(&y, &cells).nonplanar_faces > 0);
+}
+
+/// The repair's re-check (`verify_cells_since`: only pairs with a triangle
+/// the previous check did not test go through the intersection test) gives
+/// the report of a full check, on a broken embedding whose polygons around
+/// a moved vertex are then re-written as fans (in one cell only, so edges
+/// become unbalanced too) and whose last cell is dropped.
+#[test]
+fn recheck_after_rewriting_faces_equals_full_check() {
+    let data = common::shared_data();
+    let mesh = read_mesh(&data.join("meshes/knight.obj")).unwrap();
+    let planes = read_planes(&data.join("topocut/knight.A5.plane")).unwrap();
+    let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &CutOptions::default()).unwrap();
+    let (mut y, cells) = (out.vertices.clone(), out.cell_polygons());
+    let v = cells[0][0][0];
+    let far = cells[0].iter().flatten().map(|&w| y[w as usize]).fold(y[v as usize], |a, p| {
+        let d = |q: [f64; 3]| (0..3).map(|k| (q[k] - y[v as usize][k]).powi(2)).sum::<f64>();
+        if d(p) > d(a) {
+            p
+        } else {
+            a
+        }
+    });
+    y[v as usize] = std::array::from_fn(|k| y[v as usize][k] + 1.5 * (far[k] - y[v as usize][k]));
+    let prev = verify_cells(&y, &cells);
+    assert!(prev.intersecting_pairs > 0, "{prev:?}");
+    let same = |a: &VerifyReport, b: &VerifyReport| {
+        assert_eq!(serde_json::to_value(a).unwrap(), serde_json::to_value(b).unwrap());
+        assert_eq!(a.offending_polygons, b.offending_polygons);
+    };
+    // nothing changed
+    same(&verify_cells_since(&y, &cells, Some(&prev)), &prev);
+    // polygons through v (in cell 0 only) as fans, the last cell dropped
+    let mut c = cells.clone();
+    let fan = |p: &Vec<u32>| -> Vec<Vec<u32>> { (1..p.len() - 1).map(|i| vec![p[0], p[i], p[i + 1]]).collect() };
+    c[0] = c[0].iter().flat_map(|p| if p.contains(&v) && p.len() > 3 { fan(p) } else { vec![p.clone()] }).collect();
+    c.pop();
+    // and a new point: a polygon of cell 1 fanned around its centre
+    let p = c[1][0].clone();
+    let centre = y.len() as u32;
+    y.push(std::array::from_fn(|k| p.iter().map(|&w| y[w as usize][k]).sum::<f64>() / p.len() as f64));
+    c[1].splice(0..1, (0..p.len()).map(|i| vec![centre, p[i], p[(i + 1) % p.len()]]));
+    let full = verify_cells(&y, &c);
+    assert!(full.triangles != prev.triangles && full.intersecting_pairs > 0, "{full:?}");
+    same(&verify_cells_since(&y, &c, Some(&prev)), &full);
+    // a re-check of a re-check
+    let again = verify_cells_since(&y, &c, Some(&full));
+    same(
+        &verify_cells_since(&y, &cells[..cells.len() - 1], Some(&again)),
+        &verify_cells(&y, &cells[..cells.len() - 1]),
+    );
 }
