@@ -15,7 +15,7 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
 
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
 /// (inline base64), with cell data `cell_id` and `volume`.
-pub fn vtu(m: &CutCellMesh) -> String {
+pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
     let ids: Vec<i64> = (0..m.num_cells as i64).collect();
     super::cut_vtu::polyhedra_vtu(&m.vertices, &m.cell_polygons(), &[("volume", &m.cell_volumes)], &[("cell_id", &ids)])
 }
@@ -23,7 +23,7 @@ pub fn vtu(m: &CutCellMesh) -> String {
 /// `cells.obj`: a group `cell_<i>` per cut-cell with its faces oriented
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
-pub fn obj(m: &CutCellMesh, explode: f64) -> String {
+pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     let cells = cell_faces(m);
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {

@@ -37,7 +37,7 @@
 //! that hold them (`rerun.rs`, `topology/contact.rs`). A network that is not
 //! closed near such points (a crack, where several functions vanish or tie at
 //! one point named by different planes in neighbouring tets; the in-memory
-//! path groups cells there) stops the run with [`NetworkError::BlockResults`].
+//! path groups cells there) stops the run with [`NetworkError::SheetsTouchAtPoints`].
 
 mod assembly;
 mod feeder;
