@@ -37,6 +37,9 @@ pub struct Args {
     /// Print one JSON object with counts, checks and timings.
     #[arg(long)]
     pub json: bool,
+    /// Print nothing but errors (and the `--json` object if asked for).
+    #[arg(short, long)]
+    pub quiet: bool,
     /// Mesh files to write, comma-separated: vtu (cells.vtu), obj
     /// (cells.obj), foam (OpenFOAM constant/polyMesh: points, faces, owner,
     /// neighbour, boundary with the patch `surface`, faceZones per plane
@@ -117,7 +120,7 @@ fn verify_file(a: &Args) -> CliResult {
     let j = serde_json::json!({ "file": a.mesh.display().to_string(), "violations": r.violations(), "verify": r });
     if a.json {
         println!("{j}");
-    } else {
+    } else if !a.quiet {
         println!(
             "{}: {} cells, {} faces, {} triangles checked exactly: {} violations",
             a.mesh.display(),
@@ -157,16 +160,17 @@ pub fn run(a: Args) -> CliResult {
     let t1 = Instant::now();
     let options =
         CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
-    let out =
-        crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))
-            .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
+    let out = crate::progress::during(a.json || a.quiet, "cutting", || {
+        cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options)
+    })
+    .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
     }
-    let check = crate::progress::during(a.json, "checking the cells", || out.validate());
+    let check = crate::progress::during(a.json || a.quiet, "checking the cells", || out.validate());
     let t2 = Instant::now();
-    let writing = crate::progress::stage(a.json, &format!("writing {}", out_dir.display()));
+    let writing = crate::progress::stage(a.json || a.quiet, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     let wants = |f: MeshFormat| !a.no_mesh_output && a.format.0.contains(&f);
@@ -268,7 +272,7 @@ pub fn run(a: Args) -> CliResult {
     dir.finish()?;
     if a.json {
         println!("{j}");
-    } else {
+    } else if !a.quiet {
         println!(
             "{} cut-vertices, {} cut-edges, {} cut-faces, {} cut-cells; euler {euler}; volume error {vol_err:.2e}; {:.3} s",
             c.cut_vertices,

@@ -170,6 +170,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
         out: Some(dir.to_path_buf()),
         threads: 0,
         json: false,
+        quiet: false,
         format: Default::default(),
         no_mesh_output: false,
         no_self_check: false,
