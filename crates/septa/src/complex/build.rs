@@ -136,6 +136,7 @@ impl Complex {
         }
         self.mode = Some(mode);
         self.num_functions = values.len();
+        self.degenerate = false;
         let preds = Predicates { values, mode, float: options.float };
         if options.lookup {
             if let Some(table) = super::lookup::table(mode, values.len()) {
@@ -150,6 +151,7 @@ impl Complex {
         for f in first..values.len() as u16 {
             self.insert(&preds, f, scratch)?;
         }
+        self.rename_tied_vertices(&preds);
         Ok(())
     }
 
@@ -188,6 +190,7 @@ impl Complex {
             let s = preds.vertex_sign(&self.vertices[v], self.orient[v], f);
             pos |= s > 0;
             neg |= s < 0;
+            self.degenerate |= s == 0;
             self.vsign.push(s);
         }
         match preds.mode {

@@ -7,8 +7,8 @@
 //! tie there may be encoded by either function); an edge by its two vertex
 //! keys, a face by its plane and sorted vertex keys, a cell by its label and
 //! sorted face keys. The form is the sorted list of each. Plane-based keys
-//! are unique for inputs without exact degeneracies; with exact ties two
-//! orders may encode one point by different planes.
+//! are unique also with exact ties: a point where more planes meet than
+//! define it is renamed by the point alone after the build (`ties.rs`).
 
 use super::types::{Complex, Mode, Plane};
 

@@ -50,6 +50,7 @@ mod lookup_table;
 mod merge;
 mod predicate;
 mod split;
+mod ties;
 #[cfg(feature = "tools")]
 pub mod stress;
 mod types;

@@ -169,6 +169,9 @@ pub struct Complex {
     pub(crate) orient: Vec<i8>,
     /// Scratch: sign of the function being inserted, per vertex.
     pub(crate) vsign: Vec<i8>,
+    /// Whether the last build met an exact zero sign at a vertex, so that a
+    /// vertex may lie on more planes than name it (complex/ties.rs).
+    pub(crate) degenerate: bool,
     /// Scratch of the split and merge steps, kept to reuse its buffers.
     pub(crate) scratch: super::split::Scratch,
 }

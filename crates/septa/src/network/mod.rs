@@ -180,9 +180,9 @@ pub enum NetworkError {
         labels: Vec<u16>,
         /// A point where they touch, when one was found.
         at: Option<[f64; 3]>,
-        /// Whether the network is not closed near them (a crack: several
-        /// surfaces vanish or tie at one point, named by different planes in
-        /// neighbouring tets) rather than unreadable around the point.
+        /// Whether the network is not closed near them (a crack: an edge of
+        /// one face off the grid boundary, which the point-only naming of
+        /// tied vertices rules out) rather than unreadable around the point.
         cracked: bool,
     },
     /// Continuation: the caller's field failed; its own message (a Python
@@ -235,8 +235,8 @@ fn contact_text(at: &Option<[f64; 3]>) -> String {
 
 fn touch_reason(cracked: bool) -> &'static str {
     if cracked {
-        "and the network is not closed near them (several of them vanish or tie at one point there, named by \
-         different planes in neighbouring tets)"
+        "and the network is not closed near them (an edge of one face off the grid boundary; vertex keys name \
+         each point by the point alone, so this is a defect: please report the input)"
     } else {
         "and the shells meeting there could not be read from the tets around them"
     }

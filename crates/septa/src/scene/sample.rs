@@ -22,12 +22,22 @@ use super::vec3::V3;
 /// ```
 pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     let k = functions.len();
+    // Chunks of rows keep the per-task overhead small.
+    const ROWS: usize = 256;
+    // A block of sparse evaluation (17^3 points by default) runs on one
+    // thread (the blocks themselves run in parallel): values appended in
+    // order, without zeroing the array first or splitting it into tasks.
+    if points.len() <= 32 * ROWS {
+        let mut out = Vec::with_capacity(points.len() * k);
+        for p in points {
+            out.extend(functions.iter().map(|f| f.eval(*p)));
+        }
+        return out;
+    }
     let mut out = vec![0.0; points.len() * k];
     if k == 0 {
         return out;
     }
-    // Chunks of rows keep the per-task overhead small.
-    const ROWS: usize = 256;
     out.par_chunks_mut(ROWS * k).zip(points.par_chunks(ROWS)).for_each(|(rows, pts)| {
         for (row, p) in rows.chunks_mut(k).zip(pts) {
             for (v, f) in row.iter_mut().zip(functions) {

@@ -81,7 +81,9 @@ pub fn cell_partition(net: &septa::network::Network) -> Vec<(Vec<u32>, Vec<u64>)
 }
 
 /// Whether `net` has an edge of one face off the boundary of the box grid
-/// `grid` (a crack: one point reached under two vertex keys).
+/// `grid` (a crack: one point reached under two vertex keys). Decided on
+/// the vertex keys, not on rounded coordinates: an edge is on the boundary
+/// when the grid vertices of both its keys lie on one boundary plane.
 pub fn cracked(net: &septa::network::Network, grid: &septa::grid::BoxGrid) -> bool {
     let mut count: std::collections::HashMap<[u32; 2], u32> = Default::default();
     for f in 0..net.num_faces() {
@@ -91,10 +93,13 @@ pub fn cracked(net: &septa::network::Network, grid: &septa::grid::BoxGrid) -> bo
             *count.entry([a.min(b), a.max(b)]).or_default() += 1;
         }
     }
-    let [lo, hi] = grid.bounds;
-    count.iter().any(|(e, &n)| {
-        let (p, q) = (net.points[e[0] as usize], net.points[e[1] as usize]);
-        let on = (0..3).any(|x| (p[x] == lo[x] && q[x] == lo[x]) || (p[x] == hi[x] && q[x] == hi[x]));
-        n == 1 && !on
-    })
+    let on_boundary = |e: &[u32; 2]| {
+        let ijk: Vec<[usize; 3]> = e
+            .iter()
+            .flat_map(|&v| net.keys[v as usize].grid.into_iter().filter(|&g| g != u32::MAX))
+            .map(|g| grid.vertex_ijk(g))
+            .collect();
+        (0..3).any(|x| ijk.iter().all(|p| p[x] == 0) || ijk.iter().all(|p| p[x] == grid.res[x]))
+    };
+    count.iter().any(|(e, &n)| n == 1 && !on_boundary(e))
 }

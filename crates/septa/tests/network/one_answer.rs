@@ -182,6 +182,37 @@ fn cases() -> Vec<Case> {
             streams: true,
             counts: &[],
         },
+        // A diagonal plane through grid vertex 0, the sink of ray shooting,
+        // cutting a sphere through grid vertices: two half-discs of the plane
+        // (inside and outside the ball) and two hemispheres meeting along one
+        // closed circle; four cells.
+        Case {
+            name: "plane through the sink IA",
+            functions: r#"[{"type": "plane", "point": [-1, -1, -1], "normal": [1, -1, 0]},
+                           {"type": "sphere", "center": [0, 0, 0], "radius": 0.5}]"#,
+            mode: Mode::Ia,
+            n: 8,
+            sparse_holds: true,
+            streams: true,
+            counts: &[("patches", 4), ("chains", 1), ("corners", 0), ("shells", 4), ("cells", 4)],
+        },
+        // MI: materials 1 and 2 (x - 0.25 and -(x + 0.75)) tie on the whole
+        // grid plane x = -0.25, and a ball (material 0) wins on a disc of it,
+        // so only part of some tet faces is interface, and three materials
+        // tie at grid vertices on the disc's rim. The rim leaves the box
+        // twice: a long and a short arc (2 chains, 4 corners), the plane
+        // outside the disc in two patches, and the ball's two sides.
+        Case {
+            name: "tie over part of a tet face MI",
+            functions: r#"[{"type": "sphere", "center": [-0.75, 0.5, 0.5], "radius": 0.25},
+                           {"type": "plane", "point": [0.25, 0.25, 0.5], "normal": [1, 0, 0]},
+                           {"type": "plane", "point": [-0.75, 0, -1], "normal": [-2, 0, 0]}]"#,
+            mode: Mode::Mi,
+            n: 8,
+            sparse_holds: true,
+            streams: true,
+            counts: &[("patches", 4), ("chains", 2), ("corners", 4), ("shells", 3), ("cells", 3)],
+        },
         // MI: two tangent balls in a background (three materials tie at the
         // contact point).
         Case {

@@ -5,11 +5,10 @@
 //! in IA and MI. Each scene runs dense (1 thread) and sparse (1 and 2
 //! threads) with byte-identical networks, and streamed with topology equal
 //! to the in-memory network face by face; cells by ray shooting equal cells
-//! by grouping every tet. Where ray shooting declines (a cracked network:
-//! several functions vanishing or tying at one point of a grid edge, named
-//! by different planes in different tets), the stream gives the same answer
-//! or refuses clearly. Seeded; `SEPTA_ROUND_SCENES=N` runs N scenes
-//! instead of the default few.
+//! by grouping every tet. Every scene must run sparsely without falling
+//! back, with cells by ray shooting, no crack (an edge of one face off the
+//! grid boundary) and a stream that accepts it. Seeded;
+//! `SEPTA_ROUND_SCENES=N` runs N scenes instead of the default few.
 
 use crate::common;
 
@@ -120,9 +119,15 @@ fn generated_round_scenes_give_one_answer_on_every_path() {
         let with_shells: Vec<_> = group.iter().filter(|c| !c.0.is_empty()).cloned().collect();
         assert_eq!(inside, with_shells, "{what}: ray vs grouping");
         assert!(outside.iter().all(|c| c.0.len() <= 1), "{what}: cells without grouping's shells: {outside:?}");
+        // No crack: every edge off the grid boundary bounds two or more faces
+        // (one point never reached under two keys).
+        assert!(!common::cracked(&dense, &cube_grid(n)), "{what}: an edge of one face off the grid boundary");
         for threads in [1, 2] {
-            let (sparse, _) = pool(threads).install(|| job.run(&o, false)).unwrap();
+            let (sparse, stats) = pool(threads).install(|| job.run(&o, false)).unwrap();
             assert_same_network(&dense, &sparse, &format!("{what}: sparse, {threads} threads"));
+            // The sparse path itself, cells by ray shooting: no fallback.
+            assert!(!stats.is_some_and(|s| s.dense_fallback), "{what}: dense fallback");
+            assert_eq!(sparse.cells_method, "raytrace", "{what}");
         }
         let f = load_function_list(&text, "scene", None).unwrap();
         match super::stream_topology::check(&cube_grid(n), &f, mode, 4, 1 + i % 3, &what) {
@@ -131,5 +136,6 @@ fn generated_round_scenes_give_one_answer_on_every_path() {
         }
     }
     eprintln!("{count} generated scenes: {streamed} streamed face by face, {refused} refused (grouped in memory)");
+    assert_eq!(refused, 0, "every generated scene streams with topology");
     let _ = std::fs::remove_dir_all(&dir);
 }

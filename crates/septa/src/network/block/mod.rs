@@ -20,4 +20,4 @@ pub(crate) use active::active_functions;
 pub(crate) use keys::vertex_key;
 pub(crate) use types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
 pub(crate) use values::{BlockLabels, BlockValues, Ctx, PointValues, Values};
-pub(crate) use worker::{degenerate_face, Worker, FACE_OF};
+pub(crate) use worker::{tet_face_zero, Worker, FACE_OF};

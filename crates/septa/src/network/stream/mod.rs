@@ -35,9 +35,10 @@
 //! shooting. Sheets touching only at points (tangent spheres) have their
 //! shells linked at the contact points, found by running again the blocks
 //! that hold them (`rerun.rs`, `topology/contact.rs`). A network that is not
-//! closed near such points (a crack, where several functions vanish or tie at
-//! one point named by different planes in neighbouring tets; the in-memory
-//! path groups cells there) stops the run with [`NetworkError::SheetsTouchAtPoints`].
+//! closed near such points (a crack: one point under two keys, which the
+//! point-only naming of tied vertices, complex/ties.rs, rules out; the
+//! in-memory path would group cells there) stops the run with
+//! [`NetworkError::SheetsTouchAtPoints`] rather than guess.
 
 mod assembly;
 mod feeder;

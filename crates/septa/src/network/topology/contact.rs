@@ -112,10 +112,10 @@ pub(crate) fn contact_links(ctx: &Ctx, index: &mut dyn RayIndex, key: &VKey) -> 
 /// Whether the network edge between the vertices with keys `a` and `b` lies
 /// on the grid's boundary, where an edge of one face is expected. An edge
 /// of one face anywhere else is a crack: one point reached by two tets
-/// under different keys, where several functions vanish or tie at a point
-/// of a grid edge and the plane-based encoding (Sec. 5.1) names it by
-/// different planes in different tets. Links at contact points are not
-/// trusted there (cells are then grouped).
+/// under different keys. Tied points are named by the point alone
+/// (complex/ties.rs), so a crack means a defect; links at contact points
+/// are not trusted there (cells are then grouped), a guard that costs one
+/// check per edge.
 pub(crate) fn edge_on_grid_boundary(g: &BoxGrid, a: &VKey, b: &VKey) -> bool {
     // Most edges are inside: their first grid vertex is off every boundary plane.
     let p = g.vertex_ijk(a.grid[0]);

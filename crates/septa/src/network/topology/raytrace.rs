@@ -21,7 +21,9 @@
 //! network meets the network first at a point. At a network vertex on a
 //! grid vertex the shell facing the ray is read from whichever tet around
 //! the grid edge has a network face there (a tet may touch the network
-//! only at that corner).
+//! only at that corner). A component through the sink itself (a plane
+//! through a corner of the box) sends no ray: nothing lies below it, and
+//! every other ray reaching vertex 0 meets it there.
 //!
 //! Preconditions, checked: a box grid (convex boundary, no cavities or
 //! handles). Components whose sheets touch only at points need the shells
@@ -34,7 +36,7 @@ use smallvec::SmallVec;
 
 use crate::complex::{Complex, Mode, Plane, NONE};
 use crate::grid::{BoxGrid, Grid};
-use crate::network::block::{active_functions, degenerate_face, vertex_key, Ctx, FACE_OF};
+use crate::network::block::{active_functions, tet_face_zero, vertex_key, Ctx, FACE_OF};
 use crate::network::VKey;
 use crate::uf::UnionFind;
 
@@ -241,8 +243,17 @@ pub(crate) fn ray_cells(
     for &[a, b] in links {
         uf.union(a, b);
     }
+    let mut sink_on_network = false;
     for (c, &(v, u)) in starts.iter().enumerate() {
         let c = c as u32;
+        if (v, u) == (0, 0) {
+            sink_on_network = true;
+            // The component holds the sink, grid vertex 0 (a plane through a
+            // corner of the box): nothing lies below it, so no ray leaves it.
+            // Every other ray that reaches vertex 0 meets this component's
+            // point there first, so the outer node stays unused (below).
+            continue;
+        }
         // A start at grid vertex `w = v` runs along the edge to w's lowest
         // neighbour; an edge-point start along its own edge towards `v`.
         let (v, u, at_corner) = if u == 0 { (lowest_neighbour(g, v), v, true) } else { (v, u, false) };
@@ -267,7 +278,13 @@ pub(crate) fn ray_cells(
         };
         uf.union(start_shell, end_shell);
     }
-    let (comp, n) = uf.components();
+    let (comp, mut n) = uf.components();
+    // With the sink on the network the outer node is joined to no shell;
+    // labels come in order of first appearance, so it holds the last label
+    // alone: it is no cell. (Without a network it is the one cell.)
+    if sink_on_network && !comp[..num_shells].contains(&comp[num_shells]) {
+        n -= 1;
+    }
     Some((comp[..num_shells].to_vec(), n))
 }
 
@@ -519,7 +536,12 @@ fn shell_around_vertex(
                 if let Some(s) = shell_of_face(ctx, index, v, face, cell) {
                     return Some(s);
                 }
-                continue;
+                // MI: a tie over a tet face with one material on both sides
+                // is no face (the merge pairs it away): crossed like any
+                // other piece off the network.
+                if !matches!(face.plane, Plane::TetFace(_)) {
+                    continue;
+                }
             }
             // A piece of a tet face off the network: the same piece in the
             // tet on its other side (none on the grid's boundary).
@@ -594,8 +616,8 @@ pub(super) fn face_side(ctx: &Ctx, view: &TetView, face: &crate::complex::Face, 
     let Plane::TetFace(i) = face.plane else {
         return Some(FaceSide::Of(if face.cells[0] == cell { 0 } else { 1 }));
     };
-    let z = degenerate_face(ctx.mode, &view.vals, &view.active, FACE_OF[i as usize])?;
     let c = &view.complex.cells()[cell as usize];
+    let z = tet_face_zero(ctx.mode, &view.vals, &view.active, FACE_OF[i as usize], c.material())?;
     Some(match ctx.mode {
         Mode::Ia => {
             let local = view.active.iter().position(|&f| f == z)? as u16;
