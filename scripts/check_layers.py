@@ -31,15 +31,32 @@ def module_path(path):
     return rel
 
 
+def io_reexports():
+    """Item -> file of io's flat re-exports (`pub use file::{a, b};` in io/mod.rs)."""
+    text = open(os.path.join(ROOT, "io", "mod.rs"), encoding="utf-8").read()
+    items = {}
+    for m in re.finditer(r"pub use (\w+)::(\{[^}]*\}|\w+);", text):
+        for item in re.findall(r"\w+", m.group(2)):
+            items[item] = m.group(1)
+    return items
+
+
+IO_ITEMS = io_reexports()
+
+
 def unit(parts):
     """The unit a module path belongs to."""
     if not parts:
         return None
     if parts[0] == "network" and len(parts) > 1 and parts[1] in NETWORK_FILES:
         return "network::" + parts[1]
-    if parts[0] == "io" and len(parts) > 1 and parts[1][:1].islower():
-        # The triangle-mesh readers (one per format, sharing `TriMesh`) are one unit.
-        return "io::mesh" if parts[1].startswith("mesh_") else "io::" + parts[1]
+    if parts[0] == "io" and len(parts) > 1:
+        # A flat re-export (`crate::io::read_mesh`) counts as the file defining it.
+        file = IO_ITEMS.get(parts[1], parts[1])
+        if not file[:1].islower():
+            return parts[0]
+        # The triangle-mesh readers (one per format, sharing `IndexedMesh`) are one unit.
+        return "io::mesh" if file.startswith("mesh_") else "io::" + file
     return parts[0]
 
 

@@ -4,7 +4,7 @@
 //! OpenFOAM `constant/polyMesh`) and `cut.json`.
 use crate::CliResult;
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{cut_out, mesh::read_mesh, planes};
+use septa::io::{cut_cells_obj, cut_cells_vtu, grid_planes, random_planes, read_mesh, read_planes};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -37,6 +37,9 @@ pub struct Args {
     /// Print one JSON object with counts, checks and timings.
     #[arg(long)]
     pub json: bool,
+    /// Print nothing but errors (and the `--json` object if asked for).
+    #[arg(short, long)]
+    pub quiet: bool,
     /// Mesh files to write, comma-separated: vtu (cells.vtu), obj
     /// (cells.obj), foam (OpenFOAM constant/polyMesh: points, faces, owner,
     /// neighbour, boundary with the patch `surface`, faceZones per plane
@@ -112,12 +115,12 @@ fn parse_formats(s: &str) -> Result<MeshFormats, String> {
 
 /// `septa cut FILE.vtu --verify`: the exact check of a written polyhedral mesh.
 fn verify_file(a: &Args) -> CliResult {
-    let (points, cells) = septa::io::cut_vtu::read_polyhedra(&a.mesh)?;
-    let r = septa::cut::verify::verify_cells(&points, &cells);
+    let (points, cells) = septa::io::read_polyhedra(&a.mesh)?;
+    let r = septa::cut::verify_cells(&points, &cells);
     let j = serde_json::json!({ "file": a.mesh.display().to_string(), "violations": r.violations(), "verify": r });
     if a.json {
         println!("{j}");
-    } else {
+    } else if !a.quiet {
         println!(
             "{}: {} cells, {} faces, {} triangles checked exactly: {} violations",
             a.mesh.display(),
@@ -145,9 +148,9 @@ pub fn run(a: Args) -> CliResult {
     let t0 = Instant::now();
     let mesh = read_mesh(&a.mesh)?;
     let planes = match (a.grid, a.random, &a.planes) {
-        (Some(n), _, _) => planes::grid_planes(&mesh.vertices, n),
-        (_, Some(n), _) => planes::random_planes(&mesh.vertices, n, a.seed),
-        (_, _, Some(f)) => planes::read_planes(f)?,
+        (Some(n), _, _) => grid_planes(&mesh.vertices, n),
+        (_, Some(n), _) => random_planes(&mesh.vertices, n, a.seed),
+        (_, _, Some(f)) => read_planes(f)?,
         _ => return Err("give one of --grid N, --random N, --planes FILE".into()),
     };
     let read_s = t0.elapsed().as_secs_f64();
@@ -157,28 +160,29 @@ pub fn run(a: Args) -> CliResult {
     let t1 = Instant::now();
     let options =
         CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
-    let out =
-        crate::progress::during(a.json, "cutting", || cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options))
-            .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
+    let out = crate::progress::during(a.json || a.quiet, "cutting", || {
+        cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options)
+    })
+    .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
     }
-    let check = crate::progress::during(a.json, "checking the cells", || out.validate());
+    let check = crate::progress::during(a.json || a.quiet, "checking the cells", || out.validate());
     let t2 = Instant::now();
-    let writing = crate::progress::stage(a.json, &format!("writing {}", out_dir.display()));
+    let writing = crate::progress::stage(a.json || a.quiet, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     let wants = |f: MeshFormat| !a.no_mesh_output && a.format.0.contains(&f);
     if wants(MeshFormat::Vtu) {
-        dir.write("cells.vtu", cut_out::vtu(&out).as_bytes())?;
+        dir.write("cells.vtu", cut_cells_vtu(&out).as_bytes())?;
     }
     if wants(MeshFormat::Obj) {
-        dir.write("cells.obj", cut_out::obj(&out, a.explode).as_bytes())?;
+        dir.write("cells.obj", cut_cells_obj(&out, a.explode).as_bytes())?;
     }
     let mut foam_swapped = None;
     if wants(MeshFormat::Foam) {
-        let pm = septa::io::cut_foam::poly_mesh(&out);
+        let pm = septa::io::poly_mesh(&out);
         for (name, text) in pm.files() {
             dir.write(&format!("constant/polyMesh/{name}"), text.as_bytes())?;
         }
@@ -186,10 +190,8 @@ pub fn run(a: Args) -> CliResult {
     }
     if a.exact_vertices {
         let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
-        let exact =
-            septa::cut::rational::exact_coordinates(&mesh.vertices, &mesh.triangles, &out.planes, &out.vertex_defs)?;
-        let coords: Vec<[String; 3]> =
-            exact.iter().map(|p| p.each_ref().map(septa::cut::rational::fraction_string)).collect();
+        let exact = septa::cut::exact_coordinates(&mesh.vertices, &mesh.triangles, &out.planes, &out.vertex_defs)?;
+        let coords: Vec<[String; 3]> = exact.iter().map(|p| p.each_ref().map(septa::cut::fraction_string)).collect();
         let j = serde_json::json!({
             "about": "cut-vertex i of cells.vtu is defined by defs[i]: V(v) mesh vertex v; EP(e, p) mesh edge e (edges[e] = [u, v]) and plane p; TPP(t, p, q) triangle t and planes p, q; PPP(p, q, r) three planes. Planes index `planes` (a x + b y + c z + d = 0, the doubles used). coordinates[i] is its exact position, the rational intersection of these input elements: x, y, z as reduced fractions \"numerator/denominator\" (or an integer). Points of cells.vtu after the cut-vertices are face centres added by the certified embedding (not cut-vertices).",
             "defs": defs,
@@ -205,8 +207,8 @@ pub fn run(a: Args) -> CliResult {
     } else if !wants(MeshFormat::Vtu) {
         Some(out.verify())
     } else {
-        let (points, cells) = septa::io::cut_vtu::read_polyhedra(&dir.staged_path("cells.vtu"))?;
-        Some(septa::cut::verify::verify_cells(&points, &cells))
+        let (points, cells) = septa::io::read_polyhedra(&dir.staged_path("cells.vtu"))?;
+        Some(septa::cut::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();
     if let Some(bar) = writing {
@@ -270,7 +272,7 @@ pub fn run(a: Args) -> CliResult {
     dir.finish()?;
     if a.json {
         println!("{j}");
-    } else {
+    } else if !a.quiet {
         println!(
             "{} cut-vertices, {} cut-edges, {} cut-faces, {} cut-cells; euler {euler}; volume error {vol_err:.2e}; {:.3} s",
             c.cut_vertices,

@@ -84,7 +84,7 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
         septa::scene::Mode::Mi => septa::complex::Mode::Mi,
     };
     let net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
-    septa::io::network_out::write_all(&net, dir, &[])?;
+    septa::io::write_network(&net, dir, &[])?;
     Ok(JobRow { counts: counts(&net), viewer: true })
 }
 
@@ -108,10 +108,10 @@ fn stream_ia18(dir: &Path, a: &Args) -> JobResult {
     let n = 2 * a.grid;
     let grid = septa::grid::BoxGrid::new([n; 3], [[-1.0; 3], [1.0; 3]], septa::grid::Split::Five)?;
     let path = dir.join("stream.ply");
-    let mut sink = septa::io::ply_stream::PlyStreamSink::create(&path, &grid, Mode::Ia, functions.len())?;
+    let mut sink = septa::io::PlyStreamSink::create(&path, &grid, Mode::Ia, functions.len())?;
     let (_, summary) = stream_topology(&grid, &functions, &NetworkOptions::new(Mode::Ia), 0, &mut sink)?;
     sink.finish_with(Some(&summary))?;
-    septa::io::summary_out::write_summary_json(&summary, &dir.join("stream.topology.json"), &[])?;
+    septa::io::write_summary_json(&summary, &dir.join("stream.topology.json"), &[])?;
     let counts = summary.counts().into_iter().map(|(k, v)| (k.to_string(), serde_json::json!(v))).collect();
     Ok(JobRow { counts, viewer: false })
 }
@@ -127,9 +127,9 @@ fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
 fn region_job(name: &str, dir: &Path) -> JobResult {
     let scene = septa::scene::Scene::load(name)?;
     let r = septa::regions::region_surfaces(&scene, &Default::default())?;
-    septa::io::regions_out::write(&r, dir)?;
+    septa::io::write_regions(&r, dir)?;
     let mut c = counts(&r.network);
-    c["vertices"] = septa::io::regions_out::summary(&r)["vertices"].clone();
+    c["vertices"] = septa::io::regions_summary(&r)["vertices"].clone();
     c["faces"] = serde_json::json!(r.faces.len());
     c["surfaces"] = serde_json::json!(r.surfaces.len());
     c["curves"] = serde_json::json!(r.curves.len());
@@ -170,6 +170,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
         out: Some(dir.to_path_buf()),
         threads: 0,
         json: false,
+        quiet: false,
         format: Default::default(),
         no_mesh_output: false,
         no_self_check: false,

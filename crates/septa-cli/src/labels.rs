@@ -2,8 +2,8 @@
 use std::path::PathBuf;
 
 use crate::CliResult;
-use septa::io::regions_out;
-use septa::io::volume::{diagonal, place, read_label_volume};
+use septa::io::{diagonal_affine, place_surfaces, read_label_volume};
+use septa::io::{regions_summary, write_regions_formats};
 use septa::regions::label_surfaces_with_progress;
 
 /// Arguments of `septa labels`.
@@ -36,7 +36,7 @@ pub fn run(a: Args) -> CliResult {
     let affine = if a.spacing.is_some() || a.origin.is_some() {
         let s = a.spacing.as_deref().unwrap_or(&[1.0; 3]);
         let o = a.origin.as_deref().unwrap_or(&[0.0; 3]);
-        diagonal([s[0], s[1], s[2]], [o[0], o[1], o[2]])
+        diagonal_affine([s[0], s[1], s[2]], [o[0], o[1], o[2]])
     } else {
         vol.affine
     };
@@ -49,11 +49,11 @@ pub fn run(a: Args) -> CliResult {
         bar.finish_and_clear();
     }
     let mut r = r?.map_err(|e| format!("{file}: {e}"))?;
-    place(&mut r, &affine).map_err(|e| format!("{file}: {e}"))?;
+    place_surfaces(&mut r, &affine).map_err(|e| format!("{file}: {e}"))?;
     crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
-        regions_out::write_formats(&r, &a.out.output, &a.out.format.0)
+        write_regions_formats(&r, &a.out.output, &a.out.format.0)
     })?;
-    let summary = regions_out::summary(&r);
+    let summary = regions_summary(&r);
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {

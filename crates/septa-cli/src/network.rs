@@ -3,7 +3,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use septa::grid::Split;
-use septa::io::network_out;
+use septa::io::write_network_formats;
 use septa::job::{GridOverride, Job};
 use septa::network::{self, NetworkOptions};
 
@@ -149,7 +149,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         let t = Instant::now();
         let quiet = args.out.json || args.out.quiet;
         crate::progress::during(quiet, &format!("writing {}", args.out.output.display()), || {
-            network_out::write_formats(&net, &args.out.output, &args.out.format.0, &extra)
+            write_network_formats(&net, &args.out.output, &args.out.format.0, &extra)
         })?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
@@ -203,7 +203,7 @@ fn run_stream(
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("--stream: cannot create the folder {}: {e}", dir.display()))?;
     }
-    let mut sink = septa::io::vtu_stream::StreamFile::create(out, &g, mode, funcs.len(), args.triangles)?;
+    let mut sink = septa::io::StreamFile::create(out, &g, mode, funcs.len(), args.triangles)?;
     let (stats, topology) = if args.polygons_only {
         (pool.install(|| network::stream_sparse(g, funcs, opts, args.window, &mut sink))?, None)
     } else {
@@ -219,7 +219,7 @@ fn run_stream(
     let topo_path = topology_path(out);
     if let Some(t) = &topology {
         let secs = [("read", t_read), ("blocks", t_blocks), ("ply", t_ply)];
-        septa::io::summary_out::write_summary_json(t, &topo_path, &secs)?;
+        septa::io::write_summary_json(t, &topo_path, &secs)?;
     }
     let sparse = network::SparseStats {
         blocks: stats.blocks,

@@ -2,7 +2,7 @@
 //! (`--format`), how many threads, and how much to print (`--json`, `-q`).
 use std::path::PathBuf;
 
-use septa::io::result::Format;
+use septa::io::Format;
 
 /// `-o/--output`, `--format`, `--threads`, `--json`, `-q/--quiet`.
 #[derive(clap::Args, Clone, Debug)]

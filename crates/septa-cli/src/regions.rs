@@ -1,6 +1,6 @@
 //! `septa regions`: surfaces and curves of interest of a scene's region rule.
 use crate::CliResult;
-use septa::io::regions_out;
+use septa::io::{regions_summary, write_regions_formats};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{builtin, Scene};
 
@@ -79,9 +79,9 @@ pub fn run(a: Args) -> CliResult {
     let r = r??;
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
-        regions_out::write_formats(&r, dir, &a.out.format.0)
+        write_regions_formats(&r, dir, &a.out.format.0)
     })?;
-    let mut summary = regions_out::summary(&r);
+    let mut summary = regions_summary(&r);
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
     }

@@ -202,6 +202,9 @@ fn mesh_and_plane_readers() {
     let b = succeeds(&d, &["cut", "cube.obj", "--grid", "2", "-o", "b", "--json"]);
     let cells = |s: &str| serde_json::from_str::<serde_json::Value>(s).unwrap()["cut_cells"].clone();
     assert_eq!(cells(&a), cells(&b));
+    // -q: nothing on standard output, the same files
+    assert_eq!(succeeds(&d, &["cut", "cube.obj", "--grid", "2", "-o", "q", "-q"]), "");
+    assert_eq!(std::fs::read(d.join("q/cells.vtu")).unwrap(), std::fs::read(d.join("b/cells.vtu")).unwrap());
     // A closed cube scaled by 1e-200: outward, so it is cut like the unit cube.
     let tiny: String = cube
         .lines()

@@ -5,7 +5,7 @@ use crate::InputError;
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use septa::cut::cells::Support;
+use septa::cut::Support;
 use septa::cut::{cut_mesh, CutCellMesh, CutOptions};
 use std::path::Path;
 
@@ -90,7 +90,7 @@ impl CutResult {
     /// Writes `cells.vtu`'s format (binary `VTK_POLYHEDRON` cells with
     /// `cell_id` and `volume`) to `path`.
     fn write_vtu(&self, py: Python<'_>, path: &str) -> PyResult<()> {
-        let text = py.detach(|| septa::io::cut_out::vtu(&self.mesh));
+        let text = py.detach(|| septa::io::cut_cells_vtu(&self.mesh));
         septa::io::write_atomic(Path::new(path), text.as_bytes())
             .map_err(|e| InputError::new_err(format!("cannot write {path}: {e}")))
     }
@@ -101,7 +101,7 @@ impl CutResult {
         if !(explode.is_finite() && explode >= 0.0) {
             return Err(InputError::new_err(format!("explode: expected a number >= 0, not {explode}")));
         }
-        let text = py.detach(|| septa::io::cut_out::obj(&self.mesh, explode));
+        let text = py.detach(|| septa::io::cut_cells_obj(&self.mesh, explode));
         septa::io::write_atomic(Path::new(path), text.as_bytes())
             .map_err(|e| InputError::new_err(format!("cannot write {path}: {e}")))
     }
@@ -109,7 +109,7 @@ impl CutResult {
     /// Writes the OpenFOAM polyMesh files into the folder `path`; returns
     /// the two cut-cells whose numbers the polyMesh trades, or `None`.
     fn write_foam(&self, py: Python<'_>, path: &str) -> PyResult<Option<(u32, u32)>> {
-        py.detach(|| septa::io::cut_foam::write_poly_mesh(Path::new(path), &self.mesh)).map_err(InputError::new_err)
+        py.detach(|| septa::io::write_poly_mesh(Path::new(path), &self.mesh)).map_err(InputError::new_err)
     }
 }
 

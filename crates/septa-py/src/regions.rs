@@ -4,7 +4,7 @@ use crate::InputError;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use septa::io::result::ResultView;
+use septa::io::ResultView;
 use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
 use septa::scene::Scene;
 
@@ -49,7 +49,7 @@ pub fn regions<'py>(
 /// The arrays of region surfaces (`result::view_dict`) with their summary and normals.
 pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<Bound<'py, PyDict>> {
     let d = crate::result::view_dict(py, &ResultView::of_regions(r))?;
-    d.set_item("summary", septa::io::regions_out::summary(r).to_string())?;
+    d.set_item("summary", septa::io::regions_summary(r).to_string())?;
     if !r.normals.is_empty() {
         let v: Vec<i64> = r.normals.iter().map(|n| n.0 as i64).collect();
         d.set_item("normal_vertex", v.into_pyarray(py))?;
@@ -57,7 +57,7 @@ pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<
         d.set_item("normal_regions", g.into_pyarray(py).reshape([r.normals.len(), 2])?)?;
         let x: Vec<f64> = r.normals.iter().flat_map(|n| n.2).collect();
         d.set_item("normal_vectors", x.into_pyarray(py).reshape([r.normals.len(), 3])?)?;
-        let c: Vec<i64> = septa::io::regions_out::face_normals(r).into_iter().flatten().map(|c| c as i64).collect();
+        let c: Vec<i64> = septa::io::regions_face_normals(r).into_iter().flatten().map(|c| c as i64).collect();
         d.set_item("indices_normal", c.into_pyarray(py))?;
     }
     Ok(d)

@@ -7,7 +7,7 @@ use std::borrow::Cow;
 use numpy::{IntoPyArray, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-use septa::io::result::{write_file, Format, ResultView};
+use septa::io::{write_file, Format, ResultView};
 
 use crate::InputError;
 

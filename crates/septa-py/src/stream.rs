@@ -10,8 +10,8 @@ use crate::Failure;
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
-use septa::io::ply_stream::PlyStreamStats;
-use septa::io::vtu_stream::StreamFile;
+use septa::io::PlyStreamStats;
+use septa::io::StreamFile;
 use septa::network::{stream_sparse, stream_topology, StreamFeeder, StreamStats};
 use septa::network::{BlockResult, NetworkSummary, SparsePlan};
 
@@ -54,7 +54,7 @@ pub fn stream_ply<'py>(
             };
             let ply = sink.finish_with(summary.as_ref()).map_err(|e| format!("{path}: {e}"))?;
             if let Some(t) = &summary {
-                septa::io::summary_out::write_summary_json(t, &topo_path, &[])
+                septa::io::write_summary_json(t, &topo_path, &[])
                     .map_err(|e| format!("{}: {e}", topo_path.display()))?;
             }
             Ok((stats, ply, summary))
@@ -163,7 +163,7 @@ impl StreamWriter {
             let (stats, summary) = feeder.finish().map_err(|e| e.to_string())?;
             let ply = sink.finish_with(summary.as_ref()).map_err(|e| format!("{path}: {e}"))?;
             if let Some(t) = &summary {
-                septa::io::summary_out::write_summary_json(t, &topo_path, &[])
+                septa::io::write_summary_json(t, &topo_path, &[])
                     .map_err(|e| format!("{}: {e}", topo_path.display()))?;
             }
             Ok((stats, ply, summary))

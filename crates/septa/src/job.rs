@@ -83,13 +83,13 @@ pub enum JobError {
     Scene(#[from] SceneError),
     /// An `.npz` is wrong.
     #[error(transparent)]
-    Npz(#[from] crate::io::npz::NpzError),
+    Npz(#[from] crate::io::NpzError),
     /// A Gmsh file is wrong.
     #[error(transparent)]
-    Msh(#[from] crate::io::msh::MshError),
+    Msh(#[from] crate::io::MshError),
     /// A reference tet-mesh JSON is wrong.
     #[error(transparent)]
-    Reference(#[from] crate::io::functions::RefError),
+    Reference(#[from] crate::io::RefError),
     /// Anything else about the input, naming the file and what is wrong.
     #[error("{file}: {message}")]
     Input {
@@ -127,8 +127,7 @@ fn cube_grid(file: &str, n: usize, over: &GridOverride) -> Result<BoxGrid, JobEr
 /// Reads a tet mesh file (`.msh`, or the reference's tet-mesh `.json`).
 fn read_tet_mesh(path: &Path) -> Result<TetMesh, JobError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("");
-    let (vertices, tets) =
-        if ext == "msh" { crate::io::msh::read_msh(path)? } else { crate::io::functions::read_tet_mesh_json(path)? };
+    let (vertices, tets) = if ext == "msh" { crate::io::read_msh(path)? } else { crate::io::read_tet_mesh_json(path)? };
     TetMesh::new(vertices, &tets).map_err(|e| input(&path.display().to_string(), e.to_string()))
 }
 
@@ -209,7 +208,7 @@ impl Job {
     /// grid when `grid_res` and `bbox` describe exactly the stored tets,
     /// a tet mesh otherwise.
     fn from_npz(path: &Path) -> Result<Job, JobError> {
-        let data = crate::io::npz::read_grid_input(path)?;
+        let data = crate::io::read_grid_input(path)?;
         let samples = |values, k| Functions::Samples { values, k };
         if let (Some(r), Some(bbox)) = (data.grid_res, data.bbox) {
             if let Ok(g) = BoxGrid::new([r; 3], bbox, Split::Five) {

@@ -2,7 +2,7 @@
 //! mesh and a plane file, cuts, and reports counts and seconds.
 
 use super::{cut_mesh, CutCounts, CutOptions};
-use crate::io::{mesh::read_mesh, planes::read_planes};
+use crate::io::{read_mesh, read_planes};
 use std::path::Path;
 use std::time::Instant;
 

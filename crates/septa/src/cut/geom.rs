@@ -245,13 +245,4 @@ impl Ctx<'_> {
         }
         filtered_sign(|| f::<Interval>(self, p, q, r), || f::<Exact>(self, p, q, r))
     }
-
-    /// Sign of `det M` of App. B for triangle `t` and planes `p, q`:
-    /// nonzero iff the line `p ^ q` crosses the plane of `t` in one point.
-    pub fn tpp_det(&self, t: u32, p: u32, q: u32) -> Sign {
-        fn f<R: Ring>(c: &Ctx, t: u32, p: u32, q: u32) -> R {
-            c.hom::<R>(Def::TPP(t, p, q)).1
-        }
-        filtered_sign(|| f::<Interval>(self, t, p, q), || f::<Exact>(self, t, p, q))
-    }
 }

@@ -4,23 +4,23 @@
 //! rational arithmetic.
 //!
 //! Pipeline (paper sections in brackets):
-//! 1. [`input`], [`selfx`]: input conditions [Sec. 2.1, App. A], each
+//! 1. `input.rs`, `selfx.rs`: input conditions [Sec. 2.1, App. A], each
 //!    failure a [`CutError`] naming the element; duplicate planes dropped.
-//! 2. [`lines`]: cut-vertices as face triples ([`geom::Def`]) on mesh edges
+//! 2. `lines.rs`: cut-vertices as face triples ([`Def`]) on mesh edges
 //!    and plane-plane lines, exact line sorting with a floating-point
 //!    pre-sort, merging of equal triples (union-find) [Sec. 3, App. B].
-//! 3. [`clip`]: cut-faces inside triangles: each triangle clipped by the
+//! 3. `clip.rs`: cut-faces inside triangles: each triangle clipped by the
 //!    planes crossing it, in plane order; since every cut is a full plane the
 //!    pieces are convex and need no cycle ordering [Sec. 4, `H(t)`].
-//! 4. [`plane_graph`], [`holes`]: cut-faces inside planes: the half-edge
+//! 4. `plane_graph.rs`, `holes.rs`: cut-faces inside planes: the half-edge
 //!    structure `H(p)` over all plane-plane lines and the boundary curves,
 //!    exact edge-cycle order at vertices, loops of `next`, inside/outside by
 //!    the boundary side tests [App. C] carried across plane-plane edges;
 //!    holes found exactly and joined to their face [Sec. 2.2, 6.1].
-//! 5. [`cells`]: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
+//! 5. `cells.rs`: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
 //!    an edge with two faces is joined topologically; others by exact
 //!    face-cycle order ([`CutStats::ordered_edges`]).
-//! 6. [`embed`], [`side_filter`], [`output`], [`triangulate`]: the
+//! 6. `embed.rs`, `side_filter.rs`, `output.rs`, `triangulate.rs`: the
 //!    floating-point embedding [Sec. 6.1]: rounded cut-vertices moved by
 //!    ulps until the exact order along every mesh edge and plane-plane line
 //!    holds and every vertex of a cell lies strictly on its exact side of
@@ -47,39 +47,47 @@
 //! filters with stated bounds).
 //!
 //! Voids (a mesh component inside one open arrangement cell) are attached
-//! to their enclosing cell by exact plane-side signatures ([`voids`]).
+//! to their enclosing cell by exact plane-side signatures (`voids.rs`).
 
 #[cfg(feature = "tools")]
 pub mod bench;
-pub mod cells;
-pub mod clip;
-pub mod embed;
+mod cells;
+mod clip;
+mod embed;
 mod error;
-pub mod geom;
-pub mod holes;
-pub mod input;
-pub mod lines;
-pub mod nodes;
-pub mod nudge;
-pub mod output;
-pub mod plane_graph;
-pub mod rational;
-pub mod repair;
-pub mod selfx;
+mod geom;
+mod holes;
+mod input;
+mod lines;
+mod nodes;
+mod nudge;
+mod output;
+mod plane_graph;
+mod rational;
+mod repair;
+mod selfx;
 mod shells;
-pub mod side_filter;
-pub mod triangulate;
+mod side_filter;
+// The sidedness filter against exact rationals (internal, so a unit test).
+#[cfg(test)]
+mod side_filter_tests;
+mod triangulate;
 mod validate;
-pub mod verify;
-pub mod voids;
+mod verify;
+mod voids;
 mod volume;
 
+pub use cells::Support;
 pub use error::CutError;
+pub use geom::Def;
+pub use rational::{exact_coordinates, fraction_string};
+pub use repair::RepairStats;
 pub use validate::Validation;
+pub use verify::{polygon_planar, verify_cells, verify_cells_since, VerifyReport};
 
-use cells::{FaceLoop, Support};
+use cells::FaceLoop;
 use clip::EdgeLine;
-use geom::{Ctx, Def, LineDir};
+use geom::{Ctx, LineDir};
 use nodes::{FxMap, Nodes};
 use plane_graph::{Boundary, GEdge};
 use rayon::prelude::*;
@@ -95,7 +103,7 @@ pub struct CutOptions {
     /// to be clean; the reference implementation assumes it).
     pub skip_self_intersection_check: bool,
     /// Skip the exact check and repair of the written embedding
-    /// ([`repair`]; default: run it, [`CutStats::embedding`] holds the report).
+    /// (`repair.rs`; default: run it, [`CutStats::embedding`] holds the report).
     pub skip_certify: bool,
 }
 
@@ -133,7 +141,7 @@ pub struct CutStats {
     pub moved_vertices: usize,
     /// Cut-vertices moved to keep the exact side of the supporting plane of
     /// every face of their cells near them (TopoCut Sec. 6.1, the orders of
-    /// Eq. (13); "near" as in [`embed::embed`]).
+    /// Eq. (13); "near" as in `embed.rs`).
     pub sidedness_moved: usize,
     /// Near (cut-vertex, supporting plane) pairs of a cell whose plainly rounded
     /// position (after the line-order moves) was on the wrong side or on the
@@ -158,7 +166,7 @@ pub struct CutStats {
     pub faces_split_holes: usize,
     /// The exact check of the written embedding and what its repair changed
     /// (`None` with [`CutOptions::skip_certify`]).
-    pub embedding: Option<repair::RepairStats>,
+    pub embedding: Option<RepairStats>,
 }
 
 /// One cut-face.
@@ -209,7 +217,7 @@ pub struct CutCellMesh {
     /// coplanar ([`CutCellMesh::cell_polygons`]).
     pub face_split: Vec<bool>,
     /// Per cut-face: the triangles it is written as when split (vertex ids;
-    /// ids from `vertex_defs.len()` on are face centres added by [`repair`],
+    /// ids from `vertex_defs.len()` on are face centres added by `repair.rs`,
     /// not cut-vertices), empty otherwise.
     pub face_triangles: Vec<Vec<[u32; 3]>>,
     /// Timings and predicate statistics.

@@ -83,9 +83,4 @@ impl Nodes {
     pub fn len(&self) -> usize {
         self.defs.len()
     }
-
-    /// True when no node exists yet.
-    pub fn is_empty(&self) -> bool {
-        self.defs.is_empty()
-    }
 }

@@ -24,8 +24,8 @@
 //! family's first plane normal (`flipMap` true where a face's normal is
 //! opposite).
 
-use crate::cut::cells::Support;
 use crate::cut::CutCellMesh;
+use crate::cut::Support;
 use septa_exact::{det_sign, Sign};
 use std::fmt::Write as _;
 use std::path::Path;

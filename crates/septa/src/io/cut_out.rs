@@ -1,6 +1,6 @@
 //! Writers for cut-cell meshes: `cells.vtu` (binary VTK unstructured grid of
-//! `VTK_POLYHEDRON` cells with `cell_id` and `volume` arrays), `cells.obj` (one group
-//! per cell) and `cut.json`. Every file is written to a temporary name in
+//! `VTK_POLYHEDRON` cells, fewest points first, with `cell_id` and `volume`
+//! arrays), `cells.obj` (one group per cell) and `cut.json`. Every file is written to a temporary name in
 //! the same folder and renamed, so a reader never sees half a file.
 
 use crate::cut::CutCellMesh;
@@ -14,16 +14,32 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
 }
 
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
-/// (inline base64), with cell data `cell_id` and `volume`.
-pub fn vtu(m: &CutCellMesh) -> String {
-    let ids: Vec<i64> = (0..m.num_cells as i64).collect();
-    super::cut_vtu::polyhedra_vtu(&m.vertices, &m.cell_polygons(), &[("volume", &m.cell_volumes)], &[("cell_id", &ids)])
+/// (inline base64), with cell data `cell_id` (the cut-cell each row is) and
+/// `volume`. Cells are written by their number of distinct points, fewest
+/// first, in id order among equals: meshio reads polyhedra into one block
+/// per point count in the order the counts first occur but hands out the
+/// cell data by ascending count, so any other order gives it misaligned
+/// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
+pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
+    let polys = m.cell_polygons();
+    let points = |c: &Vec<Vec<u32>>| {
+        let mut v: Vec<u32> = c.iter().flatten().copied().collect();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let mut order: Vec<usize> = (0..polys.len()).collect();
+    order.sort_by_key(|&c| points(&polys[c]));
+    let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
+    let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
+    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| polys[c].clone()).collect();
+    super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &[("volume", &volumes)], &[("cell_id", &ids)])
 }
 
 /// `cells.obj`: a group `cell_<i>` per cut-cell with its faces oriented
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
-pub fn obj(m: &CutCellMesh, explode: f64) -> String {
+pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     let cells = cell_faces(m);
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {

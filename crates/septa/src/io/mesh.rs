@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 /// A triangle mesh as read: vertex coordinates and 0-based triangles.
 #[derive(Clone, Debug, Default)]
-pub struct TriMesh {
+pub struct IndexedMesh {
     /// Vertex coordinates.
     pub vertices: Vec<[f64; 3]>,
     /// Triangles as 0-based vertex indices.
@@ -31,7 +31,7 @@ impl ReadError {
 
 /// Reads a triangle mesh, choosing the format by extension
 /// (`.obj`, `.off`, `.ply`, `.stl`).
-pub fn read_mesh(path: &Path) -> Result<TriMesh, ReadError> {
+pub fn read_mesh(path: &Path) -> Result<IndexedMesh, ReadError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let bytes = std::fs::read(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
     let mesh = match ext.as_str() {

@@ -1,13 +1,13 @@
 //! Wavefront OBJ triangle meshes (`v x y z`, `f i j k` with 1-based or
 //! negative indices, `i/t/n` corners; polygons are fanned).
 
-use super::mesh::{parse_f64, push_fan, ReadError, TriMesh};
+use super::mesh::{parse_f64, push_fan, IndexedMesh, ReadError};
 use std::path::Path;
 
 /// Parses OBJ text.
-pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
+pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
-    let mut mesh = TriMesh::default();
+    let mut mesh = IndexedMesh::default();
     let mut poly: Vec<u32> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;

@@ -1,6 +1,6 @@
 //! OFF triangle meshes (`OFF`, counts, vertices, `n i j k ...` faces).
 
-use super::mesh::{parse_f64, push_fan, ReadError, TriMesh};
+use super::mesh::{parse_f64, push_fan, IndexedMesh, ReadError};
 use std::path::Path;
 
 /// Parses OFF text: `OFF` and its variants with per-vertex colours, normals
@@ -8,7 +8,7 @@ use std::path::Path;
 /// three numbers of a vertex line are its position) and per-face colours (a
 /// face line is `n i1 .. in` followed by optional colour numbers, ignored).
 /// Before: COFF face colours were read as indices ("face index 255").
-pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
+pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
     let text = std::str::from_utf8(bytes).map_err(|e| ReadError::new(path, 0, format!("not UTF-8 text: {e}")))?;
     // Non-empty lines with their numbers, comments stripped.
     let mut lines = text.lines().enumerate().filter_map(|(i, raw)| {
@@ -35,7 +35,7 @@ pub fn parse_off(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
     };
     let nv = count(0, "vertex count")?;
     let nf = count(1, "face count")?;
-    let mut mesh = TriMesh::default();
+    let mut mesh = IndexedMesh::default();
     for v in 0..nv {
         let (l, line) =
             lines.next().ok_or_else(|| ReadError::new(path, 0, format!("file ends before vertex {v} of {nv}")))?;

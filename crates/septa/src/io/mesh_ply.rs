@@ -1,7 +1,7 @@
 //! PLY triangle meshes (ascii, binary little and big endian): `vertex`
 //! element with `x y z`, `face` element with a vertex index list.
 
-use super::mesh::{push_fan, ReadError, TriMesh};
+use super::mesh::{push_fan, IndexedMesh, ReadError};
 use std::path::Path;
 
 #[derive(Clone, Copy)]
@@ -98,7 +98,7 @@ impl Src<'_> {
 }
 
 /// Parses PLY.
-pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
+pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
     let end =
         bytes.windows(10).position(|w| w == b"end_header").ok_or_else(|| ReadError::new(path, 1, "no end_header"))?;
     let head = std::str::from_utf8(&bytes[..end]).map_err(|_| ReadError::new(path, 1, "header is not text"))?;
@@ -155,7 +155,7 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
         "binary_big_endian" => Src::Bin { data: &bytes[body..], pos: 0, big: true },
         f => return Err(ReadError::new(path, 2, format!("unknown PLY format '{f}'"))),
     };
-    let mut mesh = TriMesh::default();
+    let mut mesh = IndexedMesh::default();
     let mut poly = Vec::new();
     for e in &elems {
         for r in 0..e.count {

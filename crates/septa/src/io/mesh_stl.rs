@@ -1,11 +1,11 @@
 //! STL triangle soups (ASCII and binary); corners with bit-identical
 //! coordinates are welded into one vertex.
 
-use super::mesh::{parse_f64, ReadError, TriMesh};
+use super::mesh::{parse_f64, IndexedMesh, ReadError};
 use std::collections::HashMap;
 use std::path::Path;
 
-fn weld(mesh: &mut TriMesh, map: &mut HashMap<[u64; 3], u32>, p: [f64; 3]) -> u32 {
+fn weld(mesh: &mut IndexedMesh, map: &mut HashMap<[u64; 3], u32>, p: [f64; 3]) -> u32 {
     // -0.0 and 0.0 are the same point.
     let key = p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
     *map.entry(key).or_insert_with(|| {
@@ -15,8 +15,8 @@ fn weld(mesh: &mut TriMesh, map: &mut HashMap<[u64; 3], u32>, p: [f64; 3]) -> u3
 }
 
 /// Parses STL (binary when the size matches the binary layout, else ASCII).
-pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<TriMesh, ReadError> {
-    let mut mesh = TriMesh::default();
+pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
+    let mut mesh = IndexedMesh::default();
     let mut map = HashMap::new();
     if bytes.len() >= 84 {
         let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;

@@ -1,34 +1,60 @@
 //! Readers and writers.
+//!
+//! Every file is a private module; what users need is re-exported here
+//! under one name each (`septa::io::write_network`,
+//! `septa::io::read_mesh`, ...).
 
 mod atomic;
-pub mod cut_foam;
-pub mod cut_out;
-pub mod cut_vtu;
-pub mod functions;
-pub mod mesh;
-pub mod mesh_obj;
-pub mod mesh_off;
-pub mod mesh_ply;
-pub mod mesh_stl;
-pub mod msh;
-pub mod network_out;
-pub mod npz;
-pub mod outdir;
-pub mod planes;
-pub mod ply_stream;
-pub mod regions_out;
-pub mod result;
-pub mod result_mesh;
-pub mod result_npz;
-pub mod result_vtk;
-pub mod summary_out;
+mod cut_foam;
+mod cut_out;
+mod cut_vtu;
+mod functions;
+mod mesh;
+mod mesh_obj;
+mod mesh_off;
+mod mesh_ply;
+mod mesh_stl;
+mod msh;
+mod network_out;
+mod npz;
+mod outdir;
+mod planes;
+mod ply_stream;
+mod regions_out;
+mod result;
+mod result_mesh;
+mod result_npz;
+mod result_vtk;
+mod summary_out;
 mod viewer;
-pub mod volume;
-pub mod vtu_stream;
+mod volume;
+mod vtu_stream;
 
 pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};
+pub use cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
+pub use cut_out::{cut_cells_obj, cut_cells_vtu};
+pub use cut_vtu::{read_polyhedra, Polyhedra};
+pub use functions::{read_tet_mesh_json, MeshData, RefError};
+pub use mesh::{read_mesh, IndexedMesh, ReadError};
+pub use mesh_obj::parse_obj;
+pub use mesh_off::parse_off;
+pub use mesh_ply::parse_ply;
+pub use mesh_stl::parse_stl;
+pub use msh::{parse_msh, read_msh, MshError};
+pub use network_out::{
+    network_meta, write_network, write_network_formats, write_network_json, write_network_obj, write_network_ply,
+    write_network_vtu,
+};
+pub use npz::{parse_npy, read_grid_input, read_npz, GridInput, NpyArray, NpzError};
 pub use outdir::OutputDir;
+pub use planes::{grid_planes, parse_planes, random_planes, read_planes};
+pub use ply_stream::{PlyStreamSink, PlyStreamStats};
+pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
+pub use result::{write_file, Format, ResultView};
+pub use summary_out::write_summary_json;
 pub use viewer::{
     folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,
     VIEWER_INDEX_HTML, VIEWER_JS,
 };
+pub use volume::{diagonal_affine, place_surfaces, read_label_volume, LabelVolume};
+pub use vtu_stream::{StreamFile, VtuStreamSink};

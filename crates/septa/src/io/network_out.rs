@@ -48,7 +48,7 @@ pub(crate) fn label_json(mode: Mode, functions: usize, l: &[u64]) -> String {
 
 /// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
 /// Everything but `"seconds"` (written last) depends only on the input.
-pub fn write_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
+pub fn write_network_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
     write_atomic_with(path, |w| {
         let mode = match net.mode {
             Mode::Ia => "ia",
@@ -182,24 +182,24 @@ pub(crate) fn write_counts_seconds<W: Write + ?Sized>(
 /// Writes `network.ply`: the polygons as triangle fans with `face`, `patch`,
 /// `labels_0`, `labels_1`, `cells_0`, `cells_1` and the patch colour
 /// (`result_mesh.rs`).
-pub fn write_ply(net: &Network, path: &Path) -> std::io::Result<()> {
+pub fn write_network_ply(net: &Network, path: &Path) -> std::io::Result<()> {
     super::result_mesh::write_ply(&ResultView::of_network(net), path, super::result_mesh::PlyLayout::Full)
 }
 
 /// Writes an OBJ: a group per patch, an `l` polyline per chain, the corners as `p`.
-pub fn write_obj(net: &Network, path: &Path) -> std::io::Result<()> {
+pub fn write_network_obj(net: &Network, path: &Path) -> std::io::Result<()> {
     super::result_mesh::write_obj(&ResultView::of_network(net), path)
 }
 
 /// Writes a VTK XML unstructured grid (`.vtu`) of the polygons with cell
 /// data `patch`, `labels` (2 components) and `cells` (2 components).
-pub fn write_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
+pub fn write_network_vtu(net: &Network, path: &Path) -> std::io::Result<()> {
     super::result_vtk::write_vtu(&ResultView::of_network(net), path)
 }
 
 /// The JSON of a network's counts, stage seconds and cell method, for
 /// `network.npz`'s `meta`.
-pub fn meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json::Value {
+pub fn network_meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json::Value {
     let mut counts: serde_json::Map<String, serde_json::Value> =
         net.counts().into_iter().map(|(k, v)| (k.to_string(), v.into())).collect();
     counts.insert("components".into(), net.components.into());
@@ -211,15 +211,15 @@ pub fn meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json::Value {
 
 /// Writes `network.json`, `network.npz`, `network.ply`, `network.obj` and
 /// `network.vtu` into `dir` (created if needed): [`Format::DEFAULT`].
-pub fn write_all(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
-    write_formats(net, dir, Format::DEFAULT, extra_seconds)
+pub fn write_network(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
+    write_network_formats(net, dir, Format::DEFAULT, extra_seconds)
 }
 
 /// Writes `network.<ext>` for each of `formats` into `dir` (created if
 /// needed) as one set (`io::outdir`: lock, stale temporaries removed,
 /// `manifest.json` last); `network.json` after the others. Errors name the
 /// folder or file.
-pub fn write_formats(
+pub fn write_network_formats(
     net: &Network,
     dir: &Path,
     formats: &[Format],
@@ -227,7 +227,7 @@ pub fn write_formats(
 ) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "network")?;
     let view = ResultView::of_network(net);
-    let meta = meta(net, extra_seconds);
+    let meta = network_meta(net, extra_seconds);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
         if f == Format::Vtm {
             // The multiblock and its pieces network/<block>.vtu, all staged.
@@ -237,7 +237,7 @@ pub fn write_formats(
         out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;
     }
     if formats.contains(&Format::Json) {
-        out.write_path("network.json", |p| write_json(net, p, extra_seconds))?;
+        out.write_path("network.json", |p| write_network_json(net, p, extra_seconds))?;
     }
     out.finish()
 }

@@ -46,7 +46,7 @@ pub enum NpzError {
 
 /// One array: its shape and data (numbers as `f64` or `i64`, or a string).
 #[derive(Clone, Debug, PartialEq)]
-pub enum Array {
+pub enum NpyArray {
     /// Float data (from `<f8` / `<f4`).
     F64(Vec<usize>, Vec<f64>),
     /// Integer data (from signed or unsigned integers up to 64 bits).
@@ -55,18 +55,18 @@ pub enum Array {
     Str(String),
 }
 
-impl Array {
+impl NpyArray {
     /// Shape (empty for strings).
     pub fn shape(&self) -> &[usize] {
         match self {
-            Array::F64(s, _) | Array::I64(s, _) => s,
-            Array::Str(_) => &[],
+            NpyArray::F64(s, _) | NpyArray::I64(s, _) => s,
+            NpyArray::Str(_) => &[],
         }
     }
 }
 
 /// Reads every array of an `.npz` file.
-pub fn read_npz(path: &Path) -> Result<BTreeMap<String, Array>, NpzError> {
+pub fn read_npz(path: &Path) -> Result<BTreeMap<String, NpyArray>, NpzError> {
     let p = path.display().to_string();
     let file = std::fs::File::open(path).map_err(|source| NpzError::Io { path: p.clone(), source })?;
     let zerr = |e: zip::result::ZipError| NpzError::Zip { path: p.clone(), message: e.to_string() };
@@ -92,7 +92,7 @@ pub fn read_npz(path: &Path) -> Result<BTreeMap<String, Array>, NpzError> {
 /// integers, f32/f64 and string scalars. The data is returned in C order
 /// (Fortran arrays are transposed here). Before: the hand-written parser
 /// refused Fortran order, bool and big-endian arrays.
-pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
+pub fn parse_npy(b: &[u8]) -> Result<NpyArray, String> {
     use npyz::{DType, TypeChar};
     let mut data: &[u8] = b;
     let header = npyz::NpyHeader::from_reader(&mut data).map_err(|e| format!("not a readable .npy array: {e}"))?;
@@ -117,31 +117,31 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
     let io = |e: std::io::Error| format!("cannot read the data: {e}");
     let descr = file.dtype().descr();
     let arr = match (ts.type_char(), size) {
-        (TypeChar::Float, 8) => Array::F64(shape, file.into_vec::<f64>().map_err(io)?),
+        (TypeChar::Float, 8) => NpyArray::F64(shape, file.into_vec::<f64>().map_err(io)?),
         (TypeChar::Float, 4) => {
-            Array::F64(shape, file.into_vec::<f32>().map_err(io)?.into_iter().map(f64::from).collect())
+            NpyArray::F64(shape, file.into_vec::<f32>().map_err(io)?.into_iter().map(f64::from).collect())
         }
         (TypeChar::Bool, 1) => {
-            Array::I64(shape, file.into_vec::<bool>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<bool>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Int, 1) => {
-            Array::I64(shape, file.into_vec::<i8>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<i8>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Int, 2) => {
-            Array::I64(shape, file.into_vec::<i16>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<i16>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Int, 4) => {
-            Array::I64(shape, file.into_vec::<i32>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<i32>().map_err(io)?.into_iter().map(i64::from).collect())
         }
-        (TypeChar::Int, 8) => Array::I64(shape, file.into_vec::<i64>().map_err(io)?),
+        (TypeChar::Int, 8) => NpyArray::I64(shape, file.into_vec::<i64>().map_err(io)?),
         (TypeChar::Uint, 1) => {
-            Array::I64(shape, file.into_vec::<u8>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<u8>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Uint, 2) => {
-            Array::I64(shape, file.into_vec::<u16>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<u16>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Uint, 4) => {
-            Array::I64(shape, file.into_vec::<u32>().map_err(io)?.into_iter().map(i64::from).collect())
+            NpyArray::I64(shape, file.into_vec::<u32>().map_err(io)?.into_iter().map(i64::from).collect())
         }
         (TypeChar::Uint, 8) => {
             let v = file.into_vec::<u64>().map_err(io)?;
@@ -149,9 +149,9 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
             for (i, x) in v.into_iter().enumerate() {
                 out.push(i64::try_from(x).map_err(|_| format!("item {i}: unsigned value {x} does not fit in i64"))?);
             }
-            Array::I64(shape, out)
+            NpyArray::I64(shape, out)
         }
-        (TypeChar::UnicodeStr | TypeChar::ByteStr, _) if count == 1 => Array::Str(
+        (TypeChar::UnicodeStr | TypeChar::ByteStr, _) if count == 1 => NpyArray::Str(
             file.into_vec::<String>().map_err(io)?.pop().unwrap_or_default().trim_end_matches('\0').to_string(),
         ),
         _ => return Err(format!("unsupported dtype {descr}")),
@@ -161,7 +161,7 @@ pub fn parse_npy(b: &[u8]) -> Result<Array, String> {
 
 /// The same array with its data in C order (last axis fastest), from
 /// Fortran order (first axis fastest).
-fn to_c_order(a: Array) -> Array {
+fn to_c_order(a: NpyArray) -> NpyArray {
     fn permute<T: Copy>(shape: &[usize], f: &[T]) -> Vec<T> {
         if shape.len() < 2 {
             return f.to_vec();
@@ -187,13 +187,13 @@ fn to_c_order(a: Array) -> Array {
         out
     }
     match a {
-        Array::F64(s, d) => {
+        NpyArray::F64(s, d) => {
             let d = permute(&s, &d);
-            Array::F64(s, d)
+            NpyArray::F64(s, d)
         }
-        Array::I64(s, d) => {
+        NpyArray::I64(s, d) => {
             let d = permute(&s, &d);
-            Array::I64(s, d)
+            NpyArray::I64(s, d)
         }
         other => other,
     }
@@ -223,29 +223,31 @@ pub fn read_grid_input(path: &Path) -> Result<GridInput, NpzError> {
     let mut take = |name: &str| arrays.remove(name).ok_or(NpzError::Missing { path: p.clone(), array: name.into() });
     let bad = |array: &str, message: String| NpzError::Array { path: p.clone(), array: array.into(), message };
     let (vs, vd) = match take("vertices")? {
-        Array::F64(s, d) => (s, d),
-        Array::I64(s, d) => (s, d.into_iter().map(|x| x as f64).collect()),
-        Array::Str(_) => return Err(bad("vertices", "is a string".into())),
+        NpyArray::F64(s, d) => (s, d),
+        NpyArray::I64(s, d) => (s, d.into_iter().map(|x| x as f64).collect()),
+        NpyArray::Str(_) => return Err(bad("vertices", "is a string".into())),
     };
     if vs.len() != 2 || vs[1] != 3 {
         return Err(bad("vertices", format!("shape {vs:?}, expected (N, 3)")));
     }
     let vertices: Vec<[f64; 3]> = vd.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     let tets = match take("tets")? {
-        Array::I64(s, d) if s.len() == 2 && s[1] == 4 => d.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+        NpyArray::I64(s, d) if s.len() == 2 && s[1] == 4 => {
+            d.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect()
+        }
         a => return Err(bad("tets", format!("shape {:?} / dtype, expected (M, 4) integers", a.shape()))),
     };
     let (values, k) = match take("values")? {
-        Array::F64(s, d) if s.len() == 2 && s[0] == vertices.len() => (d, s[1]),
-        Array::F64(s, d) if s.len() == 1 && s[0] == vertices.len() => (d, 1),
+        NpyArray::F64(s, d) if s.len() == 2 && s[0] == vertices.len() => (d, s[1]),
+        NpyArray::F64(s, d) if s.len() == 1 && s[0] == vertices.len() => (d, 1),
         a => return Err(bad("values", format!("shape {:?}, expected ({}, k) floats", a.shape(), vertices.len()))),
     };
     let grid_res = match arrays.remove("grid_res") {
-        Some(Array::I64(_, d)) if d.len() == 1 && d[0] > 0 => Some(d[0] as usize),
+        Some(NpyArray::I64(_, d)) if d.len() == 1 && d[0] > 0 => Some(d[0] as usize),
         _ => None,
     };
     let bbox = match arrays.remove("bbox") {
-        Some(Array::F64(_, d)) if d.len() == 6 => Some([[d[0], d[1], d[2]], [d[3], d[4], d[5]]]),
+        Some(NpyArray::F64(_, d)) if d.len() == 6 => Some([[d[0], d[1], d[2]], [d[3], d[4], d[5]]]),
         _ => None,
     };
     Ok(GridInput { vertices, tets, values, k, grid_res, bbox })

@@ -19,7 +19,7 @@ use super::result::{Format, ResultView};
 use crate::regions::RegionSurfaces;
 
 /// The JSON summary: counts, surfaces and curves (what `--json` prints).
-pub fn summary(r: &RegionSurfaces) -> Value {
+pub fn regions_summary(r: &RegionSurfaces) -> Value {
     let net = &r.network;
     let mut counts = serde_json::Map::new();
     for (name, n) in net.counts() {
@@ -50,7 +50,7 @@ fn distinct_vertices(r: &RegionSurfaces) -> usize {
 
 /// Per polygon of `r`, the normal copy (row of `r.normals`) of each of its
 /// vertices: the copy of (vertex, the polygon's region pair). Empty without normals.
-pub fn face_normals(r: &RegionSurfaces) -> Vec<Vec<u32>> {
+pub fn regions_face_normals(r: &RegionSurfaces) -> Vec<Vec<u32>> {
     if r.normals.is_empty() {
         return Vec::new();
     }
@@ -70,7 +70,7 @@ pub fn face_normals(r: &RegionSurfaces) -> Vec<Vec<u32>> {
 }
 
 /// The `network.json` document of region surfaces (the schema every job writes).
-pub fn document(r: &RegionSurfaces) -> Value {
+pub fn regions_document(r: &RegionSurfaces) -> Value {
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
@@ -91,7 +91,7 @@ pub fn document(r: &RegionSurfaces) -> Value {
         "corners": corners,
         "shells": Vec::<Vec<u32>>::new(),
         "cells": regions.iter().map(|g| json!({"shells": [], "label": [g]})).collect::<Vec<_>>(),
-        "counts": summary(r),
+        "counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
     });
     if !r.normals.is_empty() {
@@ -100,15 +100,15 @@ pub fn document(r: &RegionSurfaces) -> Value {
             "regions": r.normals.iter().map(|n| n.1).collect::<Vec<_>>(),
             "normal": r.normals.iter().map(|n| n.2).collect::<Vec<_>>(),
         });
-        doc["face_normals"] = json!(face_normals(r));
+        doc["face_normals"] = json!(regions_face_normals(r));
     }
     doc
 }
 
 /// Writes `network.json`, `network.npz`, `network.ply`, `network.obj`,
 /// `network.vtu` ([`Format::DEFAULT`]) and `surfaces.obj` into `dir`.
-pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
-    write_formats(r, dir, Format::DEFAULT)
+pub fn write_regions(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
+    write_regions_formats(r, dir, Format::DEFAULT)
 }
 
 /// Writes `network.<ext>` for each of `formats` (the result vocabulary of
@@ -116,9 +116,9 @@ pub fn write(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
 /// JSON, `surfaces.obj` (a group per surface named by its regions, normals
 /// as `vn`) into `dir` (created if needed), as one set (`io::outdir`: lock,
 /// stale temporaries removed, `manifest.json` last).
-pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std::io::Result<()> {
+pub fn write_regions_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "regions")?;
-    let meta = json!({"counts": summary(r),
+    let meta = json!({"counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
     let view = ResultView::of_regions(r);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
@@ -135,7 +135,7 @@ pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std:
     let net = &r.network;
     let polys: Vec<&[u32]> =
         (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
-    out.write("network.json", document(r).to_string().as_bytes())?;
+    out.write("network.json", regions_document(r).to_string().as_bytes())?;
     let mut obj = String::from("# Septa region surfaces: a group per surface, curves as polylines\n");
     for p in &net.points {
         writeln!(obj, "v {} {} {}", p[0], p[1], p[2]).unwrap();
@@ -143,7 +143,7 @@ pub fn write_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std:
     for (_, _, n) in &r.normals {
         writeln!(obj, "vn {} {} {}", n[0], n[1], n[2]).unwrap();
     }
-    let copies = face_normals(r);
+    let copies = regions_face_normals(r);
     for (s, surf) in r.surfaces.iter().enumerate() {
         writeln!(obj, "g surface_{s}_regions_{}_{}", surf.regions[0], surf.regions[1]).unwrap();
         for (i, poly) in polys.iter().enumerate() {

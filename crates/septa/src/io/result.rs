@@ -278,23 +278,6 @@ impl Format {
     }
 }
 
-/// Writes `dir/<stem>.<ext>` for each format of `formats` but JSON (whose
-/// document depends on the kind of result: `network_out.rs`,
-/// `regions_out.rs`); `meta` goes into the NPZ.
-pub fn write_view(
-    r: &ResultView,
-    dir: &std::path::Path,
-    stem: &str,
-    formats: &[Format],
-    meta: &serde_json::Value,
-) -> std::io::Result<()> {
-    for &f in formats.iter().filter(|&&f| f != Format::Json) {
-        let path = dir.join(format!("{stem}.{}", f.name()));
-        write_file(r, &path, f, meta)?;
-    }
-    Ok(())
-}
-
 /// Writes one file of `r` in `format` (JSON is refused: its document
 /// depends on the kind of result).
 pub fn write_file(

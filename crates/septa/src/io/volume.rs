@@ -12,7 +12,7 @@
 use std::io::Read;
 use std::path::Path;
 
-use super::npz::{parse_npy, Array};
+use super::npz::{parse_npy, NpyArray};
 
 /// A 3-axis label volume in C order (`(i * n1 + j) * n2 + k`) and its
 /// voxel-to-world map: `world = m[..][..3] * [i, j, k] + m[..][3]`.
@@ -56,9 +56,9 @@ fn maybe_gunzip(raw: &[u8]) -> Result<Vec<u8>, String> {
 
 fn read_npy(raw: &[u8]) -> Result<LabelVolume, String> {
     let (shape, values) = match parse_npy(raw)? {
-        Array::I64(shape, data) => (shape, Values::Int(data)),
-        Array::F64(shape, data) => (shape, Values::Float(data)),
-        Array::Str(_) => return Err("labels must be a numeric array, not a string".into()),
+        NpyArray::I64(shape, data) => (shape, Values::Int(data)),
+        NpyArray::F64(shape, data) => (shape, Values::Float(data)),
+        NpyArray::Str(_) => return Err("labels must be a numeric array, not a string".into()),
     };
     if shape.len() != 3 {
         return Err(format!("labels must have 3 axes, not shape {shape:?}"));
@@ -362,7 +362,7 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
 }
 
 /// The map `origin + index * spacing` (what `--spacing`/`--origin` give).
-pub fn diagonal(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
+pub fn diagonal_affine(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
     [0, 1, 2].map(|r| {
         std::array::from_fn(|c| {
             if c == 3 {
@@ -381,7 +381,7 @@ pub fn diagonal(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
 /// determinant, decided exactly) reverses every polygon, so each stays
 /// counter-clockwise seen from the lesser region; normals map by the
 /// inverse transpose. Fails for a singular or non-finite map.
-pub fn place(r: &mut crate::regions::RegionSurfaces, affine: &[[f64; 4]; 3]) -> Result<(), String> {
+pub fn place_surfaces(r: &mut crate::regions::RegionSurfaces, affine: &[[f64; 4]; 3]) -> Result<(), String> {
     let m: [[f64; 3]; 3] = affine.map(|row| [row[0], row[1], row[2]]);
     let det = septa_exact::det_sign(&m);
     if affine.iter().flatten().any(|x| !x.is_finite()) || det == septa_exact::Sign::Zero {

@@ -119,9 +119,72 @@ pub enum NetworkError {
         /// Up to five planned blocks without a result.
         missing: Vec<usize>,
     },
-    /// Block results do not fit together (the message says where).
-    #[error("block results: {0}")]
-    BlockResults(String),
+    /// A stream was asked for a plan that takes the dense path (cell
+    /// volumes or cell grouping asked for): there is nothing to stream.
+    #[error("block results: the plan asks for the dense path (volumes or cell grouping): nothing to stream")]
+    DensePlanStreamed,
+    /// A stream was fed block `index` where the plan's next block is
+    /// `expected` (`None`: every planned block was fed already).
+    #[error("block results: block {index} fed out of order (expected {})", expected_block(.expected))]
+    BlockOutOfOrder {
+        /// The block fed.
+        index: usize,
+        /// The plan's next block.
+        expected: Option<usize>,
+    },
+    /// A stream was finished after `fed` of its `planned` blocks.
+    #[error("block results: {fed} of the plan's {planned} blocks fed")]
+    BlocksMissing {
+        /// Blocks fed.
+        fed: usize,
+        /// Blocks planned.
+        planned: usize,
+    },
+    /// A stream numbers its vertices in 32 bits.
+    #[error("block results: more than 2^32 - 1 network vertices")]
+    TooManyVertices,
+    /// The streamed topology numbers its polygons in 31 bits.
+    #[error("block results: more than 2^31 polygons: too many for the streamed topology")]
+    TooManyPolygons,
+    /// IA stream: a network face in a tet face was found by the block on
+    /// one side only (the block across it was not sampled), so its sides
+    /// cannot be joined; `face` holds the tet face's grid vertices.
+    #[error(
+        "block results: the network face lying in the tet face at grid vertices {face:?} was found from one side \
+         only (the block across it was not sampled): run in memory (without --stream)"
+    )]
+    FaceFromOneSide {
+        /// Grid vertices of the tet face.
+        face: [u32; 3],
+    },
+    /// Streamed topology: a ray ran along the network, so cells cannot be
+    /// found by ray shooting (Sec. 7.1).
+    #[error(
+        "block results: cells could not be found by ray shooting (a ray running along the network): stream the \
+         polygons only, or run in memory (cell grouping)"
+    )]
+    RayAlongNetwork,
+    /// Streamed topology: sheets of one component touch only at points
+    /// where their shells cannot be linked, so cells cannot be found by ray
+    /// shooting; in-memory runs group cells there.
+    #[error(
+        "block results: cells could not be found by ray shooting: the surfaces of {} {labels:?} touch only at \
+         points{}, {}: stream the polygons only (--polygons-only), or run in memory (without --stream), which \
+         groups cells there",
+        labels_word(*.mode), contact_text(.at), touch_reason(*.cracked)
+    )]
+    SheetsTouchAtPoints {
+        /// IA (labels are functions) or MI (labels are materials).
+        mode: Mode,
+        /// The functions or materials whose surfaces touch (sorted).
+        labels: Vec<u16>,
+        /// A point where they touch, when one was found.
+        at: Option<[f64; 3]>,
+        /// Whether the network is not closed near them (a crack: an edge of
+        /// one face off the grid boundary, which the point-only naming of
+        /// tied vertices rules out) rather than unreadable around the point.
+        cracked: bool,
+    },
     /// Continuation: the caller's field failed; its own message (a Python
     /// function's exception, for example).
     #[error("continuation: {0}")]
@@ -153,6 +216,30 @@ pub enum NetworkError {
         /// What failed.
         source: crate::complex::BuildError,
     },
+}
+
+fn expected_block(e: &Option<usize>) -> String {
+    e.map_or("no more blocks".to_string(), |i| format!("block {i}"))
+}
+
+fn labels_word(mode: Mode) -> &'static str {
+    match mode {
+        Mode::Ia => "functions",
+        Mode::Mi => "materials",
+    }
+}
+
+fn contact_text(at: &Option<[f64; 3]>) -> String {
+    at.map_or(String::new(), |q| format!(", e.g. at ({}, {}, {})", q[0], q[1], q[2]))
+}
+
+fn touch_reason(cracked: bool) -> &'static str {
+    if cracked {
+        "and the network is not closed near them (an edge of one face off the grid boundary; vertex keys name \
+         each point by the point alone, so this is a defect: please report the input)"
+    } else {
+        "and the shells meeting there could not be read from the tets around them"
+    }
 }
 
 impl NetworkError {

@@ -8,7 +8,7 @@
 use crate::common;
 
 use septa::cut::{cut_mesh, CutCellMesh, CutOptions};
-use septa::io::{mesh::read_mesh, planes::read_planes};
+use septa::io::{read_mesh, read_planes};
 
 /// Cuts one reference case of `topocut/expected.json` and checks its counts.
 fn reference_case(name: &str) -> CutCellMesh {

@@ -6,7 +6,7 @@
 use crate::common;
 
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{mesh::read_mesh, planes::read_planes};
+use septa::io::{read_mesh, read_planes};
 use std::path::Path;
 
 fn data() -> String {

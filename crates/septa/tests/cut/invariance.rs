@@ -4,7 +4,7 @@
 use crate::common;
 
 use septa::cut::{cut_mesh, CutCellMesh, CutError, CutOptions};
-use septa::io::{mesh::read_mesh, planes::read_planes};
+use septa::io::{read_mesh, read_planes};
 use std::path::Path;
 
 fn data() -> String {

@@ -7,6 +7,5 @@ mod embedding;
 mod expected;
 mod invariance;
 mod rational_oracle;
-mod side_filter_oracle;
 mod small;
 mod verify;

@@ -12,7 +12,7 @@ use num_bigint::BigInt;
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{mesh::read_mesh, planes::read_planes};
+use septa::io::{read_mesh, read_planes};
 
 type Q = BigRational;
 type P = [Q; 3];
@@ -87,8 +87,8 @@ fn written(out: &septa::cut::CutCellMesh, tag: &str) -> (Vec<[f64; 3]>, Vec<Vec<
     let dir = std::env::temp_dir().join(format!("septa-oracle-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("cells.vtu");
-    std::fs::write(&path, septa::io::cut_out::vtu(out)).unwrap();
-    let r = septa::io::cut_vtu::read_polyhedra(&path).unwrap();
+    std::fs::write(&path, septa::io::cut_cells_vtu(out)).unwrap();
+    let r = septa::io::read_polyhedra(&path).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     r
 }
@@ -106,7 +106,7 @@ fn written_embedding_passes_the_rational_oracle() {
         eprintln!("{mesh}.{set}: {o:?}");
         assert_eq!(o, Oracle::default(), "{mesh}.{set}");
         // the oracle agrees with septa's exact check on the same file
-        let r = septa::cut::verify::verify_cells(&pts, &cells);
+        let r = septa::cut::verify_cells(&pts, &cells);
         assert_eq!((r.nonplanar_faces, r.unbalanced_edges, r.nonpositive_cells), (0, 0, 0));
     }
 }
@@ -134,15 +134,15 @@ fn rational_oracle_catches_broken_output() {
     assert!(o.nonplanar > 100, "{o:?}");
 }
 
-/// `septa::cut::rational::exact_coordinates` (the coordinates of
+/// `septa::cut::exact_coordinates` (the coordinates of
 /// `vertices_exact.json`): each cut-vertex lies exactly on every plane its
 /// triple names, an input vertex is itself, the written double is its exact
 /// position up to rounding and the embedding's moves of a few hundred ulps,
 /// and the fraction strings read back to the same rationals.
 #[test]
 fn exact_coordinates_lie_on_their_defining_planes() {
-    use septa::cut::geom::Def;
-    use septa::cut::rational::{exact_coordinates, fraction_string};
+    use septa::cut::Def;
+    use septa::cut::{exact_coordinates, fraction_string};
     let data = common::shared_data();
     let mut total = [0usize; 4];
     for (mesh, set) in [("cube", "A5"), ("knight", "R10"), ("staircase", "A5"), ("plate_genus9", "R10")] {

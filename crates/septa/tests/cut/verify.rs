@@ -6,13 +6,13 @@
 
 use crate::common;
 
-use septa::cut::verify::{polygon_planar, verify_cells, verify_cells_since, VerifyReport};
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{mesh::read_mesh, planes::read_planes};
+use septa::cut::{polygon_planar, verify_cells, verify_cells_since, VerifyReport};
+use septa::io::{read_mesh, read_planes};
 
 const SMALL: &[&str] = &["cube", "staircase", "knight", "plate_genus9", "bunny", "fertility"];
 
-fn report_line(name: &str, out: &septa::cut::CutCellMesh, r: &septa::cut::verify::VerifyReport) -> String {
+fn report_line(name: &str, out: &septa::cut::CutCellMesh, r: &septa::cut::VerifyReport) -> String {
     let e = out.stats.embedding.as_ref().unwrap();
     format!(
         "{name:22} split nonplanar {:5} holes {:3} before {:4} reshaped {:4} fanned {:4} nudged {:4} faces {:6} tris {:7} violations {} {:?}",
@@ -84,7 +84,7 @@ fn random_plane_sets_verify_exactly() {
         let stem = n.trim_end_matches(".obj");
         let mesh = read_mesh(&data.join("meshes").join(n)).unwrap();
         for &(count, seed) in sets {
-            let planes = septa::io::planes::random_planes(&mesh.vertices, count, seed);
+            let planes = septa::io::random_planes(&mesh.vertices, count, seed);
             let opts = CutOptions { skip_self_intersection_check: true, ..Default::default() };
             let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &opts).unwrap();
             let r = out.verify();

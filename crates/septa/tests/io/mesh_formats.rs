@@ -3,8 +3,8 @@
 
 use crate::common;
 
-use septa::io::mesh::read_mesh;
-use septa::io::planes::{grid_planes, parse_planes, random_planes};
+use septa::io::read_mesh;
+use septa::io::{grid_planes, parse_planes, random_planes};
 use std::path::{Path, PathBuf};
 
 fn tmp(name: &str, bytes: &[u8]) -> PathBuf {
@@ -103,8 +103,8 @@ fn reference_plane_files_match_the_grid_generator() {
         let data = common::shared_data();
         let m = read_mesh(&data.join(format!("meshes/{mesh}.obj"))).unwrap();
         for n in [5, 10, 20] {
-            let f = septa::io::planes::read_planes(Path::new(&format!("{}/topocut/{mesh}.A{n}.plane", data.display())))
-                .unwrap();
+            let f =
+                septa::io::read_planes(Path::new(&format!("{}/topocut/{mesh}.A{n}.plane", data.display()))).unwrap();
             assert_eq!(grid_planes(&m.vertices, n), f, "{mesh} A{n}");
         }
     }

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use proptest::prelude::*;
-use septa::io::npz::{parse_npy, Array};
+use septa::io::{parse_npy, NpyArray};
 
 /// A `.npy` version 1 file.
 fn npy(descr: &str, fortran: bool, shape: &[usize], data: &[u8]) -> Vec<u8> {
@@ -61,7 +61,7 @@ fn f_order() -> Vec<i64> {
 
 #[test]
 fn npy_orders_byte_orders_and_dtypes() {
-    let want = Array::I64(SHAPE.to_vec(), c_order());
+    let want = NpyArray::I64(SHAPE.to_vec(), c_order());
     let le = |v: &[i64]| v.iter().flat_map(|x| (*x as i32).to_le_bytes()).collect::<Vec<u8>>();
     let be = |v: &[i64]| v.iter().flat_map(|x| (*x as i32).to_be_bytes()).collect::<Vec<u8>>();
     assert_eq!(parse_npy(&npy("<i4", false, &SHAPE, &le(&c_order()))).unwrap(), want);
@@ -69,13 +69,13 @@ fn npy_orders_byte_orders_and_dtypes() {
     assert_eq!(parse_npy(&npy(">i4", false, &SHAPE, &be(&c_order()))).unwrap(), want, "big-endian");
     assert_eq!(parse_npy(&npy(">i4", true, &SHAPE, &be(&f_order()))).unwrap(), want, "big-endian Fortran");
     let f8: Vec<u8> = f_order().iter().flat_map(|x| (*x as f64).to_be_bytes()).collect();
-    let Array::F64(s, d) = parse_npy(&npy(">f8", true, &SHAPE, &f8)).unwrap() else { panic!("not floats") };
+    let NpyArray::F64(s, d) = parse_npy(&npy(">f8", true, &SHAPE, &f8)).unwrap() else { panic!("not floats") };
     assert_eq!((s, d), (SHAPE.to_vec(), c_order().iter().map(|&x| x as f64).collect::<Vec<f64>>()));
     let bools: Vec<u8> = c_order().iter().map(|x| (x % 2 != 0) as u8).collect();
-    let Array::I64(_, d) = parse_npy(&npy("|b1", false, &SHAPE, &bools)).unwrap() else { panic!("not ints") };
+    let NpyArray::I64(_, d) = parse_npy(&npy("|b1", false, &SHAPE, &bools)).unwrap() else { panic!("not ints") };
     assert_eq!(d, bools.iter().map(|&b| b as i64).collect::<Vec<_>>());
     let u8s: Vec<u8> = (0..24).collect();
-    assert_eq!(parse_npy(&npy("|u1", false, &[24], &u8s)).unwrap(), Array::I64(vec![24], (0..24).collect()));
+    assert_eq!(parse_npy(&npy("|u1", false, &[24], &u8s)).unwrap(), NpyArray::I64(vec![24], (0..24).collect()));
 }
 
 #[test]
@@ -102,13 +102,13 @@ const SCENE: &str = r#"{"grid":{"resolution":4,"bounds":[[-1,-1,-1],[1,1,1]]},"f
 fn all_readers(b: &[u8]) {
     let p = Path::new("fuzz");
     let _ = parse_npy(b);
-    let _ = septa::io::mesh_off::parse_off(p, b);
-    let _ = septa::io::mesh_obj::parse_obj(p, b);
-    let _ = septa::io::mesh_ply::parse_ply(p, b);
-    let _ = septa::io::mesh_stl::parse_stl(p, b);
+    let _ = septa::io::parse_off(p, b);
+    let _ = septa::io::parse_obj(p, b);
+    let _ = septa::io::parse_ply(p, b);
+    let _ = septa::io::parse_stl(p, b);
     if let Ok(t) = std::str::from_utf8(b) {
-        let _ = septa::io::planes::parse_planes(p, t);
-        let _ = septa::io::msh::parse_msh(t, "fuzz");
+        let _ = septa::io::parse_planes(p, t);
+        let _ = septa::io::parse_msh(t, "fuzz");
         let _ = septa::scene::load_function_list(t, "fuzz", None);
         let _ = septa::scene::Scene::from_json(t, "fuzz", None);
     }

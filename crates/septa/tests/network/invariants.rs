@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use septa::complex::Mode;
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
-use septa::io::npz::read_grid_input;
+use septa::io::read_grid_input;
 use septa::network::{compute, Network, NetworkError, NetworkOptions};
 use septa::scene::{sample_grid as sample, Primitive};
 

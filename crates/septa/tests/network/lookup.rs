@@ -7,7 +7,7 @@ use crate::common;
 
 use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
-use septa::io::npz::read_grid_input;
+use septa::io::read_grid_input;
 use septa::network::{compute, Network, NetworkOptions};
 
 fn json(net: &Network, tag: &str) -> String {

@@ -9,7 +9,7 @@ use crate::common;
 use septa::complex::Mode;
 use septa::complex::NONE;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
-use septa::io::npz::read_grid_input;
+use septa::io::read_grid_input;
 use septa::network::{compute, Network, NetworkOptions};
 
 fn data_dir() -> Option<PathBuf> {

@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use septa::complex::Mode;
-use septa::io::ply_stream::PlyStreamSink;
+use septa::io::PlyStreamSink;
 use septa::network::compute_sparse;
 use septa::network::{stream_sparse, stream_topology, StreamBlock, StreamSink};
 use septa::network::{Network, NetworkOptions, VKey};

@@ -15,7 +15,7 @@ use septa::complex::Mode;
 use septa::grid::{BoxGrid, Split};
 use septa::network::compute_sparse;
 use septa::network::{stream_topology, StreamBlock, StreamSink};
-use septa::network::{Network, NetworkOptions, NetworkSummary, VKey};
+use septa::network::{Network, NetworkError, NetworkOptions, NetworkSummary, StreamError, VKey};
 use septa::scene::{Primitive, Scene};
 
 use common::{cube_grid, spec};
@@ -404,7 +404,15 @@ fn blocks_computed_elsewhere_stream_the_same() {
     // Misuse is an error naming the block, never a wrong stream.
     let mut feeder = StreamFeeder::new(&grid, f.clone(), &o, &plan, true).unwrap();
     let e = feeder.feed(BlockResult::from_bytes(&bytes[1]).unwrap(), &mut Collect::default()).unwrap_err();
-    assert!(e.to_string().contains("out of order"), "{e}");
+    let (index, expected) = (plan.kept[1], Some(plan.kept[0]));
+    assert!(
+        matches!(&e, StreamError::Network(NetworkError::BlockOutOfOrder { index: i, expected: x }) if (*i, *x) == (index, expected)),
+        "{e:?}"
+    );
+    assert_eq!(
+        e.to_string(),
+        format!("block results: block {index} fed out of order (expected block {})", plan.kept[0])
+    );
     let mut other = o.clone();
     other.block = 6;
     let mut feeder =
@@ -414,5 +422,10 @@ fn blocks_computed_elsewhere_stream_the_same() {
     let mut feeder = StreamFeeder::new(&grid, f.clone(), &o, &plan, true).unwrap();
     feeder.feed(BlockResult::from_bytes(&bytes[0]).unwrap(), &mut Collect::default()).unwrap();
     let e = feeder.finish().unwrap_err();
-    assert!(e.to_string().contains(&format!("1 of the plan's {} blocks", plan.kept.len())), "{e}");
+    let planned = plan.kept.len();
+    assert!(
+        matches!(&e, StreamError::Network(NetworkError::BlocksMissing { fed: 1, planned: p }) if *p == planned),
+        "{e:?}"
+    );
+    assert_eq!(e.to_string(), format!("block results: 1 of the plan's {planned} blocks fed"));
 }

@@ -97,15 +97,15 @@ fn normals_point_into_the_lesser_region() {
         assert!(n[0] * p[0] + n[1] * p[1] + n[2] * p[2] > 0.0);
     }
     // Written out: one row per copy, and every polygon corner names the copy of its own vertex.
-    let doc = septa::io::regions_out::document(&r);
+    let doc = septa::io::regions_document(&r);
     assert_eq!(doc["normals"]["vertex"].as_array().unwrap().len(), r.normals.len());
-    let copies = septa::io::regions_out::face_normals(&r);
+    let copies = septa::io::regions_face_normals(&r);
     for (i, c) in copies.iter().enumerate() {
         let poly = &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize];
         assert!(poly.iter().zip(c).all(|(&v, &k)| r.normals[k as usize].0 == v));
     }
     let plain = region_surfaces(&scene, &RegionOptions::default()).unwrap();
-    assert!(septa::io::regions_out::document(&plain).get("normals").is_none());
+    assert!(septa::io::regions_document(&plain).get("normals").is_none());
 }
 
 #[test]

@@ -10,7 +10,7 @@ use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, NetworkOptions};
 
-use septa::io::regions_out;
+use septa::io::write_regions;
 use septa::regions::{label_surfaces, label_surfaces_listing_triples, RegionSurfaces};
 
 /// A small deterministic generator (no dependency): xorshift64*.
@@ -32,7 +32,7 @@ fn files(r: &RegionSurfaces, name: &str) -> Vec<(String, Vec<u8>)> {
     r.network.seconds.clear();
     let dir: PathBuf = std::env::temp_dir().join(format!("septa-regions-labels-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    regions_out::write(&r, &dir).unwrap();
+    write_regions(&r, &dir).unwrap();
     let mut out: Vec<(String, Vec<u8>)> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| {

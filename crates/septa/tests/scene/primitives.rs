@@ -133,7 +133,7 @@ fn closed_form_values() {
 }
 
 fn parse_obj(text: &str) -> TriMesh {
-    let m = septa::io::mesh_obj::parse_obj(std::path::Path::new("mem.obj"), text.as_bytes()).unwrap();
+    let m = septa::io::parse_obj(std::path::Path::new("mem.obj"), text.as_bytes()).unwrap();
     TriMesh::new(m.vertices, m.triangles).unwrap()
 }
 

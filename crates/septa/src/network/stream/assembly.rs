@@ -218,9 +218,7 @@ impl Assembler {
         let face_base = self.faces;
         self.faces += out.poly_label.len() as u64;
         if self.faces >= (1 << 31) {
-            return Err(NetworkError::BlockResults(
-                "more than 2^31 polygons: too many for the streamed topology".into(),
-            ));
+            return Err(NetworkError::TooManyPolygons);
         }
         // Pieces and their nodes: 2 half-pieces each, then the block's extra classes.
         let node_base = self.shell_uf.len() as u32;
@@ -317,9 +315,7 @@ impl Assembler {
         let piece = self.pieces();
         self.faces += 1;
         if self.faces >= (1 << 31) {
-            return Err(NetworkError::BlockResults(
-                "more than 2^31 polygons: too many for the streamed topology".into(),
-            ));
+            return Err(NetworkError::TooManyPolygons);
         }
         let node = self.shell_uf.len() as u32;
         self.piece_label.push(label);
@@ -465,11 +461,7 @@ impl Assembler {
             if sheets != ncomp {
                 return Err(touching_at_points(&a, &piece_sheet, self.mode, self.cracked, contact));
             }
-            return Err(NetworkError::BlockResults(
-                "cells could not be found by ray shooting (a ray running along the network): \
-                 stream the polygons only, or run in memory (cell grouping)"
-                    .into(),
-            ));
+            return Err(NetworkError::RayAlongNetwork);
         };
         // Cells numbered by their smallest shell (the shell-less outer cell last).
         let mut first_shell = vec![u32::MAX; ncells];
@@ -601,35 +593,19 @@ fn touching_at_points(
             break;
         }
     }
-    let mut names: Vec<u16> = Vec::new();
-    let mut at = String::new();
+    let mut labels: Vec<u16> = Vec::new();
+    let mut at = None;
     if let Some((c, s1, s2)) = two {
         for (p, &pc) in a.piece_comp.iter().enumerate() {
             if pc == c {
-                names.extend(a.piece_label[p]);
+                labels.extend(a.piece_label[p]);
             }
         }
-        if let Some(q) = contact(a, piece_sheet, s1, s2) {
-            at = format!(", e.g. at ({}, {}, {})", q[0], q[1], q[2]);
-        }
+        at = contact(a, piece_sheet, s1, s2);
     }
-    names.sort_unstable();
-    names.dedup();
-    let why = if cracked {
-        "and the network is not closed near them (an edge of one face off the grid boundary; vertex \
-         keys name each point by the point alone, so this is a defect: please report the input)"
-    } else {
-        "and the shells meeting there could not be read from the tets around them"
-    };
-    let what = match mode {
-        Mode::Ia => "functions",
-        Mode::Mi => "materials",
-    };
-    NetworkError::BlockResults(format!(
-        "cells could not be found by ray shooting: the surfaces of {what} {names:?} touch only at points{at}, \
-         {why}: stream the polygons only (--polygons-only), or run in memory (without --stream), which \
-         groups cells there"
-    ))
+    labels.sort_unstable();
+    labels.dedup();
+    NetworkError::SheetsTouchAtPoints { mode, labels, at, cracked }
 }
 
 /// Chains and corners from chain edges on streamed vertex ids: the ids are

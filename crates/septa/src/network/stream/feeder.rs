@@ -127,9 +127,7 @@ impl<'a> StreamFeeder<'a> {
         let k = functions.functions();
         check_functions(k)?;
         if plan.dense {
-            return Err(NetworkError::BlockResults(
-                "the plan asks for the dense path (volumes or cell grouping): nothing to stream".into(),
-            ));
+            return Err(NetworkError::DensePlanStreamed);
         }
         let numbering = VertexNumbering::new(grid);
         let assembler = topology.then(|| Assembler::new(options.mode, k, numbering.plane(), grid.clone()));
@@ -199,14 +197,7 @@ impl<'a> StreamFeeder<'a> {
         }
         match self.kept.get(self.next) {
             Some(&i) if i == r.index => self.next += 1,
-            want => {
-                return Err(NetworkError::BlockResults(format!(
-                    "block {} fed out of order (expected {})",
-                    r.index,
-                    want.map_or("no more blocks".to_string(), |i| format!("block {i}"))
-                ))
-                .into())
-            }
+            want => return Err(NetworkError::BlockOutOfOrder { index: r.index, expected: want.copied() }.into()),
         }
         let b = block_at(&self.grid, self.options.block, r.index).expect("a planned block exists");
         let (lo, hi) = cubes(&b);
@@ -255,13 +246,11 @@ impl<'a> StreamFeeder<'a> {
         // Shared vertices seen before join components, once the block's
         // pieces exist in the assembly.
         let mut repeats: Vec<(u32, u32)> = Vec::new();
-        self.numbering
-            .block(lo[0], &out.keys, &out.shared, poly_verts, &mut self.ids, piece_of, |first, v| {
-                if !vertex_piece.is_empty() {
-                    repeats.push((first, piece_of(v)));
-                }
-            })
-            .map_err(NetworkError::BlockResults)?;
+        self.numbering.block(lo[0], &out.keys, &out.shared, poly_verts, &mut self.ids, piece_of, |first, v| {
+            if !vertex_piece.is_empty() {
+                repeats.push((first, piece_of(v)));
+            }
+        })?;
         self.pieces.clear();
         let mut placed = None;
         if let (Some(asm), Some(s)) = (self.assembler.as_mut(), &summary) {
@@ -368,10 +357,7 @@ impl<'a> StreamFeeder<'a> {
             keep
         });
         match (lost, self.options.mode) {
-            (Some(face), Mode::Ia) => Err(NetworkError::BlockResults(format!(
-                "the network face lying in the tet face at grid vertices {face:?} was found from one side only \
-                 (the block across it was not sampled): run in memory (without --stream)"
-            ))),
+            (Some(face), Mode::Ia) => Err(NetworkError::FaceFromOneSide { face }),
             _ => Ok(()),
         }
     }
@@ -381,12 +367,7 @@ impl<'a> StreamFeeder<'a> {
     /// blocks a ray looks at again on the current rayon pool's thread).
     pub fn finish(mut self) -> Result<(StreamStats, Option<NetworkSummary>), StreamError> {
         if self.next != self.kept.len() {
-            return Err(NetworkError::BlockResults(format!(
-                "{} of the plan's {} blocks fed",
-                self.next,
-                self.kept.len()
-            ))
-            .into());
+            return Err(NetworkError::BlocksMissing { fed: self.next, planned: self.kept.len() }.into());
         }
         self.drop_halves(usize::MAX)?;
         let mut stats = self.stats;

@@ -38,7 +38,7 @@
 //! closed near such points (a crack: one point under two keys, which the
 //! point-only naming of tied vertices, complex/ties.rs, rules out; the
 //! in-memory path would group cells there) stops the run with
-//! [`NetworkError::BlockResults`] rather than guess.
+//! [`NetworkError::SheetsTouchAtPoints`] rather than guess.
 
 mod assembly;
 mod feeder;

@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 
 use crate::complex::NONE;
 use crate::grid::BoxGrid;
-use crate::network::VKey;
+use crate::network::{NetworkError, VKey};
 
 /// The numbering state (module doc).
 pub(crate) struct VertexNumbering {
@@ -72,7 +72,7 @@ impl VertexNumbering {
         ids: &mut Vec<u32>,
         payload: impl Fn(u32) -> u32,
         mut repeat: impl FnMut(u32, u32),
-    ) -> Result<(), String> {
+    ) -> Result<(), NetworkError> {
         if lo_x > self.slab {
             // No later block reaches left of x = lo_x: those keys are done.
             self.slab = lo_x;
@@ -88,7 +88,7 @@ impl VertexNumbering {
             }
             let next = self.next;
             if next >= u32::MAX as u64 {
-                return Err("more than 2^32 - 1 network vertices".into());
+                return Err(NetworkError::TooManyVertices);
             }
             let id = if shared[v] {
                 match self.shared.entry(keys[v]) {

@@ -1,4 +1,4 @@
-//! The sidedness filter of the cut embedding (`cut/side_filter.rs`, TopoCut
+//! The sidedness filter of the cut embedding (`side_filter.rs`, TopoCut
 //! Sec. 6.1) against exact rationals: when [`FloatPlane::box_sign`] claims a
 //! strict sign, every plane within the stated error bounds (`|n*_i - n_i| <=
 //! dn_i`, `|d* - d| <= dd`) has that strict sign at every real point of the
@@ -6,11 +6,11 @@
 //! corners of the product of intervals, so the oracle evaluates every
 //! corner product in `num-rational` (not with the crate's own predicates).
 
+use super::side_filter::FloatPlane;
 use num_rational::BigRational;
 use num_traits::Zero;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use septa::cut::side_filter::FloatPlane;
 
 fn q(x: f64) -> BigRational {
     BigRational::from_float(x).expect("finite")
