@@ -37,6 +37,26 @@ CASES = [
     ("planes and sphere IA", PLANES_AND_SPHERE, "ia", 8, {"patches": 32, "chains": 24, "corners": 13, "cells": 16}),
     ("plane through nodes IA", PLANES_AND_SPHERE[2:3], "ia", 6, {"patches": 1, "chains": 0, "cells": 2}),
     ("tied materials MI", SPHERES[:1] * 2, "mi", 4, {"vertices": 0, "faces": 0, "patches": 0, "cells": 1}),
+    # A diagonal plane through grid vertex 0 (the sink of ray shooting) and a sphere.
+    (
+        "plane through the sink IA",
+        [{"type": "plane", "point": [-1, -1, -1], "normal": [1, -1, 0]}, SPHERES[0]],
+        "ia",
+        8,
+        {"patches": 4, "chains": 1, "corners": 0, "shells": 4, "cells": 4},
+    ),
+    # Materials 1 and 2 tie on the grid plane x = -0.25; a ball wins on a disc of it.
+    (
+        "tie over part of a tet face MI",
+        [
+            {"type": "sphere", "center": [-0.75, 0.5, 0.5], "radius": 0.25},
+            {"type": "plane", "point": [0.25, 0.25, 0.5], "normal": [1, 0, 0]},
+            {"type": "plane", "point": [-0.75, 0, -1], "normal": [-2, 0, 0]},
+        ],
+        "mi",
+        8,
+        {"patches": 4, "chains": 2, "corners": 4, "shells": 3, "cells": 3},
+    ),
 ]
 
 

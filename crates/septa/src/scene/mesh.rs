@@ -146,7 +146,7 @@ pub(crate) fn mesh_error(m: &TriMesh, a: f64) -> f64 {
 
 /// Read a closed triangle mesh file (`.obj`, `.off`, `.ply`, `.stl`, by
 /// extension) with the readers of [`crate::io::read_mesh`].
-pub fn read_mesh(path: &std::path::Path) -> Result<TriMesh, String> {
+pub fn read_tri_mesh(path: &std::path::Path) -> Result<TriMesh, String> {
     let m = crate::io::read_mesh(path).map_err(|e| e.to_string())?;
     TriMesh::new(m.vertices, m.triangles).ok_or_else(|| format!("{}: no triangles", path.display()))
 }

@@ -87,7 +87,7 @@ mod vec3;
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
 pub use field::Primitives;
-pub use mesh::{read_mesh, TriMesh};
+pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use print::{primitive_json, scene_json, scene_text};
@@ -95,6 +95,6 @@ pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
 pub use scene::{load_function_list, GridSpec, Mode, Scene};
 pub use shapes::{
-    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, Plane, PointSet, Sphere, SphereKind, Torus,
+    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind, Torus,
 };
 pub use spec::PRIMITIVE_TYPES;

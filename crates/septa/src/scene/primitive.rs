@@ -29,10 +29,10 @@ pub enum Primitive {
     /// A constant (reference `zero` is 0).
     Constant(f64),
     /// Signed distance to a plane, growing along the normal.
-    Plane(Plane),
+    Plane(PlaneShape),
     /// Half-space behind an outward normal: positive inside
     /// (the negated plane).
-    HalfSpace(Plane),
+    HalfSpace(PlaneShape),
     /// Sphere.
     Sphere(Sphere),
     /// Ellipsoid.
@@ -78,12 +78,12 @@ impl Primitive {
     }
     /// Plane `n . (p - point)` (normal normalized here).
     pub fn plane(point: V3, normal: V3) -> Primitive {
-        Primitive::Plane(Plane { point, normal: normalize(normal) })
+        Primitive::Plane(PlaneShape { point, normal: normalize(normal) })
     }
     /// Half-space `-n . (p - point)`, positive on the side opposite the
     /// outward normal.
     pub fn half_space(point: V3, outward: V3) -> Primitive {
-        Primitive::HalfSpace(Plane { point, normal: normalize(outward) })
+        Primitive::HalfSpace(PlaneShape { point, normal: normalize(outward) })
     }
     /// Axis-aligned box from centre and half sizes.
     pub fn cuboid(center: V3, half: V3) -> Primitive {

@@ -29,14 +29,14 @@ pub(crate) fn lipschitz(f: impl Fn(V3) -> f64, l: f64, lo: V3, hi: V3, err: f64)
 
 /// Plane `n . (p - point)` with unit normal `n` (reference `plane`).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Plane {
+pub struct PlaneShape {
     /// A point on the plane.
     pub point: V3,
     /// Unit normal; the value grows along it.
     pub normal: V3,
 }
 
-impl Plane {
+impl PlaneShape {
     pub(crate) fn eval(&self, p: V3) -> f64 {
         dot(self.normal, sub(p, self.point))
     }

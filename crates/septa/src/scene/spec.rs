@@ -11,7 +11,7 @@ use serde_json::{Map, Value};
 
 use super::composite::{rotation, Mat3, Transform, Wyvill};
 use super::error::{err, JsonPath, Located};
-use super::mesh::{read_mesh, TriMesh};
+use super::mesh::{read_tri_mesh, TriMesh};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
 use super::shapes::*;
@@ -175,8 +175,8 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             };
             Primitive::Sphere(Sphere { center, radius: r.abs(), kind })
         }
-        "plane" => Primitive::Plane(Plane { point: o.vec3("point")?, normal: o.dir("normal")? }),
-        "half_space" | "halfspace" => Primitive::HalfSpace(Plane { point: o.vec3("point")?, normal: o.dir("normal")? }),
+        "plane" => Primitive::Plane(PlaneShape { point: o.vec3("point")?, normal: o.dir("normal")? }),
+        "half_space" | "halfspace" => Primitive::HalfSpace(PlaneShape { point: o.vec3("point")?, normal: o.dir("normal")? }),
         "line" => Primitive::Cylinder(Cylinder {
             point: o.vec3("point")?,
             axis: o.dir(if o.has("unit_vector") { "unit_vector" } else { "direction" })?,
@@ -336,7 +336,7 @@ fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {
             Some(d) => d.join(rel),
             None => Path::new(rel).to_path_buf(),
         };
-        return read_mesh(&full).or_else(|e| err(&o.path.key("path"), e));
+        return read_tri_mesh(&full).or_else(|e| err(&o.path.key("path"), e));
     }
     let vp = o.path.key("vertices");
     let tp = o.path.key("triangles");

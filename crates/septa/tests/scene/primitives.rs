@@ -202,7 +202,7 @@ fn stl_binary_and_ascii_match_obj() {
     std::fs::write(dir.join("cube_ascii.stl"), &ascii).unwrap();
     std::fs::write(dir.join("cube.obj"), obj).unwrap();
     for f in ["cube_bin.stl", "cube_ascii.stl", "cube.obj"] {
-        let m = septa::scene::read_mesh(&dir.join(f)).unwrap();
+        let m = septa::scene::read_tri_mesh(&dir.join(f)).unwrap();
         assert_eq!(m.triangles().len(), 12);
         let m = Primitive::Mesh(std::sync::Arc::new(m));
         for p in [[0.1, 0.2, -0.3], [0.9, -0.7, 0.2], [0.0, 0.0, 0.45]] {
