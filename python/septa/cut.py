@@ -174,12 +174,14 @@ class CutCells:
         return type("CutNetwork", (), {"data": data, "source": None})()
 
 
-def cut_mesh(vertices, triangles, planes, *, threads=None) -> CutCells:
+def cut_mesh(vertices, triangles, planes, *, threads=None, progress=None) -> CutCells:
     """Planar cut-cell mesh of a closed, outward triangle mesh by planes (TopoCut).
 
     ``vertices`` ``(#V, 3)``, ``triangles`` ``(#T, 3)``, ``planes`` ``(#P, 4)``
     rows ``a b c d`` for ``a x + b y + c z + d = 0``. Returns :class:`CutCells`;
-    the combinatorics are exact, the same as ``septa cut``.
+    the combinatorics are exact, the same as ``septa cut``. ``progress(done,
+    total)``, if given, is called as each stage of the cut ends (from a worker
+    thread; an exception in it is printed, not raised).
 
     >>> import septa, numpy as np
     >>> v = np.array([[0,0,0],[1,0,0],[0,1,0],[0,0,1]], float)
@@ -196,4 +198,6 @@ def cut_mesh(vertices, triangles, planes, *, threads=None) -> CutCells:
     if p.ndim != 2 or p.shape[1] != 4:
         raise _septa.InputError(f"planes: expected shape (#P, 4), got {p.shape}")
     _septa.check_values(p, "planes")
-    return CutCells(_septa.cut(v, t, p, threads=_inputs.threads(threads) or 0))
+    if progress is not None and not callable(progress):
+        raise _septa.InputError("progress: expected a callable progress(done, total)")
+    return CutCells(_septa.cut(v, t, p, threads=_inputs.threads(threads) or 0, progress=progress))

@@ -309,3 +309,19 @@ def test_command_line_writes_the_same_polymesh(tmp_path):
         assert (out / "constant" / "polyMesh" / name).read_bytes() == (mine / name).read_bytes(), name
     info = json.loads((out / "cut.json").read_text())
     assert info["foam_cells_swapped"] == (list(cut.foam_cells_swapped) if cut.foam_cells_swapped else None)
+
+
+def test_progress_reports_every_stage_and_keeps_the_result():
+    # progress(done, total) once per stage, in order, ending at total; the
+    # result is the one without a callback.
+    v, t, _ = hollow_cube()
+    planes = [[0, 0, 1, -2], [1, 0, 0, -0.5]]
+    calls = []
+    with_cb = septa.cut_mesh(v, t, planes, progress=lambda done, total: calls.append((done, total)))
+    plain = septa.cut_mesh(v, t, planes)
+    total = calls[-1][1]
+    assert total > 5 and calls == [(i, total) for i in range(1, total + 1)]
+    assert with_cb.summary()["cut_cells"] == plain.summary()["cut_cells"]
+    assert np.array_equal(with_cb.points, plain.points)
+    with pytest.raises(septa.InputError, match="progress"):
+        septa.cut_mesh(v, t, planes, progress=3)

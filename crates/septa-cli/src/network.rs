@@ -123,7 +123,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let bar = crate::progress::bar(args.out.json || args.out.quiet, "blocks");
     if let Some(bar) = &bar {
         let bar = bar.clone();
-        opts.progress = Some(network::Progress(std::sync::Arc::new(move |done, total| {
+        opts.progress = Some(septa::Progress(std::sync::Arc::new(move |done, total| {
             crate::progress::blocks_then(&bar, done, total, "topology: patches, chains, corners, cells")
         })));
     }

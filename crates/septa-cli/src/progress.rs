@@ -61,12 +61,12 @@ pub fn blocks_then(bar: &ProgressBar, done: usize, total: usize, next: &str) {
 /// A counted bar over a network's blocks and the library progress callback
 /// that moves it; after the last block it names the stage `next` (see
 /// [`blocks_then`]). Both `None` when no bar may be drawn.
-pub fn block_bar(quiet: bool, next: &str) -> (Option<ProgressBar>, Option<septa::network::Progress>) {
+pub fn block_bar(quiet: bool, next: &str) -> (Option<ProgressBar>, Option<septa::Progress>) {
     let Some(bar) = self::bar(quiet, "blocks") else {
         return (None, None);
     };
     let (b, next) = (bar.clone(), next.to_string());
     let progress =
-        septa::network::Progress(std::sync::Arc::new(move |done, total| blocks_then(&b, done, total, &next)));
+        septa::Progress(std::sync::Arc::new(move |done, total| blocks_then(&b, done, total, &next)));
     (Some(bar), Some(progress))
 }

@@ -113,22 +113,25 @@ impl CutResult {
     }
 }
 
-/// cut(vertices, triangles, planes, threads=0)
+/// cut(vertices, triangles, planes, threads=0, progress=None)
 /// --
 ///
 /// Cuts the closed, outward triangle mesh (`vertices` `(#V, 3) float64`,
 /// `triangles` `(#T, 3) int64`) by `planes` `(#P, 4) float64`
 /// (`a x + b y + c z + d = 0`). Returns a `CutResult`; the GIL is released
-/// while it is computed.
+/// while it is computed. `progress(done, total)` is called as each stage
+/// of the cut ends.
 #[pyfunction]
-#[pyo3(signature = (vertices, triangles, planes, threads = 0))]
+#[pyo3(signature = (vertices, triangles, planes, threads = 0, progress = None))]
 pub fn cut<'py>(
     py: Python<'py>,
     vertices: PyReadonlyArray2<'py, f64>,
     triangles: PyReadonlyArray2<'py, i64>,
     planes: PyReadonlyArray2<'py, f64>,
     threads: usize,
+    progress: Option<Py<PyAny>>,
 ) -> PyResult<CutResult> {
+    let progress = progress.map(crate::network::py_progress);
     let shape_err =
         |what: &str, n: usize, s: &[usize]| InputError::new_err(format!("{what}: expected shape (N, {n}), got {s:?}"));
     if vertices.shape()[1] != 3 {
@@ -158,7 +161,7 @@ pub fn cut<'py>(
             tris.push([c[0] as u32, c[1] as u32, c[2] as u32]);
         }
         let p: Vec<[f64; 4]> = p.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
-        let m = cut_mesh(&v, &tris, &p, &CutOptions { threads, ..Default::default() }).map_err(|e| e.to_string())?;
+        let m = cut_mesh(&v, &tris, &p, &CutOptions { threads, progress, ..Default::default() }).map_err(|e| e.to_string())?;
         let check = m.validate().map_err(|e| e.to_string())?;
         let c = m.counts;
         let s = &m.stats;

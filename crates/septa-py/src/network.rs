@@ -137,8 +137,8 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py
 
 /// A Python `progress(done, total)` as the library's block progress (an
 /// exception in it is printed, not raised: the computation goes on).
-pub(crate) fn py_progress(cb: Py<PyAny>) -> septa::network::Progress {
-    septa::network::Progress(std::sync::Arc::new(move |done, total| {
+pub(crate) fn py_progress(cb: Py<PyAny>) -> septa::Progress {
+    septa::Progress(std::sync::Arc::new(move |done, total| {
         Python::attach(|py| {
             if let Err(e) = cb.call1(py, (done, total)) {
                 e.print(py);

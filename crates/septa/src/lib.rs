@@ -32,4 +32,6 @@ pub mod job;
 pub mod network;
 pub mod regions;
 pub mod scene;
+mod progress;
 mod uf;
+pub use progress::Progress;

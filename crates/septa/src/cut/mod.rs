@@ -105,7 +105,13 @@ pub struct CutOptions {
     /// Skip the exact check and repair of the written embedding
     /// (`repair.rs`; default: run it, [`CutStats::embedding`] holds the report).
     pub skip_certify: bool,
+    /// Called with `(stages done, STAGES)` as each stage of the cut ends
+    /// ([`CutStats::seconds`] names them). Default value: none.
+    pub progress: Option<crate::Progress>,
 }
+
+/// Number of stages [`CutOptions::progress`] counts.
+pub const STAGES: usize = 13;
 
 /// Counts of the cut-cell mesh.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -257,6 +263,9 @@ fn cut_impl(
             eprintln!("stage {name}: {:.3}s statm {rss}", clock.elapsed().as_secs_f64());
         }
         stats.seconds.push((name.to_string(), clock.elapsed().as_secs_f64()));
+        if let Some(p) = &opts.progress {
+            (p.0)(stats.seconds.len(), STAGES);
+        }
         clock = Instant::now();
     };
     let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;

@@ -26,6 +26,7 @@ pub use stream::{
     stream_sparse, stream_topology, NetworkSummary, StreamBlock, StreamError, StreamFeeder, StreamSink, StreamStats,
 };
 
+use crate::Progress;
 use smallvec::SmallVec;
 
 use crate::complex::Mode;
@@ -289,24 +290,6 @@ impl NetworkOptions {
     /// Whether [`NetworkOptions::cancel`] has been set.
     pub(crate) fn cancelled(&self) -> bool {
         self.cancel.as_ref().is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed))
-    }
-}
-
-/// A progress callback `(done, total)`; see [`NetworkOptions::progress`].
-#[derive(Clone)]
-pub struct Progress(pub std::sync::Arc<dyn Fn(usize, usize) + Send + Sync>);
-
-impl std::fmt::Debug for Progress {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str("Progress(..)")
-    }
-}
-
-impl Progress {
-    /// Counts one finished block out of `total` and reports it.
-    pub(crate) fn tick(&self, done: &std::sync::atomic::AtomicUsize, total: usize) {
-        let n = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        (self.0)(n, total);
     }
 }
 

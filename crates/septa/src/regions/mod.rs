@@ -34,7 +34,8 @@ use std::time::Instant;
 
 use crate::complex::Mode;
 use crate::grid::Grid;
-use crate::network::{compute, Network, NetworkError, NetworkOptions, Progress};
+use crate::network::{compute, Network, NetworkError, NetworkOptions};
+use crate::Progress;
 use crate::network::{compute_sparse, SparseStats};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
 
