@@ -158,12 +158,26 @@ pub fn run(a: Args) -> CliResult {
         let _ = rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global();
     }
     let t1 = Instant::now();
-    let options =
-        CutOptions { threads: a.threads, skip_self_intersection_check: a.no_self_check, skip_certify: a.no_certify };
-    let out = crate::progress::during(a.json || a.quiet, "cutting", || {
-        cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options)
-    })
-    .map_err(|e| format!("{}: {e}", a.mesh.display()))?;
+    // A bar over the cut's stages (on a terminal only), moved by the library.
+    let bar = crate::progress::bar(a.json || a.quiet, "cut stages");
+    let progress = bar.clone().map(|b| {
+        b.enable_steady_tick(std::time::Duration::from_millis(1000));
+        septa::Progress(std::sync::Arc::new(move |done, total| {
+            b.set_length(total as u64);
+            b.set_position(done as u64);
+        }))
+    });
+    let options = CutOptions {
+        threads: a.threads,
+        skip_self_intersection_check: a.no_self_check,
+        skip_certify: a.no_certify,
+        progress,
+    };
+    let out = cut_mesh(&mesh.vertices, &mesh.triangles, &planes, &options);
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    let out = out.map_err(|e| format!("{}: {e}", a.mesh.display()))?;
     let cut_s = t1.elapsed().as_secs_f64();
     for (d, k) in &out.stats.dropped_planes {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");

@@ -82,3 +82,22 @@ fn corner_tet_thirds_has_tiny_cells_of_positive_volume() {
     let out = cut_mesh(&v, &t, &planes, &CutOptions::default()).unwrap();
     out.validate().unwrap();
 }
+
+#[test]
+fn progress_counts_every_stage_in_order() {
+    // One call per stage, (1, STAGES) .. (STAGES, STAGES), one per entry of
+    // `stats.seconds`, and the same cut as without a callback.
+    let (v, t) = cube();
+    let calls = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let seen = calls.clone();
+    let progress = septa::Progress(std::sync::Arc::new(move |done, total| seen.lock().unwrap().push((done, total))));
+    let opts = CutOptions { progress: Some(progress), ..Default::default() };
+    let out = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &opts).unwrap();
+    let calls = calls.lock().unwrap().clone();
+    let n = septa::cut::STAGES;
+    assert_eq!(calls, (1..=n).map(|i| (i, n)).collect::<Vec<_>>());
+    assert_eq!(out.stats.seconds.len(), n);
+    let plain = cut_mesh(&v, &t, &[[1.0, 0.0, 0.0, -0.5]], &CutOptions::default()).unwrap();
+    assert_eq!(out.counts, plain.counts);
+    assert_eq!(out.vertices, plain.vertices);
+}
