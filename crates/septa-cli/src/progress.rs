@@ -66,7 +66,6 @@ pub fn block_bar(quiet: bool, next: &str) -> (Option<ProgressBar>, Option<septa:
         return (None, None);
     };
     let (b, next) = (bar.clone(), next.to_string());
-    let progress =
-        septa::Progress(std::sync::Arc::new(move |done, total| blocks_then(&b, done, total, &next)));
+    let progress = septa::Progress(std::sync::Arc::new(move |done, total| blocks_then(&b, done, total, &next)));
     (Some(bar), Some(progress))
 }

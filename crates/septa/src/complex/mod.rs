@@ -50,9 +50,9 @@ mod lookup_table;
 mod merge;
 mod predicate;
 mod split;
-mod ties;
 #[cfg(feature = "tools")]
 pub mod stress;
+mod ties;
 mod types;
 
 pub use build::{BuildError, Options};

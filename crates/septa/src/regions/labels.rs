@@ -6,8 +6,8 @@
 use crate::complex::Mode;
 use crate::grid::{BoxGrid, Grid, Split};
 use crate::network::{compute, compute_sparse, BoundedField, NetworkOptions};
-use crate::Progress;
 use crate::scene::{Expr, Interest, RegionRule, Rule};
+use crate::Progress;
 
 use super::{from_network, from_network_with, RegionError, RegionSurfaces};
 

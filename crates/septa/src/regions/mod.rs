@@ -35,9 +35,9 @@ use std::time::Instant;
 use crate::complex::Mode;
 use crate::grid::Grid;
 use crate::network::{compute, Network, NetworkError, NetworkOptions};
-use crate::Progress;
 use crate::network::{compute_sparse, SparseStats};
 use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene};
+use crate::Progress;
 
 pub use clean::{clean, CleanStats};
 pub use curves::Curve;

@@ -176,7 +176,9 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             Primitive::Sphere(Sphere { center, radius: r.abs(), kind })
         }
         "plane" => Primitive::Plane(PlaneShape { point: o.vec3("point")?, normal: o.dir("normal")? }),
-        "half_space" | "halfspace" => Primitive::HalfSpace(PlaneShape { point: o.vec3("point")?, normal: o.dir("normal")? }),
+        "half_space" | "halfspace" => {
+            Primitive::HalfSpace(PlaneShape { point: o.vec3("point")?, normal: o.dir("normal")? })
+        }
         "line" => Primitive::Cylinder(Cylinder {
             point: o.vec3("point")?,
             axis: o.dir(if o.has("unit_vector") { "unit_vector" } else { "direction" })?,

@@ -529,7 +529,13 @@ pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
 ///   the face; the piece is named by the smaller of the two. Where a third
 ///   function wins on part of the face, only the rest lies on the network,
 ///   and the tet across names the same pieces by the same vertex keys.
-pub(crate) fn tet_face_zero(mode: Mode, vals: &[[f64; 4]], active: &[u16], corners: [usize; 3], material: u16) -> Option<u16> {
+pub(crate) fn tet_face_zero(
+    mode: Mode,
+    vals: &[[f64; 4]],
+    active: &[u16],
+    corners: [usize; 3],
+    material: u16,
+) -> Option<u16> {
     match mode {
         Mode::Ia => vals.iter().position(|r| corners.iter().all(|&i| r[i] == 0.0)).map(|f| active[f]),
         Mode::Mi => {

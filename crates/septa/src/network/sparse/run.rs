@@ -571,16 +571,19 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
             || {
                 chunk
                     .par_iter()
-                    .map_init(|| Pooled::take(&pool), |w, &i| {
-                        if options.cancelled() {
-                            return Err(NetworkError::Cancelled);
-                        }
-                        let r = run_block_with(&mut w.0, &g, grid, functions, options, i)?;
-                        if let Some(p) = &options.progress {
-                            p.tick(&done, plan.kept.len());
-                        }
-                        Ok(r)
-                    })
+                    .map_init(
+                        || Pooled::take(&pool),
+                        |w, &i| {
+                            if options.cancelled() {
+                                return Err(NetworkError::Cancelled);
+                            }
+                            let r = run_block_with(&mut w.0, &g, grid, functions, options, i)?;
+                            if let Some(p) = &options.progress {
+                                p.tick(&done, plan.kept.len());
+                            }
+                            Ok(r)
+                        },
+                    )
                     .collect::<Result<Vec<BlockResult>, NetworkError>>()
             },
         );
