@@ -15,7 +15,7 @@
 use super::composite::{rotation, Wyvill};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
-use super::regions::{Expr, Interest, RegionId, RegionRule, Rule};
+use super::region_rule::{Expr, Interest, RegionId, RegionRule, Rule};
 use super::scene::{GridSpec, Mode, Scene};
 use super::vec3::{normalize, V3};
 

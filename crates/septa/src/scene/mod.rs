@@ -75,7 +75,7 @@ mod normals;
 mod patch;
 mod primitive;
 mod print;
-mod regions;
+mod region_rule;
 mod rounding;
 mod sample;
 #[allow(clippy::module_inception)]
@@ -91,7 +91,7 @@ pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use print::{primitive_json, scene_json, scene_text};
-pub use regions::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
+pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
 pub use scene::{load_function_list, GridSpec, Mode, Scene};
 pub use shapes::{

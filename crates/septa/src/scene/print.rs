@@ -7,7 +7,7 @@
 use serde_json::{json, Map, Value};
 
 use super::primitive::Primitive;
-use super::regions::{Expr, RegionRule};
+use super::region_rule::{Expr, RegionRule};
 use super::scene::{Mode, Scene};
 use super::shapes::SphereKind;
 

@@ -7,7 +7,7 @@ use serde_json::Value;
 
 use super::error::{err, locate, JsonPath, Located, SceneError};
 use super::primitive::Primitive;
-use super::regions::{Expr, Interest, RegionId, RegionRule, Rule};
+use super::region_rule::{Expr, Interest, RegionId, RegionRule, Rule};
 use super::spec::{array, num, primitive, vec3, Ctx, Obj};
 use super::vec3::V3;
 use crate::grid::{BoxGrid, Split};
