@@ -105,7 +105,10 @@ def test_every_python_path_gives_one_answer(name, functions, mode, n, counts, tm
         assert streamed["counts"][k] == summary[k], f"{name}: streamed {k} {streamed['counts'][k]} != {summary[k]}"
 
 
-@pytest.mark.parametrize("name, functions, mode, n, counts", CASES[:3], ids=[c[0] for c in CASES[:3]])
+DASK_CASES = CASES[:3] + CASES[-2:]
+
+
+@pytest.mark.parametrize("name, functions, mode, n, counts", DASK_CASES, ids=[c[0] for c in DASK_CASES])
 def test_dask_gives_the_same_answer_on_round_inputs(client, name, functions, mode, n, counts, tmp_path):  # noqa: F811
     job_fn = sd.arrangement if mode == "ia" else sd.material_interface
     local = job_fn(functions, client=None, grid=_grid(n), block=4)
