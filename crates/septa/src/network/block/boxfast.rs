@@ -164,6 +164,7 @@ pub(super) fn run_box(
                         w.active_hint = None;
                         w.base_hint = None;
                         w.pair_hint = None;
+                        w.winner_hint = None;
                         if indicators {
                             let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
                             let offsets = g
@@ -176,12 +177,16 @@ pub(super) fn run_box(
                                 continue;
                             }
                         }
+                        let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                        let corners = g.tet_corners(gc, lt).map(|p| {
+                            let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
+                            vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
+                        });
+                        if ctx.mode == Mode::Mi && !corners.contains(&BAD) {
+                            // The unique strict maximum at each corner.
+                            w.winner_hint = Some(corners);
+                        }
                         if ctx.mode == Mode::Ia {
-                            let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                            let corners = g.tet_corners(gc, lt).map(|p| {
-                                let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
-                                vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
-                            });
                             let (mut or, mut and) = (0u64, u64::MAX);
                             for l in corners {
                                 or |= l;
@@ -197,6 +202,7 @@ pub(super) fn run_box(
                     w.active_hint = None;
                     w.base_hint = None;
                     w.pair_hint = None;
+                    w.winner_hint = None;
                 }
             }
         }

@@ -528,6 +528,8 @@ fn finish_merged(
     let t2 = Instant::now();
     let g = Grid::Box(grid.clone());
     let c = ctx(&g, k, options, pv);
+    // Cells come from ray shooting here, or the dense path runs instead.
+    m.drop_region_groups();
     let mut topo = topology(&mut m, Some(&c));
     if topo.cells_method != CellMethod::Raytrace {
         return dense_fallback(grid, stats, dense);
@@ -603,7 +605,7 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
     // starts the merge on this thread while the other threads may take the
     // blocks; on one thread it merges first, so then still only one
     // window's outputs are alive at a time.
-    let window = 16 * rayon::current_num_threads().max(1);
+    let window = 4 * rayon::current_num_threads().max(1);
     let mut merger = Merger::new(options.mode);
     let mut merge_time = std::time::Duration::ZERO;
     let mut pending: Vec<BlockResult> = Vec::new();
