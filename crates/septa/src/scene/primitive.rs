@@ -110,6 +110,19 @@ impl Primitive {
         Transform::new(linear, translation, inner).map(|t| Primitive::Transform(Box::new(t)))
     }
 
+    /// Values at `points` into `out` (same length): the same bits as
+    /// [`Primitive::eval`] per point, with the choice of primitive made once
+    /// for the run of points instead of once per value (sampling a block is
+    /// mostly this loop for spheres and planes).
+    pub(crate) fn eval_into(&self, points: &[V3], out: &mut [f64]) {
+        debug_assert_eq!(points.len(), out.len());
+        match self {
+            Primitive::Sphere(s) => out.iter_mut().zip(points).for_each(|(o, p)| *o = s.eval(*p)),
+            Primitive::Plane(s) => out.iter_mut().zip(points).for_each(|(o, p)| *o = s.eval(*p)),
+            _ => out.iter_mut().zip(points).for_each(|(o, p)| *o = self.eval(*p)),
+        }
+    }
+
     /// Value at `p`.
     pub fn eval(&self, p: V3) -> f64 {
         use Primitive::*;

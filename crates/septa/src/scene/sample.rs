@@ -28,9 +28,19 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     // thread (the blocks themselves run in parallel): values appended in
     // order, without zeroing the array first or splitting it into tasks.
     if points.len() <= 32 * ROWS {
+        // Function by function over runs of points, then interleaved into
+        // rows: one choice of primitive per run, not per value.
+        const RUN: usize = 64;
         let mut out = Vec::with_capacity(points.len() * k);
-        for p in points {
-            out.extend(functions.iter().map(|f| f.eval(*p)));
+        let mut columns = vec![0.0; RUN * k];
+        for run in points.chunks(RUN) {
+            let n = run.len();
+            for (f, column) in functions.iter().zip(columns.chunks_exact_mut(RUN)) {
+                f.eval_into(run, &mut column[..n]);
+            }
+            for i in 0..n {
+                out.extend((0..k).map(|f| columns[f * RUN + i]));
+            }
         }
         return out;
     }
