@@ -7,11 +7,13 @@
 //! any order because every key is global).
 
 mod boxgrid;
+mod lookup;
 pub mod memory;
 mod mesh;
 mod overlap;
 
 pub use boxgrid::{grid_coordinate, BoxGrid, GridError, Split};
+pub(crate) use lookup::VertexLookup;
 pub use mesh::{MeshError, TetMesh};
 
 /// A tetrahedral grid.

@@ -45,7 +45,10 @@ fn on_block_boundary(ctx: &Ctx, block: Option<([usize; 3], [usize; 3])>, key: &V
         return true;
     };
     let verts = key.grid.iter().take_while(|&&v| v != u32::MAX);
-    let ijk: SmallVec<[[usize; 3]; 4]> = verts.map(|&v| g.vertex_ijk(v)).collect();
+    let ijk: SmallVec<[[usize; 3]; 4]> = match &ctx.lookup {
+        Some(l) => verts.map(|&v| l.ijk(v)).collect(),
+        None => verts.map(|&v| g.vertex_ijk(v)).collect(),
+    };
     (0..3).any(|a| ijk.iter().all(|p| p[a] == lo[a]) || ijk.iter().all(|p| p[a] == hi[a]))
 }
 
@@ -59,7 +62,7 @@ pub(crate) fn position_on(ctx: &Ctx, tet: &[u32; 4], simplex: u8, funcs: &[u16],
     let mut p = [0.0; 3];
     for i in 0..4 {
         if simplex >> i & 1 == 1 {
-            let corner = ctx.grid.vertex(tet[i]);
+            let corner = ctx.vertex(tet[i]);
             for k in 0..3 {
                 p[k] += b[i] * corner[k];
             }

@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::mask::CubeMask;
 use crate::complex::{Mode, Options};
-use crate::grid::{BoxGrid, Grid};
+use crate::grid::{BoxGrid, Grid, VertexLookup};
 use crate::network::field::BoundedField;
 
 /// Function values at grid vertices, for the block worker and ray shooting.
@@ -47,9 +47,27 @@ pub(crate) struct Ctx<'a> {
     /// MI: also drop functions below the average of the corner winners
     /// ([`crate::network::NetworkOptions::mi_average_domination`]).
     pub average_domination: bool,
+    /// Box grids: vertex ids to indices and positions without division.
+    pub lookup: Option<VertexLookup>,
 }
 
 impl Ctx<'_> {
+    /// The lookup of a box grid (for [`Ctx::lookup`]).
+    pub(crate) fn lookup_of(grid: &Grid) -> Option<VertexLookup> {
+        match grid {
+            Grid::Box(g) => Some(VertexLookup::new(g)),
+            Grid::Mesh(_) => None,
+        }
+    }
+
+    /// Position of grid vertex `v` (the same bits as `grid.vertex(v)`).
+    #[inline]
+    pub(crate) fn vertex(&self, v: u32) -> [f64; 3] {
+        match &self.lookup {
+            Some(l) => l.position(v),
+            None => self.grid.vertex(v),
+        }
+    }
     /// Value of function `f` at grid vertex `v`.
     #[inline]
     pub(crate) fn val(&self, v: u32, f: usize) -> f64 {

@@ -217,6 +217,7 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
         volumes: false,
         grouping: false,
         sparse: Some(values),
+        lookup: Ctx::lookup_of(grid),
     }
 }
 
