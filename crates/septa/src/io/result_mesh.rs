@@ -59,22 +59,28 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
                 buf.clear();
             }
         }
+        // One triangle's record is assembled in place and appended at once
+        // (an append per 4-byte field was most of this loop's cost).
+        let full = layout == PlyLayout::Full;
+        let size = if full { 40 } else { 13 };
+        let mut rec = [0u8; 40];
+        rec[0] = 3;
         for f in 0..r.num_faces() {
             let vs = r.face(f);
             let p = r.patch[f];
+            if full {
+                let [l0, l1] = r.labels[f];
+                let [c0, c1] = r.cells[f];
+                for (i, x) in [f as i32, p as i32, l0, l1, c0, c1].into_iter().enumerate() {
+                    rec[13 + 4 * i..17 + 4 * i].copy_from_slice(&x.to_le_bytes());
+                }
+                rec[37..40].copy_from_slice(&patch_colour(p));
+            }
+            rec[1..5].copy_from_slice(&(vs[0] as i32).to_le_bytes());
             for j in 1..vs.len() - 1 {
-                buf.push(3);
-                for v in [vs[0], vs[j], vs[j + 1]] {
-                    buf.extend_from_slice(&(v as i32).to_le_bytes());
-                }
-                if layout == PlyLayout::Full {
-                    let [l0, l1] = r.labels[f];
-                    let [c0, c1] = r.cells[f];
-                    for x in [f as i32, p as i32, l0, l1, c0, c1] {
-                        buf.extend_from_slice(&x.to_le_bytes());
-                    }
-                    buf.extend_from_slice(&patch_colour(p));
-                }
+                rec[5..9].copy_from_slice(&(vs[j] as i32).to_le_bytes());
+                rec[9..13].copy_from_slice(&(vs[j + 1] as i32).to_le_bytes());
+                buf.extend_from_slice(&rec[..size]);
             }
             if buf.len() > 1 << 16 {
                 w.write_all(&buf)?;

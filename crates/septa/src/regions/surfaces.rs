@@ -64,9 +64,11 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     // a run (component numbering does not depend on the union order). Each
     // entry is packed into one `u128` in the same order (the pair by its
     // rank among the distinct pairs).
-    let mut ranks: Vec<[RegionId; 2]> = pairs.clone();
+    // The distinct pairs are few: gathered in a set, not by sorting a copy
+    // of every polygon's pair.
+    let distinct: rustc_hash::FxHashSet<[RegionId; 2]> = pairs.iter().copied().collect();
+    let mut ranks: Vec<[RegionId; 2]> = distinct.into_iter().collect();
     ranks.sort_unstable();
-    ranks.dedup();
     let rank = |p: &[RegionId; 2]| ranks.binary_search(p).expect("a listed pair") as u128;
     let by_edge = sorted_edge_entries(&loop_start, &loops, |i| rank(&pairs[i]), net.points.len());
     let mut uf = UnionFind::new(n);

@@ -18,8 +18,7 @@
 //! functions run on the same values in the same tet order; debug builds
 //! check the active functions against `active_functions` per tet.
 
-use super::simple::simple_tet;
-use super::types::Label;
+use super::simple::{indicator_pair_tet, CubeCorners};
 use super::values::Ctx;
 use super::worker::{State, Worker};
 use crate::complex::Mode;
@@ -32,8 +31,9 @@ pub(super) fn applies(ctx: &Ctx, some_vertex: u32) -> bool {
 }
 
 /// Tet `t` with grid vertices `tet` and the labels `corners` at them (in
-/// tet order): emits it and returns true, or returns false (3+ labels: the
-/// caller runs the general path, with `w.pair_hint` left empty).
+/// tet order), placed by `geometry`: emits it and returns true, or returns
+/// false (3+ labels: the caller runs the general path, with `w.pair_hint`
+/// left empty).
 pub(super) fn indicator_tet(
     w: &mut Worker,
     ctx: &Ctx,
@@ -41,6 +41,7 @@ pub(super) fn indicator_tet(
     t: usize,
     tet: &[u32; 4],
     corners: [u64; 4],
+    geometry: &CubeCorners,
 ) -> Result<bool, NetworkError> {
     let mut sorted = corners;
     sorted.sort_unstable();
@@ -55,7 +56,9 @@ pub(super) fn indicator_tet(
         return Ok(false);
     }
     let pair = [sorted[0] as u16, sorted[3] as u16];
-    let vals = pair.map(|f| corners.map(|l| (l == f as u64) as u8 as f64));
+    // The values are the indicators of the pair: decided by which corners
+    // carry the lesser label (the two-function template's sign pattern).
+    let pattern = (0..4).fold(0, |p, i| p | ((corners[i] == sorted[0]) as usize) << i);
     #[cfg(debug_assertions)]
     {
         let mut check = Vec::new();
@@ -64,7 +67,7 @@ pub(super) fn indicator_tet(
         debug_assert_eq!(*tet, ctx.grid.tet(t), "grid vertices of tet {t}");
     }
     st.out.active_tets += 1;
-    if simple_tet(ctx, st, tet, &pair, &vals, &Label::new()) {
+    if indicator_pair_tet(ctx, st, tet, &pair, pattern, geometry) {
         return Ok(true);
     }
     // Grouping, volumes or no tables: the general path, told the pair.
