@@ -65,6 +65,9 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
         let size = if full { 40 } else { 13 };
         let mut rec = [0u8; 40];
         rec[0] = 3;
+        // Colours per patch, computed once each (a few patches, many faces).
+        let patches = r.patch.iter().map(|&p| p as usize + 1).max().unwrap_or(0);
+        let colours: Vec<[u8; 3]> = if full { (0..patches as u32).map(patch_colour).collect() } else { Vec::new() };
         for f in 0..r.num_faces() {
             let vs = r.face(f);
             let p = r.patch[f];
@@ -74,7 +77,7 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
                 for (i, x) in [f as i32, p as i32, l0, l1, c0, c1].into_iter().enumerate() {
                     rec[13 + 4 * i..17 + 4 * i].copy_from_slice(&x.to_le_bytes());
                 }
-                rec[37..40].copy_from_slice(&patch_colour(p));
+                rec[37..40].copy_from_slice(&colours[p as usize]);
             }
             rec[1..5].copy_from_slice(&(vs[0] as i32).to_le_bytes());
             for j in 1..vs.len() - 1 {
