@@ -45,36 +45,39 @@ impl Element {
 
     /// Appends the labels of whole elements `bytes`; `None` at a value the
     /// general reader refuses (an unsigned 64-bit value above `i64::MAX`, a
-    /// boolean byte other than 0 or 1). One loop per element type, so each
-    /// is a plain conversion the compiler can unroll.
+    /// boolean byte other than 0 or 1). One conversion per element type, in
+    /// an `extend` of known length (no capacity test per element); the
+    /// refused values are looked for afterwards.
     fn decode_into(self, bytes: &[u8], out: &mut Vec<i64>) -> Option<()> {
         use Kind::*;
+        let from = out.len();
         match (self.size, self.kind, self.big) {
-            (1, Signed, _) => each(bytes, out, |b: [u8; 1]| Some(i8::from_le_bytes(b) as i64)),
-            (1, Unsigned, _) => each(bytes, out, |b: [u8; 1]| Some(b[0] as i64)),
-            (1, Bool, _) => each(bytes, out, |b: [u8; 1]| (b[0] <= 1).then_some(b[0] as i64)),
-            (2, Signed, false) => each(bytes, out, |b| Some(i16::from_le_bytes(b) as i64)),
-            (2, Signed, true) => each(bytes, out, |b| Some(i16::from_be_bytes(b) as i64)),
-            (2, Unsigned, false) => each(bytes, out, |b| Some(u16::from_le_bytes(b) as i64)),
-            (2, Unsigned, true) => each(bytes, out, |b| Some(u16::from_be_bytes(b) as i64)),
-            (4, Signed, false) => each(bytes, out, |b| Some(i32::from_le_bytes(b) as i64)),
-            (4, Signed, true) => each(bytes, out, |b| Some(i32::from_be_bytes(b) as i64)),
-            (4, Unsigned, false) => each(bytes, out, |b| Some(u32::from_le_bytes(b) as i64)),
-            (4, Unsigned, true) => each(bytes, out, |b| Some(u32::from_be_bytes(b) as i64)),
-            (8, Signed, false) => each(bytes, out, |b| Some(i64::from_le_bytes(b))),
-            (8, Signed, true) => each(bytes, out, |b| Some(i64::from_be_bytes(b))),
-            (8, Unsigned, false) => each(bytes, out, |b| i64::try_from(u64::from_le_bytes(b)).ok()),
-            (8, Unsigned, true) => each(bytes, out, |b| i64::try_from(u64::from_be_bytes(b)).ok()),
-            _ => None,
+            (1, Signed, _) => each(bytes, out, |b: [u8; 1]| i8::from_le_bytes(b) as i64),
+            (1, Unsigned | Bool, _) => each(bytes, out, |b: [u8; 1]| b[0] as i64),
+            (2, Signed, false) => each(bytes, out, |b| i16::from_le_bytes(b) as i64),
+            (2, Signed, true) => each(bytes, out, |b| i16::from_be_bytes(b) as i64),
+            (2, Unsigned, false) => each(bytes, out, |b| u16::from_le_bytes(b) as i64),
+            (2, Unsigned, true) => each(bytes, out, |b| u16::from_be_bytes(b) as i64),
+            (4, Signed, false) => each(bytes, out, |b| i32::from_le_bytes(b) as i64),
+            (4, Signed, true) => each(bytes, out, |b| i32::from_be_bytes(b) as i64),
+            (4, Unsigned, false) => each(bytes, out, |b| u32::from_le_bytes(b) as i64),
+            (4, Unsigned, true) => each(bytes, out, |b| u32::from_be_bytes(b) as i64),
+            // Unsigned 64-bit values read as their bits: above i64::MAX is negative.
+            (8, Signed | Unsigned, false) => each(bytes, out, i64::from_le_bytes),
+            (8, Signed | Unsigned, true) => each(bytes, out, i64::from_be_bytes),
+            _ => return None,
         }
+        let refused = match (self.size, self.kind) {
+            (8, Unsigned) => out[from..].iter().any(|&x| x < 0),
+            (_, Bool) => out[from..].iter().any(|&x| x > 1),
+            _ => false,
+        };
+        (!refused).then_some(())
     }
 }
 
-fn each<const N: usize>(bytes: &[u8], out: &mut Vec<i64>, label: impl Fn([u8; N]) -> Option<i64>) -> Option<()> {
-    for b in bytes.chunks_exact(N) {
-        out.push(label(b.try_into().expect("N bytes"))?);
-    }
-    Some(())
+fn each<const N: usize>(bytes: &[u8], out: &mut Vec<i64>, label: impl Fn([u8; N]) -> i64) {
+    out.extend(bytes.chunks_exact(N).map(|b| label(b.try_into().expect("N bytes"))));
 }
 
 /// The volume's shape, its labels in the file's order and whether that

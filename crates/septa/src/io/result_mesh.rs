@@ -62,7 +62,6 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
         // One triangle's record is assembled in place and appended at once
         // (an append per 4-byte field was most of this loop's cost).
         let full = layout == PlyLayout::Full;
-        let size = if full { 40 } else { 13 };
         let mut rec = [0u8; 40];
         rec[0] = 3;
         // Colours per patch, computed once each (a few patches, many faces).
@@ -83,7 +82,12 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
             for j in 1..vs.len() - 1 {
                 rec[5..9].copy_from_slice(&(vs[j] as i32).to_le_bytes());
                 rec[9..13].copy_from_slice(&(vs[j + 1] as i32).to_le_bytes());
-                buf.extend_from_slice(&rec[..size]);
+                // Fixed lengths, so the copies are inlined (not a memcpy call).
+                if full {
+                    buf.extend_from_slice(&rec);
+                } else {
+                    buf.extend_from_slice(&rec[..13]);
+                }
             }
             if buf.len() > 1 << 16 {
                 w.write_all(&buf)?;

@@ -105,6 +105,7 @@ pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: i
 /// [`vertex_id_by_key`] with the block-boundary test supplied by a caller
 /// that knows the grid element's indices (the same answer as
 /// `on_block_boundary`, without its divisions).
+#[inline]
 pub(crate) fn vertex_id_with(
     st: &mut State,
     key: VKey,
