@@ -10,11 +10,11 @@
 
 use smallvec::SmallVec;
 
+use super::simple::CubeCorners;
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::{contact, face_key, State, Worker};
 use crate::complex::{Mode, NONE};
-use super::simple::CubeCorners;
 use crate::grid::{grid_coordinate, BoxGrid};
 use crate::network::NetworkError;
 
