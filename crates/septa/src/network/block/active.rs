@@ -48,26 +48,29 @@ pub(crate) fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
 /// the functions maximal at some vertex (complex/dominated.rs).
 fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
     let k = ctx.k;
-    // The 4 corner values of every function, read once: the tests below
-    // compare every pair of functions at every corner (4 k^2 reads), and a
-    // sparse read goes through a row look-up each time.
-    let mut rows = super::values::CornerRows::new();
-    ctx.corner_rows(tet, &mut rows);
-    let dominates = |g: usize, f: usize| (0..4).all(|i| rows[g][i] > rows[f][i]);
+    // The 4 corner rows, read once as slices (no copy from a block's
+    // samples): the tests below compare every function at every corner.
+    let mut bufs: [Vec<f64>; 4] = Default::default();
+    let [b0, b1, b2, b3] = &mut bufs;
+    let rows: [&[f64]; 4] = [ctx.row(tet[0], b0), ctx.row(tet[1], b1), ctx.row(tet[2], b2), ctx.row(tet[3], b3)];
+    let at = |f: usize| [rows[0][f], rows[1][f], rows[2][f], rows[3][f]];
+    let dominates = |g: usize, f: usize| (0..4).all(|i| rows[i][g] > rows[i][f]);
     if ctx.average_domination && k >= 3 {
-        let mut max = [f64::NEG_INFINITY; 4];
-        for r in &rows {
-            for (i, m) in max.iter_mut().enumerate() {
-                *m = m.max(r[i]);
-            }
-        }
-        let is_winner = |r: &[f64; 4]| (0..4).any(|i| r[i] == max[i]);
-        let winners: SmallVec<[[f64; 4]; 8]> = rows.iter().filter(|r| is_winner(r)).copied().collect();
+        let max = rows.map(|r| r.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+        let is_winner = |f: usize| (0..4).any(|i| rows[i][f] == max[i]);
+        let winners: SmallVec<[[f64; 4]; 8]> = (0..k).filter(|&f| is_winner(f)).map(at).collect();
         if winners.len() >= 2 {
             let sums = crate::complex::WinnerSums::new(&winners);
-            for (f, r) in rows.iter().enumerate() {
-                let winner = is_winner(r);
-                if winner || !sums.dominates(r) {
+            // Below every winner at every corner: dominated by any winner
+            // alone (exact comparisons), so the tests below would drop it too.
+            let below = std::array::from_fn::<f64, 4, _>(|i| winners.iter().fold(f64::INFINITY, |m, w| m.min(w[i])));
+            for f in 0..k {
+                let r = at(f);
+                if (0..4).all(|i| r[i] < below[i]) {
+                    continue;
+                }
+                let winner = is_winner(f);
+                if winner || !sums.dominates(&r) {
                     // A winner is never dominated; the others still may be
                     // by a single function, as below.
                     if winner || !(0..k).any(|g| g != f && dominates(g, f)) {
@@ -79,7 +82,7 @@ fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
         }
     }
     // A likely dominator: the maximum at vertex 0.
-    let g0 = (0..k).fold(0, |b, f| if rows[f][0] > rows[b][0] { f } else { b });
+    let g0 = (0..k).fold(0, |b, f| if rows[0][f] > rows[0][b] { f } else { b });
     for f in 0..k {
         if f != g0 && dominates(g0, f) {
             continue;

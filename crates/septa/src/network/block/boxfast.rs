@@ -10,6 +10,7 @@
 
 use smallvec::SmallVec;
 
+use super::mask::NO_ROW;
 use super::simple::CubeCorners;
 use super::types::Label;
 use super::values::Ctx;
@@ -24,7 +25,7 @@ const BAD: u64 = u64::MAX;
 
 /// Whether the fast path applies.
 pub(crate) fn applies(ctx: &Ctx) -> bool {
-    ctx.mode == Mode::Mi || ctx.k <= 63
+    super::mask::applies(ctx.mode, ctx.k)
 }
 
 fn vertex_label(ctx: &Ctx, v: u32, buf: &mut Vec<f64>) -> u64 {
@@ -101,13 +102,21 @@ pub(super) fn run_box(
 ) -> Result<(), NetworkError> {
     let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     let vn = [n[0] + 1, n[1] + 1, n[2] + 1];
-    let mut vl = vec![0u64; vn[0] * vn[1] * vn[2]];
+    // Sub-boxes proven empty (`mask.rs`): their cubes would be skipped as
+    // one-label cubes, and their vertices carry no samples. Only without
+    // grouping, where such cubes are nobody's region.
+    let mask = if st.grouping { None } else { ctx.sparse.and_then(|s| s.mask()) };
+    let mut vl = vec![BAD; vn[0] * vn[1] * vn[2]];
     let mut buf = Vec::with_capacity(ctx.k);
     for i in 0..vn[0] {
         for j in 0..vn[1] {
             for k in 0..vn[2] {
+                let local = (i * vn[1] + j) * vn[2] + k;
+                if mask.is_some_and(|m| m.row(local) == NO_ROW) {
+                    continue;
+                }
                 let v = g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]);
-                vl[(i * vn[1] + j) * vn[2] + k] = vertex_label(ctx, v, &mut buf);
+                vl[local] = vertex_label(ctx, v, &mut buf);
             }
         }
     }
@@ -125,6 +134,9 @@ pub(super) fn run_box(
     for i in 0..n[0] {
         for j in 0..n[1] {
             for k in 0..n[2] {
+                if mask.is_some_and(|m| !m.cube([i, j, k])) {
+                    continue;
+                }
                 let l0 = vl[(i * vn[1] + j) * vn[2] + k];
                 let mut same = l0 != BAD;
                 for d in 1..8 {
