@@ -31,6 +31,7 @@ pub struct Args {
 
 /// Runs `septa labels`.
 pub fn run(a: Args) -> CliResult {
+    keep_freed_memory();
     let file = a.volume.display().to_string();
     let vol = read_label_volume(&a.volume)?;
     let affine = if a.spacing.is_some() || a.origin.is_some() {
@@ -60,4 +61,19 @@ pub fn run(a: Args) -> CliResult {
         println!("{file}: {} surfaces, {} curves, {} polygons", r.surfaces.len(), r.curves.len(), r.faces.len());
     }
     Ok(())
+}
+
+/// Lets glibc's allocator reuse freed memory instead of handing it back and
+/// faulting in fresh zeroed pages for the next array: the stages of a label
+/// run each build and drop arrays of megabytes, and page faults of fresh
+/// arrays were a fifth of a 128^3 run. Allocations up to 32 MiB come from the
+/// heap (not from a fresh mapping each), and the heap is not trimmed while
+/// the process runs. Costs some resident memory (about 15% more on 128^3).
+fn keep_freed_memory() {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    // SAFETY: mallopt only changes allocator parameters; no memory is touched.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 32 << 20);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, i32::MAX);
+    }
 }

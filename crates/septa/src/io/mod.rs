@@ -16,6 +16,7 @@ mod mesh_ply;
 mod mesh_stl;
 mod msh;
 mod network_out;
+mod npy_labels;
 mod npz;
 mod outdir;
 mod planes;

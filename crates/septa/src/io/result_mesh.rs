@@ -59,21 +59,34 @@ pub fn write_ply(r: &ResultView, path: &Path, layout: PlyLayout) -> std::io::Res
                 buf.clear();
             }
         }
+        // One triangle's record is assembled in place and appended at once
+        // (an append per 4-byte field was most of this loop's cost).
+        let full = layout == PlyLayout::Full;
+        let mut rec = [0u8; 40];
+        rec[0] = 3;
+        // Colours per patch, computed once each (a few patches, many faces).
+        let patches = r.patch.iter().map(|&p| p as usize + 1).max().unwrap_or(0);
+        let colours: Vec<[u8; 3]> = if full { (0..patches as u32).map(patch_colour).collect() } else { Vec::new() };
         for f in 0..r.num_faces() {
             let vs = r.face(f);
             let p = r.patch[f];
-            for j in 1..vs.len() - 1 {
-                buf.push(3);
-                for v in [vs[0], vs[j], vs[j + 1]] {
-                    buf.extend_from_slice(&(v as i32).to_le_bytes());
+            if full {
+                let [l0, l1] = r.labels[f];
+                let [c0, c1] = r.cells[f];
+                for (i, x) in [f as i32, p as i32, l0, l1, c0, c1].into_iter().enumerate() {
+                    rec[13 + 4 * i..17 + 4 * i].copy_from_slice(&x.to_le_bytes());
                 }
-                if layout == PlyLayout::Full {
-                    let [l0, l1] = r.labels[f];
-                    let [c0, c1] = r.cells[f];
-                    for x in [f as i32, p as i32, l0, l1, c0, c1] {
-                        buf.extend_from_slice(&x.to_le_bytes());
-                    }
-                    buf.extend_from_slice(&patch_colour(p));
+                rec[37..40].copy_from_slice(&colours[p as usize]);
+            }
+            rec[1..5].copy_from_slice(&(vs[0] as i32).to_le_bytes());
+            for j in 1..vs.len() - 1 {
+                rec[5..9].copy_from_slice(&(vs[j] as i32).to_le_bytes());
+                rec[9..13].copy_from_slice(&(vs[j + 1] as i32).to_le_bytes());
+                // Fixed lengths, so the copies are inlined (not a memcpy call).
+                if full {
+                    buf.extend_from_slice(&rec);
+                } else {
+                    buf.extend_from_slice(&rec[..13]);
                 }
             }
             if buf.len() > 1 << 16 {

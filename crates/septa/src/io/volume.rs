@@ -33,6 +33,14 @@ pub const IDENTITY: [[f64; 4]; 3] = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0],
 pub fn read_label_volume(path: &Path) -> Result<LabelVolume, String> {
     let file = path.display().to_string();
     let low = file.to_ascii_lowercase();
+    let is_npy = !(low.ends_with(".nii") || low.ends_with(".nii.gz") || low.ends_with(".nrrd"));
+    if is_npy {
+        if let Some((shape, labels, fortran)) = super::npy_labels::read(path) {
+            // Fortran order: to C order as the general reader does.
+            let labels = Values::Int(labels).whole(shape, fortran).map_err(|e| format!("{file}: {e}"))?;
+            return Ok(LabelVolume { shape, labels, affine: IDENTITY });
+        }
+    }
     let raw = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
     let r = if low.ends_with(".nii") || low.ends_with(".nii.gz") {
         maybe_gunzip(&raw).and_then(|b| read_nifti(&b))

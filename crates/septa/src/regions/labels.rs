@@ -181,10 +181,14 @@ impl BoundedField for LabelField<'_> {
             let v0 = self.voxel(p0);
             let whole = (0..3).all(|a| p0[a] == p0[a].round() && p0[a] >= 0.0);
             let fits = p0[2] as usize + points.len() <= self.shape[2];
-            let along =
-                points.iter().enumerate().all(|(n, p)| p[0] == p0[0] && p[1] == p0[1] && p[2] == p0[2] + n as f64);
+            // One pass without early exit (vectorised): rows are nearly always rows.
+            let along = points
+                .iter()
+                .enumerate()
+                .fold(true, |ok, (n, p)| ok & (p[0] == p0[0]) & (p[1] == p0[1]) & (p[2] == p0[2] + n as f64));
             (whole && fits && along).then_some(v0)
         });
+        out.reserve(points.len());
         if let Some(v0) = row {
             for (i, &l) in self.labels[v0..v0 + points.len()].iter().enumerate() {
                 if l != last.0 || i == 0 {
@@ -207,13 +211,15 @@ impl BoundedField for LabelField<'_> {
     /// MI: proven empty when every voxel of the box (widened to whole
     /// voxels) has one label, whose indicator is then 1 against 0.
     fn may_be_active(&self, _mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
-        let lo = |a: usize| (min[a].floor().max(0.0) as usize).min(self.shape[a] - 1);
-        let hi = |a: usize| (max[a].ceil().max(0.0) as usize).min(self.shape[a] - 1);
-        let first = self.labels[(lo(0) * self.shape[1] + lo(1)) * self.shape[2] + lo(2)];
-        for i in lo(0)..=hi(0) {
-            for j in lo(1)..=hi(1) {
+        let lo: [usize; 3] = std::array::from_fn(|a| (min[a].floor().max(0.0) as usize).min(self.shape[a] - 1));
+        let hi: [usize; 3] = std::array::from_fn(|a| (max[a].ceil().max(0.0) as usize).min(self.shape[a] - 1));
+        let first = self.labels[(lo[0] * self.shape[1] + lo[1]) * self.shape[2] + lo[2]];
+        for i in lo[0]..=hi[0] {
+            for j in lo[1]..=hi[1] {
                 let row = (i * self.shape[1] + j) * self.shape[2];
-                if self.labels[row + lo(2)..=row + hi(2)].iter().any(|&l| l != first) {
+                // A bitwise fold over the row (vectorised) instead of a test
+                // per voxel: nonzero iff some label differs from the first.
+                if self.labels[row + lo[2]..=row + hi[2]].iter().fold(0, |d, &l| d | (l ^ first)) != 0 {
                     return true;
                 }
             }

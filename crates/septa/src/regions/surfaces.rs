@@ -59,27 +59,18 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
         loop_start.push(loops.len() as u32);
     }
     let n = faces.len();
-    let poly = |i: usize| &loops[loop_start[i] as usize..loop_start[i + 1] as usize];
     // Join kept polygons of one pair across shared edges: (edge, pair,
     // polygon) entries sorted, so the polygons at one edge of one pair are
     // a run (component numbering does not depend on the union order). Each
     // entry is packed into one `u128` in the same order (the pair by its
-    // rank among the distinct pairs), which sorts several times faster than
-    // a tuple of 32 bytes.
-    let mut ranks: Vec<[RegionId; 2]> = pairs.clone();
+    // rank among the distinct pairs).
+    // The distinct pairs are few: gathered in a set, not by sorting a copy
+    // of every polygon's pair.
+    let distinct: rustc_hash::FxHashSet<[RegionId; 2]> = pairs.iter().copied().collect();
+    let mut ranks: Vec<[RegionId; 2]> = distinct.into_iter().collect();
     ranks.sort_unstable();
-    ranks.dedup();
     let rank = |p: &[RegionId; 2]| ranks.binary_search(p).expect("a listed pair") as u128;
-    let mut by_edge: Vec<u128> = Vec::with_capacity(loops.len());
-    for i in 0..n {
-        let p = poly(i);
-        let r = rank(&pairs[i]) << 32 | i as u128;
-        for k in 0..p.len() {
-            let (a, b) = edge(p[k], p[(k + 1) % p.len()]);
-            by_edge.push((a as u128) << 96 | (b as u128) << 64 | r);
-        }
-    }
-    by_edge.sort_unstable();
+    let by_edge = sorted_edge_entries(&loop_start, &loops, |i| rank(&pairs[i]), net.points.len());
     let mut uf = UnionFind::new(n);
     for w in by_edge.windows(2) {
         if w[0] >> 32 == w[1] >> 32 {
@@ -94,6 +85,43 @@ pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -
     }
     count_sorted(&mut surfaces, &by_edge, &loop_start, &loops, &comp, net.points.len());
     Extracted { faces, loop_start, loops, face_surface: comp, surfaces }
+}
+
+/// The entries `a << 96 | b << 64 | rank << 32 | polygon` of every side
+/// `(a, b)`, `a < b`, of the `n` polygons, sorted ascending. A counting sort
+/// on the lesser vertex `a` (an index below `points`) written in place by a
+/// second pass over the polygons, then a sort of each vertex's few entries:
+/// the same order as sorting the whole array, without its `log n` passes
+/// over half a million 16-byte entries.
+fn sorted_edge_entries(loop_start: &[u32], loops: &[u32], rank: impl Fn(usize) -> u128, points: usize) -> Vec<u128> {
+    let n = loop_start.len() - 1;
+    let sides = |i: usize| {
+        let p = &loops[loop_start[i] as usize..loop_start[i + 1] as usize];
+        (0..p.len()).map(move |k| edge(p[k], p[(k + 1) % p.len()]))
+    };
+    let mut start = vec![0u32; points + 1];
+    for i in 0..n {
+        for (a, _) in sides(i) {
+            start[a as usize + 1] += 1;
+        }
+    }
+    for v in 0..points {
+        start[v + 1] += start[v];
+    }
+    let mut by_edge = vec![0u128; start[points] as usize];
+    let mut next = start.clone();
+    for i in 0..n {
+        let r = rank(i) << 32 | i as u128;
+        for (a, b) in sides(i) {
+            let slot = &mut next[a as usize];
+            by_edge[*slot as usize] = (a as u128) << 96 | (b as u128) << 64 | r;
+            *slot += 1;
+        }
+    }
+    for v in 0..points {
+        by_edge[start[v] as usize..start[v + 1] as usize].sort_unstable();
+    }
+    by_edge
 }
 
 /// [`count_surfaces`] from the sorted (edge, pair, polygon) entries of

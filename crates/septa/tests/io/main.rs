@@ -5,4 +5,5 @@ mod common;
 
 mod atomic_failure;
 mod mesh_formats;
+mod npy_volume;
 mod readers_fuzz;

@@ -11,11 +11,12 @@
 use smallvec::SmallVec;
 
 use super::mask::NO_ROW;
+use super::simple::CubeCorners;
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::{contact, face_key, State, Worker};
 use crate::complex::{Mode, NONE};
-use crate::grid::BoxGrid;
+use crate::grid::{grid_coordinate, BoxGrid};
 use crate::network::NetworkError;
 
 /// Corner label of a vertex: IA sign bits (k <= 63), MI the strict argmax;
@@ -122,6 +123,10 @@ pub(super) fn run_box(
     let per = g.split.tets_per_cube();
     // Label volumes: tets decided by their corner labels (voxels.rs).
     let indicators = super::voxels::applies(ctx, g.vertex_index(lo));
+    // The block's grid lines per axis (`BoxGrid::vertex`'s coordinates).
+    let axes: [Vec<f64>; 3] = std::array::from_fn(|a| {
+        (lo[a]..=hi[a]).map(|i| grid_coordinate(g.bounds[0][a], g.bounds[1][a], i, g.res[a])).collect()
+    });
     let cube_vol =
         if ctx.volumes { (0..3).map(|a| (g.bounds[1][a] - g.bounds[0][a]) / g.res[a] as f64).product() } else { 0.0 };
     let mut node = vec![NONE; n[0] * n[1] * n[2]];
@@ -172,8 +177,10 @@ pub(super) fn run_box(
                                 .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
                             let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
                             // `g.tet(t)` without its divisions.
-                            let tet = offsets.map(|[a, b, c]| g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c]));
-                            if super::voxels::indicator_tet(w, ctx, st, t, &tet, corners)? {
+                            let ijk = offsets.map(|[a, b, c]| [gc[0] + a, gc[1] + b, gc[2] + c]);
+                            let tet = ijk.map(|p| g.vertex_index(p));
+                            let geometry = CubeCorners { ijk, lo, hi, axes: &axes };
+                            if super::voxels::indicator_tet(w, ctx, st, t, &tet, corners, &geometry)? {
                                 continue;
                             }
                         }

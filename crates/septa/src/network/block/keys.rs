@@ -101,6 +101,20 @@ fn packed(key: &VKey) -> Option<u64> {
 /// Block id of the vertex with global key `key`; `position` is asked for
 /// only when the key is new to the block.
 pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
+    let block = st.block_box;
+    vertex_id_with(st, key, || on_block_boundary(ctx, block, &key), position)
+}
+
+/// [`vertex_id_by_key`] with the block-boundary test supplied by a caller
+/// that knows the grid element's indices (the same answer as
+/// `on_block_boundary`, without its divisions).
+#[inline]
+pub(crate) fn vertex_id_with(
+    st: &mut State,
+    key: VKey,
+    shared: impl FnOnce() -> bool,
+    position: impl FnOnce() -> [f64; 3],
+) -> u32 {
     let next = st.out.keys.len() as u32;
     let id = match packed(&key) {
         Some(p) => *st.emap.entry(p).or_insert(next),
@@ -108,7 +122,7 @@ pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: i
     };
     if id == next {
         st.out.keys.push(key);
-        st.out.shared.push(on_block_boundary(ctx, st.block_box, &key));
+        st.out.shared.push(shared());
         st.out.points.push(position());
     }
     id

@@ -20,11 +20,11 @@ use std::sync::OnceLock;
 
 use smallvec::SmallVec;
 
-use super::keys::{position_on, vertex_id_by_key};
+use super::keys::{position_on, vertex_id_by_key, vertex_id_with};
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::State;
-use crate::complex::{Complex, Mode, Options, Plane};
+use crate::complex::{barycentric, Complex, Mode, Options, Plane};
 use crate::network::VKey;
 
 /// One vertex of the template polygon: on the tet edge `simplex` (bit mask
@@ -48,6 +48,12 @@ struct Template {
     cells: [u16; 2],
     /// The polygon's `[positive side, negative side]` cells (0 or 1).
     sides: [u32; 2],
+    /// MI: per polygon vertex, its barycentric weights when the two
+    /// functions are label indicators (function 0 is 1 at the corners of
+    /// the pattern's bits, function 1 at the others): the values then
+    /// follow from the pattern, so the weights are computed once here, by
+    /// the same [`crate::complex::barycentric`] the general path calls.
+    indicator: SmallVec<[[f64; 4]; 4]>,
 }
 
 /// Templates per mode (IA 0, MI 1) and corner sign pattern (bit `i`: IA
@@ -71,7 +77,7 @@ fn templates() -> &'static [[Option<Template>; 16]; 2] {
             if net.next().is_some() || c.cells().len() != 2 {
                 return None;
             }
-            let verts = face
+            let verts: SmallVec<[TVertex; 4]> = face
                 .vertices
                 .iter()
                 .map(|&v| {
@@ -91,7 +97,15 @@ fn templates() -> &'static [[Option<Template>; 16]; 2] {
                 Mode::Ia => c.cells()[i].is_positive(0) as u16,
                 Mode::Mi => c.cells()[i].material(),
             };
-            Some(Template { verts, plane, cells: [cell(0), cell(1)], sides: face.cells })
+            let indicator = match mode {
+                Mode::Ia => SmallVec::new(),
+                Mode::Mi => {
+                    let vals = indicator_values(pattern);
+                    let weights = |v: &TVertex| barycentric(Some(mode), v.simplex, &v.funcs[..v.len as usize], &vals);
+                    verts.iter().map(weights).collect()
+                }
+            };
+            Some(Template { verts, plane, cells: [cell(0), cell(1)], sides: face.cells, indicator })
         };
         [Mode::Ia, Mode::Mi].map(|mode| std::array::from_fn(|p| make(mode, p)))
     })
@@ -154,6 +168,98 @@ pub(crate) fn simple_tet(
     }
     st.out.poly_start.push(st.out.poly_verts.len() as u32);
     st.out.poly_label.push(t.plane.map(|f| active[f as usize]));
+    st.out.poly_cells.push(t.sides.map(|s| base + s));
+    true
+}
+
+/// The rows of two label indicators at a tet's corners: the first is 1
+/// where `pattern` has its bit (the corner's label is the lesser one).
+pub(crate) fn indicator_values(pattern: usize) -> [[f64; 4]; 2] {
+    let first: [f64; 4] = std::array::from_fn(|i| (pattern >> i & 1) as f64);
+    [first, first.map(|x| 1.0 - x)]
+}
+
+/// Where a box-grid tet's corners are, known from its cube: each corner's
+/// grid index triple, and per axis the coordinates of the block's grid lines
+/// from `lo` (the same bits as `BoxGrid::vertex`, without its divisions).
+pub(crate) struct CubeCorners<'a> {
+    pub ijk: [[usize; 3]; 4],
+    pub lo: [usize; 3],
+    pub hi: [usize; 3],
+    pub axes: &'a [Vec<f64>; 3],
+}
+
+impl CubeCorners<'_> {
+    fn position(&self, i: usize) -> [f64; 3] {
+        std::array::from_fn(|a| self.axes[a][self.ijk[i][a] - self.lo[a]])
+    }
+
+    /// Whether the tet edge `simplex` lies on a side plane of the block
+    /// `lo..hi` (the rule of `keys::on_block_boundary`, from the indices).
+    fn edge_on_block_boundary(&self, simplex: u8) -> bool {
+        let (p, q) = (self.ijk[simplex.trailing_zeros() as usize], self.ijk[7 - simplex.leading_zeros() as usize]);
+        (0..3).any(|a| (p[a] == self.lo[a] && q[a] == self.lo[a]) || (p[a] == self.hi[a] && q[a] == self.hi[a]))
+    }
+}
+
+/// [`simple_tet`] for an MI tet whose corners carry the two labels `pair`
+/// (`pair[0] < pair[1]`; bit `i` of `pattern`: corner `i` has `pair[0]`),
+/// the functions being the labels' indicators (`voxels.rs`). The same
+/// template, keys and cells; the vertex positions from the template's
+/// indicator weights and the corners' coordinates, which is what
+/// `position_on` computes from those values. Returns false where
+/// [`simple_tet`] would.
+pub(crate) fn indicator_pair_tet(
+    ctx: &Ctx,
+    st: &mut State,
+    tet: &[u32; 4],
+    pair: &[u16; 2],
+    pattern: usize,
+    corners: &CubeCorners,
+) -> bool {
+    if st.grouping || ctx.volumes || !ctx.options.lookup {
+        return false;
+    }
+    let Some(t) = &templates()[1][pattern] else {
+        return false;
+    };
+    let base = st.uf.len() as u32;
+    for &cell in &t.cells {
+        super::program::push_cell(ctx.mode, st, &Label::new(), pair, cell as u64);
+    }
+    if st.out.poly_start.is_empty() {
+        st.out.poly_start.push(0);
+    }
+    for (tv, w) in t.verts.iter().zip(&t.indicator) {
+        let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
+        let (a, b) = (tv.simplex.trailing_zeros() as usize, 7 - tv.simplex.leading_zeros() as usize);
+        key.grid[0] = tet[a].min(tet[b]);
+        key.grid[1] = tet[a].max(tet[b]);
+        for j in 0..tv.len as usize {
+            key.funcs[j] = pair[tv.funcs[j] as usize];
+        }
+        key.funcs[..tv.len as usize].sort_unstable();
+        let position = || {
+            let mut p = [0.0; 3];
+            for i in [a, b] {
+                let corner = corners.position(i);
+                for k in 0..3 {
+                    p[k] += w[i] * corner[k];
+                }
+            }
+            #[cfg(debug_assertions)]
+            {
+                let vals = indicator_values(pattern);
+                let want = position_on(ctx, tet, tv.simplex, &tv.funcs[..tv.len as usize], &vals);
+                debug_assert_eq!(p.map(f64::to_bits), want.map(f64::to_bits), "vertex of tet {tet:?}");
+            }
+            p
+        };
+        let id = vertex_id_with(st, key, || corners.edge_on_block_boundary(tv.simplex), position);
+        st.out.poly_verts.push(id);
+    }
+    st.out.poly_start.push(st.out.poly_verts.len() as u32);
+    st.out.poly_label.push(t.plane.map(|f| pair[f as usize]));
     st.out.poly_cells.push(t.sides.map(|s| base + s));
     true
 }

@@ -18,11 +18,12 @@
 //! functions run on the same values in the same tet order; debug builds
 //! check the active functions against `active_functions` per tet.
 
-use super::simple::simple_tet;
-use super::types::Label;
+use rustc_hash::FxHashMap;
+
+use super::simple::{indicator_pair_tet, CubeCorners};
 use super::values::Ctx;
 use super::worker::{State, Worker};
-use crate::complex::Mode;
+use crate::complex::{BuildError, Complex, Mode};
 use crate::network::NetworkError;
 
 /// Whether the run's values are label indicators that the rules above apply
@@ -32,8 +33,9 @@ pub(super) fn applies(ctx: &Ctx, some_vertex: u32) -> bool {
 }
 
 /// Tet `t` with grid vertices `tet` and the labels `corners` at them (in
-/// tet order): emits it and returns true, or returns false (3+ labels: the
-/// caller runs the general path, with `w.pair_hint` left empty).
+/// tet order), placed by `geometry`: emits it and returns true, or returns
+/// false (3+ labels: the caller runs the general path, with `w.pair_hint`
+/// left empty).
 pub(super) fn indicator_tet(
     w: &mut Worker,
     ctx: &Ctx,
@@ -41,6 +43,7 @@ pub(super) fn indicator_tet(
     t: usize,
     tet: &[u32; 4],
     corners: [u64; 4],
+    geometry: &CubeCorners,
 ) -> Result<bool, NetworkError> {
     let mut sorted = corners;
     sorted.sort_unstable();
@@ -55,7 +58,9 @@ pub(super) fn indicator_tet(
         return Ok(false);
     }
     let pair = [sorted[0] as u16, sorted[3] as u16];
-    let vals = pair.map(|f| corners.map(|l| (l == f as u64) as u8 as f64));
+    // The values are the indicators of the pair: decided by which corners
+    // carry the lesser label (the two-function template's sign pattern).
+    let pattern = (0..4).fold(0, |p, i| p | ((corners[i] == sorted[0]) as usize) << i);
     #[cfg(debug_assertions)]
     {
         let mut check = Vec::new();
@@ -64,7 +69,7 @@ pub(super) fn indicator_tet(
         debug_assert_eq!(*tet, ctx.grid.tet(t), "grid vertices of tet {t}");
     }
     st.out.active_tets += 1;
-    if simple_tet(ctx, st, tet, &pair, &vals, &Label::new()) {
+    if indicator_pair_tet(ctx, st, tet, &pair, pattern, geometry) {
         return Ok(true);
     }
     // Grouping, volumes or no tables: the general path, told the pair.
@@ -73,4 +78,31 @@ pub(super) fn indicator_tet(
     w.process_tet(ctx, st, t)?;
     w.pair_hint = None;
     Ok(true)
+}
+
+/// `complex.build(ctx.mode, vals, ..)`, for label indicators taken from
+/// `built` when the same corner values were met before: the values of a
+/// tet with 3 or 4 labels are indicators (0 or 1), so only a few hundred
+/// distinct value sets occur, and `Complex::build` depends on nothing else
+/// (a 128^3 volume has over a thousand such tets, each a full incremental
+/// construction before).
+pub(super) fn build_complex(
+    complex: &mut Complex,
+    built: &mut FxHashMap<Vec<u64>, Complex>,
+    ctx: &Ctx,
+    tet: &[u32; 4],
+    vals: &[[f64; 4]],
+) -> Result<(), BuildError> {
+    if !(ctx.mode == Mode::Mi && ctx.label(tet[0]).is_some()) {
+        return complex.build(ctx.mode, vals, &ctx.options);
+    }
+    let key: Vec<u64> = vals.iter().flat_map(|r| r.map(f64::to_bits)).collect();
+    match built.get(&key) {
+        Some(c) => complex.clone_from(c),
+        None => {
+            complex.build(ctx.mode, vals, &ctx.options)?;
+            built.insert(key, complex.clone());
+        }
+    }
+    Ok(())
 }

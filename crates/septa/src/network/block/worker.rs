@@ -48,6 +48,8 @@ pub(crate) struct Worker {
     programs: FxHashMap<u64, Option<Arc<super::program::Program>>>,
     /// The lengths of the previous block's output arrays (`Lengths`).
     last: Lengths,
+    /// Label volumes: complexes by their corner values (`voxels::build_complex`).
+    indicator_complexes: FxHashMap<Vec<u64>, Complex>,
 }
 
 /// The lengths of a block's growing output arrays. The next block of a
@@ -238,8 +240,7 @@ impl Worker {
             }
         }
         let mark = super::program::Mark::of(st);
-        self.complex
-            .build(ctx.mode, &self.vals, &ctx.options)
+        super::voxels::build_complex(&mut self.complex, &mut self.indicator_complexes, ctx, &tet, &self.vals)
             .map_err(|source| NetworkError::Tet { tet: t, source })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
