@@ -59,6 +59,7 @@ fn main() {
     // far, after which a stage's freed arrays stay resident in the heap next
     // to the next stage's: the peak resident memory of a grid run was 7 MB
     // (10%) above its live data on 18 spheres at 64^3 (docs/performance.md).
+    // `septa labels` makes the opposite trade for speed (labels.rs).
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: a malloc tuning call before any thread starts.
     unsafe {
