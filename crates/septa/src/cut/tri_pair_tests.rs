@@ -1,4 +1,4 @@
-//! Tests of `selfx`: the filters against exact signs, exact zeros, and
+//! Tests of `tri_pair`: the filters against exact signs, exact zeros, and
 //! coplanar triangle pairs.
 
 mod filters {
