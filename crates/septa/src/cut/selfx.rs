@@ -187,3 +187,7 @@ pub fn intersecting_pairs_touching(
     all.sort_unstable();
     all
 }
+
+#[cfg(test)]
+#[path = "selfx_tests.rs"]
+mod tests;
