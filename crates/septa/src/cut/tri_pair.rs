@@ -36,20 +36,33 @@ fn orient_slow(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
 /// determinant again. Only signs the static filter cannot decide are kept,
 /// under the sorted vertex ids (the sign flips with the permutation's
 /// parity, exactly).
+///
+/// A corner against the other triangle's plane, asked with that triangle's
+/// corners in their order, first goes through the prepared plane's filter
+/// ([`TriPlane::side`]: `orient(a, b, c, d)` is the sign of
+/// `det(b - a, c - a, d - a)`, which `side` bounds), cheaper than the
+/// general one (instead of it: when it cannot decide, the exact sign is
+/// computed, as after the general filter).
 struct PairOrients<'a> {
     x: &'a [[f64; 3]],
+    planes: [(&'a [u32; 3], Option<&'a TriPlane>); 2],
     keys: [[u32; 4]; 16],
     signs: [Sign; 16],
     n: usize,
 }
 
 impl<'a> PairOrients<'a> {
-    fn new(x: &'a [[f64; 3]]) -> Self {
-        PairOrients { x, keys: [[0; 4]; 16], signs: [Sign::Zero; 16], n: 0 }
+    fn new(x: &'a [[f64; 3]], planes: [(&'a [u32; 3], Option<&'a TriPlane>); 2]) -> Self {
+        PairOrients { x, planes, keys: [[0; 4]; 16], signs: [Sign::Zero; 16], n: 0 }
     }
 
     fn orient(&mut self, a: u32, b: u32, c: u32, d: u32) -> Sign {
-        if let Some(s) = orient_filtered(self.x, a, b, c, d) {
+        let plane = self.planes.iter().find(|(t, p)| p.is_some() && **t == [a, b, c]).and_then(|q| q.1);
+        let filtered = match plane {
+            Some(p) => p.side(&self.x[d as usize]),
+            None => orient_filtered(self.x, a, b, c, d),
+        };
+        if let Some(s) = filtered {
             return s;
         }
         let mut k = [a, b, c, d];
@@ -390,7 +403,7 @@ pub(super) fn pair_intersects_planes(
     if projections_separated(x, t1, &p1.n, t2) {
         return false;
     }
-    let mut o = PairOrients::new(x);
+    let mut o = PairOrients::new(x, [(t1, Some(p1)), (t2, Some(p2))]);
     let mut shared = [0u32; 3];
     let mut ns = 0;
     for &v in t1 {

@@ -90,7 +90,10 @@ mod overlap {
             let z = f64::from_bits((z.to_bits() as i64 + (i % 3) as i64 - 1) as u64);
             x.push([u, v, z]);
         }
-        let mut o = PairOrients::new(&x);
+        // with the planes of two of their triangles prepared (and without)
+        let t = [[0, 1, 2], [5, 3, 4]];
+        let p = t.map(|t| TriPlane::new(&x, &t));
+        let mut o = PairOrients::new(&x, [(&t[0], Some(&p[0])), (&t[1], Some(&p[1]))]);
         let (mut slow, mut nonzero) = (0, 0);
         for _ in 0..2 {
             for a in 0..6u32 {
@@ -105,7 +108,7 @@ mod overlap {
                     }
                 }
             }
-            o = PairOrients::new(&x);
+            o = PairOrients::new(&x, [(&t[0], None), (&t[1], None)]);
         }
         assert!(slow > 100 && nonzero > 0, "{slow} {nonzero}");
     }

@@ -29,7 +29,9 @@ pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
         v.len()
     };
     let mut order: Vec<usize> = (0..polys.len()).collect();
-    order.sort_by_key(|&c| points(&polys[c]));
+    // stable, as `sort_by_key`; each cell's count formed once (it sorts the
+    // cell's vertex ids), not once per comparison
+    order.sort_by_cached_key(|&c| points(&polys[c]));
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
     let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| polys[c].clone()).collect();
