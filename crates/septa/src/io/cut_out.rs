@@ -21,7 +21,7 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
 /// cell data by ascending count, so any other order gives it misaligned
 /// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
 pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
-    let polys = m.cell_polygons();
+    let mut polys = m.cell_polygons();
     let points = |c: &Vec<Vec<u32>>| {
         let mut v: Vec<u32> = c.iter().flatten().copied().collect();
         v.sort_unstable();
@@ -34,7 +34,7 @@ pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
     order.sort_by_cached_key(|&c| points(&polys[c]));
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
-    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| polys[c].clone()).collect();
+    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| std::mem::take(&mut polys[c])).collect();
     super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &[("volume", &volumes)], &[("cell_id", &ids)])
 }
 
