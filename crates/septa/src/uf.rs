@@ -25,6 +25,11 @@ impl UnionFind {
         self.parent.reserve(n);
     }
 
+    /// Frees the room reserved beyond the elements.
+    pub fn shrink_to_fit(&mut self) {
+        self.parent.shrink_to_fit();
+    }
+
     /// Number of elements.
     pub fn len(&self) -> usize {
         self.parent.len()
@@ -66,6 +71,29 @@ impl UnionFind {
         }
     }
 
+    /// [`UnionFind::components`] in the union-find's own array (no second
+    /// array of `n` ids at a stage's peak of memory). When every parent
+    /// precedes its child, which [`UnionFind::union`] and path halving keep,
+    /// a single pass in increasing order finds each element's component at
+    /// its parent, already numbered; after [`UnionFind::union_by`] it may
+    /// not hold, and the general pass runs.
+    pub fn into_components(mut self) -> (Vec<u32>, usize) {
+        if self.parent.iter().enumerate().any(|(x, &p)| p as usize > x) {
+            return self.components();
+        }
+        let mut count = 0;
+        for x in 0..self.parent.len() {
+            let p = self.parent[x] as usize;
+            self.parent[x] = if p == x {
+                count += 1;
+                count - 1
+            } else {
+                self.parent[p]
+            };
+        }
+        (self.parent, count as usize)
+    }
+
     /// Dense component ids `0..count`, numbered by smallest element, and the count.
     pub fn components(&mut self) -> (Vec<u32>, usize) {
         let n = self.parent.len();
@@ -80,5 +108,31 @@ impl UnionFind {
             id[x as usize] = id[r as usize];
         }
         (id, count as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::UnionFind;
+
+    #[test]
+    fn components_in_place_equal_the_general_pass() {
+        let mut state = 12345u64;
+        for n in [0usize, 1, 2, 7, 100, 1000] {
+            let mut uf = UnionFind::new(n);
+            for _ in 0..n / 2 {
+                state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let (a, b) = ((state >> 33) as usize % n.max(1), (state >> 13) as usize % n.max(1));
+                uf.union(a as u32, b as u32);
+            }
+            let mut copy = UnionFind { parent: uf.parent.clone() };
+            assert_eq!(uf.into_components(), copy.components(), "{n}");
+        }
+        // Roots chosen against the index order: the general pass runs.
+        let mut uf = UnionFind::new(4);
+        uf.union_by(0, 3, |_, _| false);
+        uf.union_by(1, 2, |_, _| false);
+        let mut copy = UnionFind { parent: uf.parent.clone() };
+        assert_eq!(uf.into_components(), copy.components());
     }
 }

@@ -31,6 +31,13 @@ pub trait BoundedField: Sync {
     /// only if proven empty (IA: every function keeps one strict sign on
     /// the box; MI: one function exceeds every other on it).
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool;
+    /// [`BoundedField::may_be_active`] for the small sub-boxes of a block
+    /// about to be sampled (a few cubes each, dozens per block): the same
+    /// guarantee (false only if proven empty), free to prove less in
+    /// exchange for speed. The default is the full test.
+    fn may_be_active_quick(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        self.may_be_active(mode, min, max)
+    }
     /// Label volumes: when every function is an indicator (at each point
     /// one function is 1 and the others 0), appends the index of that
     /// function at each of `points` to `out` and returns true, so a block
@@ -68,6 +75,9 @@ impl<F: BoundedField + ?Sized> BoundedField for ByRef<'_, F> {
     }
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
         self.0.may_be_active(mode, min, max)
+    }
+    fn may_be_active_quick(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        self.0.may_be_active_quick(mode, min, max)
     }
     fn sample_labels(&self, points: &[[f64; 3]], out: &mut Vec<u32>) -> bool {
         self.0.sample_labels(points, out)

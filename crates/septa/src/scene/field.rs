@@ -2,6 +2,7 @@
 //! by [`Primitive::eval`], sampling in parallel by [`sample_grid`], empty
 //! boxes proven by the primitives' conservative bounds (`sample.rs`).
 
+use super::sample::{box_may_be_active_ia, box_may_be_active_mi};
 use super::{block_may_be_active_ia, block_may_be_active_mi, sample_grid, Primitive};
 use crate::complex::Mode;
 use crate::network::{BoundedField, Field};
@@ -25,6 +26,13 @@ impl BoundedField for [Primitive] {
             Mode::Mi => block_may_be_active_mi(self, min, max),
         }
     }
+
+    fn may_be_active_quick(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        match mode {
+            Mode::Ia => box_may_be_active_ia(self, min, max),
+            Mode::Mi => box_may_be_active_mi(self, min, max),
+        }
+    }
 }
 
 impl BoundedField for Vec<Primitive> {
@@ -42,6 +50,10 @@ impl BoundedField for Vec<Primitive> {
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
         self.as_slice().may_be_active(mode, min, max)
+    }
+
+    fn may_be_active_quick(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
+        self.as_slice().may_be_active_quick(mode, min, max)
     }
 }
 

@@ -158,3 +158,38 @@ pub fn block_may_be_active_ia(functions: &[Primitive], min: V3, max: V3) -> bool
 pub fn block_may_be_active_mi(functions: &[Primitive], min: V3, max: V3) -> bool {
     functions.len() >= 2 && mi_owner(functions, min, max, REFINE).is_none()
 }
+
+/// [`block_may_be_active_ia`] without splitting the box: for the sub-boxes
+/// of a sampled block, which are small enough that one bound decides most.
+pub(crate) fn box_may_be_active_ia(functions: &[Primitive], min: V3, max: V3) -> bool {
+    functions.iter().any(|f| ia_sign(f, min, max, 0).is_none())
+}
+
+/// [`block_may_be_active_mi`] without splitting the box and with the
+/// functions' own bounds only: a sub-box is owned when one function's lower
+/// bound exceeds every other one's upper bound. The centred-form bounds on
+/// differences prove more, but cost more than sampling the few vertices
+/// they would spare.
+pub(crate) fn box_may_be_active_mi(functions: &[Primitive], min: V3, max: V3) -> bool {
+    if functions.len() < 2 {
+        return false;
+    }
+    // The owner, if any, has the largest lower bound; the bounds enclose
+    // every rounded value `eval` returns in the box (`rounding.rs`), and
+    // finite bounds prove every sample finite.
+    let (mut best, mut second_upper, mut owner_upper) = (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for f in functions {
+        let (l, h) = f.bounds(min, max);
+        if !(l.is_finite() && h.is_finite()) {
+            return true;
+        }
+        if l > best {
+            second_upper = second_upper.max(owner_upper);
+            best = l;
+            owner_upper = h;
+        } else {
+            second_upper = second_upper.max(h);
+        }
+    }
+    !(best > second_upper)
+}

@@ -77,6 +77,18 @@ fn reference_specs_sample_like_the_cli() {
 }
 
 #[test]
+fn sub_boxes_proven_empty_inside_sampled_blocks_are_not_sampled() {
+    // Blocks of 16 cubes hold 4^3 sub-boxes; the bounds prove most of them
+    // empty, so their vertices are not sampled and their cubes not visited
+    // (`block/mask.rs`), and the network is still the dense one.
+    for (name, mode) in [("ia18", Mode::Ia), ("mi18", Mode::Mi), ("nested8", Mode::Ia)] {
+        let s = check(&spec(name), &cube_grid(48), mode, 16, &format!("{name}-masked"));
+        let every = s.sampled * 17usize.pow(3);
+        assert!(s.sampled > 0 && s.sampled_vertices < every, "{name}: {s:?}");
+    }
+}
+
+#[test]
 fn nested_and_separate_shells_skip_empty_blocks_between_them() {
     // Nested: three concentric shells, empty blocks between them; cells
     // are bounded by two shells each.

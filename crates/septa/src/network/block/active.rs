@@ -12,6 +12,18 @@ use crate::network::NetworkError;
 /// The active functions of tet `t` (ascending): IA, those with a sign change
 /// or a zero at its vertices; MI, those not strictly dominated at all 4.
 pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Vec<u16>) -> Result<(), NetworkError> {
+    active_functions_with(ctx, t, tet, None, out)
+}
+
+/// [`active_functions`], given (MI) the unique strict maximum at each corner
+/// when known (`boxfast.rs` labels every vertex of a block first).
+pub(crate) fn active_functions_with(
+    ctx: &Ctx,
+    t: usize,
+    tet: &[u32; 4],
+    corner_winners: Option<[u64; 4]>,
+    out: &mut Vec<u16>,
+) -> Result<(), NetworkError> {
     out.clear();
     let k = ctx.k;
     match ctx.mode {
@@ -26,7 +38,7 @@ pub(crate) fn active_functions(ctx: &Ctx, t: usize, tet: &[u32; 4], out: &mut Ve
                 }
             }
         }
-        Mode::Mi => mi_active(tet, ctx, out),
+        Mode::Mi => mi_active(tet, ctx, corner_winners, out),
     }
     Ok(())
 }
@@ -46,40 +58,53 @@ pub(crate) fn ia_base_label(tet: &[u32; 4], ctx: &Ctx) -> Label {
 /// MI active functions: those not strictly dominated at all 4 tet vertices,
 /// by one function or (with `ctx.average_domination`) by the average of
 /// the functions maximal at some vertex (complex/dominated.rs).
-fn mi_active(tet: &[u32; 4], ctx: &Ctx, out: &mut Vec<u16>) {
+///
+/// `corner_winners`: the unique strict maximum at each corner, if known;
+/// then the functions maximal at some corner are exactly these.
+fn mi_active(tet: &[u32; 4], ctx: &Ctx, corner_winners: Option<[u64; 4]>, out: &mut Vec<u16>) {
     let k = ctx.k;
-    // The 4 corner values of every function, read once: the tests below
-    // compare every pair of functions at every corner (4 k^2 reads), and a
-    // sparse read goes through a row look-up each time.
-    let mut rows = super::values::CornerRows::new();
-    ctx.corner_rows(tet, &mut rows);
-    let dominates = |g: usize, f: usize| (0..4).all(|i| rows[g][i] > rows[f][i]);
+    // The 4 corner rows, read once as slices (no copy from a block's
+    // samples): the tests below compare every function at every corner.
+    let mut bufs: [Vec<f64>; 4] = Default::default();
+    let [b0, b1, b2, b3] = &mut bufs;
+    let rows: [&[f64]; 4] = [ctx.row(tet[0], b0), ctx.row(tet[1], b1), ctx.row(tet[2], b2), ctx.row(tet[3], b3)];
+    let at = |f: usize| [rows[0][f], rows[1][f], rows[2][f], rows[3][f]];
+    let dominates = |g: usize, f: usize| (0..4).all(|i| rows[i][g] > rows[i][f]);
     if ctx.average_domination && k >= 3 {
-        let mut max = [f64::NEG_INFINITY; 4];
-        for r in &rows {
-            for (i, m) in max.iter_mut().enumerate() {
-                *m = m.max(r[i]);
+        // The functions maximal at some corner, ascending (the order of the
+        // sums below, so both ways give the same bits).
+        let mut winners: SmallVec<[u16; 8]> = match corner_winners {
+            Some(l) => l.iter().map(|&f| f as u16).collect(),
+            None => {
+                // Values are finite (checked when sampled).
+                let max = rows.map(|r| r.iter().copied().fold(f64::NEG_INFINITY, |m, x| if x > m { x } else { m }));
+                (0..k).filter(|&f| (0..4).any(|i| rows[i][f] == max[i])).map(|f| f as u16).collect()
             }
-        }
-        let is_winner = |r: &[f64; 4]| (0..4).any(|i| r[i] == max[i]);
-        let winners: SmallVec<[[f64; 4]; 8]> = rows.iter().filter(|r| is_winner(r)).copied().collect();
+        };
+        winners.sort_unstable();
+        winners.dedup();
         if winners.len() >= 2 {
-            let sums = crate::complex::WinnerSums::new(&winners);
-            for (f, r) in rows.iter().enumerate() {
-                let winner = is_winner(r);
-                if winner || !sums.dominates(r) {
-                    // A winner is never dominated; the others still may be
-                    // by a single function, as below.
-                    if winner || !(0..k).any(|g| g != f && dominates(g, f)) {
-                        out.push(f as u16);
-                    }
+            let w_rows: SmallVec<[[f64; 4]; 8]> = winners.iter().map(|&w| at(w as usize)).collect();
+            let sums = crate::complex::WinnerSums::new(&w_rows);
+            // Below every winner at every corner: dominated by any winner
+            // alone (exact comparisons), so the tests below would drop it too.
+            let below = std::array::from_fn::<f64, 4, _>(|i| w_rows.iter().fold(f64::INFINITY, |m, w| m.min(w[i])));
+            for f in 0..k {
+                let r = at(f);
+                if r[0] < below[0] && r[1] < below[1] && r[2] < below[2] && r[3] < below[3] {
+                    continue;
+                }
+                // A winner is never dominated; the others may be by the
+                // winners' average or by a single function.
+                if winners.contains(&(f as u16)) || !(sums.dominates(&r) || (0..k).any(|g| g != f && dominates(g, f))) {
+                    out.push(f as u16);
                 }
             }
             return;
         }
     }
     // A likely dominator: the maximum at vertex 0.
-    let g0 = (0..k).fold(0, |b, f| if rows[f][0] > rows[b][0] { f } else { b });
+    let g0 = (0..k).fold(0, |b, f| if rows[0][f] > rows[0][b] { f } else { b });
     for f in 0..k {
         if f != g0 && dominates(g0, f) {
             continue;

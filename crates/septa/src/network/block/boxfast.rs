@@ -10,6 +10,7 @@
 
 use smallvec::SmallVec;
 
+use super::mask::NO_ROW;
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::{contact, face_key, State, Worker};
@@ -23,7 +24,7 @@ const BAD: u64 = u64::MAX;
 
 /// Whether the fast path applies.
 pub(crate) fn applies(ctx: &Ctx) -> bool {
-    ctx.mode == Mode::Mi || ctx.k <= 63
+    super::mask::applies(ctx.mode, ctx.k)
 }
 
 fn vertex_label(ctx: &Ctx, v: u32, buf: &mut Vec<f64>) -> u64 {
@@ -100,13 +101,21 @@ pub(super) fn run_box(
 ) -> Result<(), NetworkError> {
     let n = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     let vn = [n[0] + 1, n[1] + 1, n[2] + 1];
-    let mut vl = vec![0u64; vn[0] * vn[1] * vn[2]];
+    // Sub-boxes proven empty (`mask.rs`): their cubes would be skipped as
+    // one-label cubes, and their vertices carry no samples. Only without
+    // grouping, where such cubes are nobody's region.
+    let mask = if st.grouping { None } else { ctx.sparse.and_then(|s| s.mask()) };
+    let mut vl = vec![BAD; vn[0] * vn[1] * vn[2]];
     let mut buf = Vec::with_capacity(ctx.k);
     for i in 0..vn[0] {
         for j in 0..vn[1] {
             for k in 0..vn[2] {
+                let local = (i * vn[1] + j) * vn[2] + k;
+                if mask.is_some_and(|m| m.row(local) == NO_ROW) {
+                    continue;
+                }
                 let v = g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]);
-                vl[(i * vn[1] + j) * vn[2] + k] = vertex_label(ctx, v, &mut buf);
+                vl[local] = vertex_label(ctx, v, &mut buf);
             }
         }
     }
@@ -120,6 +129,9 @@ pub(super) fn run_box(
     for i in 0..n[0] {
         for j in 0..n[1] {
             for k in 0..n[2] {
+                if mask.is_some_and(|m| !m.cube([i, j, k])) {
+                    continue;
+                }
                 let l0 = vl[(i * vn[1] + j) * vn[2] + k];
                 let mut same = l0 != BAD;
                 for d in 1..8 {
@@ -152,6 +164,7 @@ pub(super) fn run_box(
                         w.active_hint = None;
                         w.base_hint = None;
                         w.pair_hint = None;
+                        w.winner_hint = None;
                         if indicators {
                             let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
                             let offsets = g
@@ -164,12 +177,16 @@ pub(super) fn run_box(
                                 continue;
                             }
                         }
+                        let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                        let corners = g.tet_corners(gc, lt).map(|p| {
+                            let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
+                            vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
+                        });
+                        if ctx.mode == Mode::Mi && !corners.contains(&BAD) {
+                            // The unique strict maximum at each corner.
+                            w.winner_hint = Some(corners);
+                        }
                         if ctx.mode == Mode::Ia {
-                            let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                            let corners = g.tet_corners(gc, lt).map(|p| {
-                                let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
-                                vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
-                            });
                             let (mut or, mut and) = (0u64, u64::MAX);
                             for l in corners {
                                 or |= l;
@@ -185,6 +202,7 @@ pub(super) fn run_box(
                     w.active_hint = None;
                     w.base_hint = None;
                     w.pair_hint = None;
+                    w.winner_hint = None;
                 }
             }
         }

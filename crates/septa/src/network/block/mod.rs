@@ -9,6 +9,7 @@
 mod active;
 mod boxfast;
 mod keys;
+mod mask;
 mod program;
 mod simple;
 mod types;
@@ -18,6 +19,7 @@ mod worker;
 
 pub(crate) use active::active_functions;
 pub(crate) use keys::vertex_key;
+pub(crate) use mask::{applies as mask_applies, CubeMask, NO_ROW};
 pub(crate) use types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
 pub(crate) use values::{BlockLabels, BlockValues, Ctx, PointValues, Values};
 pub(crate) use worker::{tet_face_zero, Worker, FACE_OF};

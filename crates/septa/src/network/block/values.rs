@@ -4,6 +4,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use super::mask::CubeMask;
 use crate::complex::{Mode, Options};
 use crate::grid::{BoxGrid, Grid};
 use crate::network::field::BoundedField;
@@ -23,12 +24,12 @@ pub(crate) trait Values: Sync {
     fn label(&self, _v: u32) -> Option<u32> {
         None
     }
+    /// The block's cubes that may hold a part of the network, when the
+    /// vertices of the others were not sampled (`mask.rs`).
+    fn mask(&self) -> Option<&CubeMask> {
+        None
+    }
 }
-
-/// The 4 corner values of every function of a tet, inline up to 32
-/// functions (an MI tet reads them for every tet of a mixed cube; a heap
-/// array per tet cost more than the comparisons).
-pub(crate) type CornerRows = smallvec::SmallVec<[[f64; 4]; 32]>;
 
 /// Run-wide inputs.
 pub(crate) struct Ctx<'a> {
@@ -80,27 +81,15 @@ impl Ctx<'_> {
     pub(crate) fn label(&self, v: u32) -> Option<u32> {
         self.sparse.and_then(|s| s.label(v))
     }
-
-    /// The values of every function at the 4 corners of `tet`
-    /// (`out[f][i]`: function `f` at corner `i`), one row look-up per corner.
-    pub(crate) fn corner_rows(&self, tet: &[u32; 4], out: &mut CornerRows) {
-        out.clear();
-        out.resize(self.k, [0.0; 4]);
-        let mut buf = Vec::new();
-        for (i, &v) in tet.iter().enumerate() {
-            let row = self.row(v, &mut buf);
-            for (f, &x) in row.iter().enumerate() {
-                out[f][i] = x;
-            }
-        }
-    }
 }
 
-/// The values of one block's vertices, `lo..=hi` in grid coordinates.
+/// The values of one block's vertices, `lo..=hi` in grid coordinates: every
+/// vertex, or those the mask gives a row.
 pub(crate) struct BlockValues {
     k: usize,
     pub(crate) data: Vec<f64>,
     at: LocalIndex,
+    mask: Option<CubeMask>,
 }
 
 /// Grid vertex id to a block's local vertex index, with a small cache.
@@ -119,7 +108,20 @@ struct LocalIndex {
 
 impl BlockValues {
     pub(crate) fn new(grid: &BoxGrid, lo: [usize; 3], vn: [usize; 3], k: usize, data: Vec<f64>) -> BlockValues {
-        BlockValues { k, data, at: LocalIndex::new(grid, lo, vn) }
+        BlockValues { k, data, at: LocalIndex::new(grid, lo, vn), mask: None }
+    }
+
+    /// The values of the vertices `mask` gives a row, in row order.
+    pub(crate) fn masked(
+        grid: &BoxGrid,
+        lo: [usize; 3],
+        vn: [usize; 3],
+        k: usize,
+        data: Vec<f64>,
+        mask: CubeMask,
+    ) -> BlockValues {
+        debug_assert_eq!(data.len(), mask.sampled() * k);
+        BlockValues { k, data, at: LocalIndex::new(grid, lo, vn), mask: Some(mask) }
     }
 }
 
@@ -130,8 +132,11 @@ impl LocalIndex {
         LocalIndex { lo, vn, stride: [a, b], cache: std::array::from_fn(|_| AtomicU64::new(u64::MAX)) }
     }
 
+    /// The row of grid vertex `v`: its block-local index, renumbered by
+    /// `mask` when given (a vertex without a row is never read: the worker
+    /// skips the cubes the mask rules out).
     #[inline]
-    fn local(&self, v: u32) -> usize {
+    fn local(&self, v: u32, mask: Option<&CubeMask>) -> usize {
         let slot = &self.cache[(v.wrapping_mul(0x9E37_79B1) >> 28) as usize];
         let e = slot.load(Ordering::Relaxed);
         if e >> 32 == v as u64 {
@@ -141,6 +146,10 @@ impl LocalIndex {
         let (j, l) = (r / self.stride[1], r % self.stride[1]);
         let local = ((i as usize - self.lo[0]) * self.vn[1] + (j as usize - self.lo[1])) * self.vn[2]
             + (l as usize - self.lo[2]);
+        let local = match mask {
+            None => local,
+            Some(m) => m.row(local) as usize,
+        };
         slot.store((v as u64) << 32 | local as u64, Ordering::Relaxed);
         local
     }
@@ -149,13 +158,17 @@ impl LocalIndex {
 impl Values for BlockValues {
     #[inline]
     fn val(&self, v: u32, f: usize) -> f64 {
-        self.data[self.at.local(v) * self.k + f]
+        self.data[self.at.local(v, self.mask.as_ref()) * self.k + f]
     }
 
     #[inline]
     fn row(&self, v: u32) -> Option<&[f64]> {
-        let at = self.at.local(v) * self.k;
+        let at = self.at.local(v, self.mask.as_ref()) * self.k;
         Some(&self.data[at..at + self.k])
+    }
+
+    fn mask(&self) -> Option<&CubeMask> {
+        self.mask.as_ref()
     }
 }
 
@@ -177,12 +190,12 @@ impl BlockLabels {
 impl Values for BlockLabels {
     #[inline]
     fn val(&self, v: u32, f: usize) -> f64 {
-        (self.labels[self.at.local(v)] as usize == f) as u8 as f64
+        (self.labels[self.at.local(v, None)] as usize == f) as u8 as f64
     }
 
     #[inline]
     fn label(&self, v: u32) -> Option<u32> {
-        Some(self.labels[self.at.local(v)])
+        Some(self.labels[self.at.local(v, None)])
     }
 }
 

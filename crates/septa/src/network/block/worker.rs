@@ -8,7 +8,7 @@ use std::sync::Arc;
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::active::{active_functions, ia_base_label};
+use super::active::{active_functions_with, ia_base_label};
 use super::keys::{vertex_id_by_key, vertex_key};
 use super::types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
 use super::values::Ctx;
@@ -35,6 +35,8 @@ pub(crate) struct Worker {
     /// MI: the next tet's two active functions (ascending), if known
     /// (label indicators with two labels at its corners).
     pub(super) pair_hint: Option<[u16; 2]>,
+    /// MI: the unique strict maximum at each corner of the next tet, if known.
+    pub(super) winner_hint: Option<[u64; 4]>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -180,7 +182,7 @@ impl Worker {
                     mask &= mask - 1;
                 }
             }
-            (None, None) => active_functions(ctx, t, &tet, &mut self.active)?,
+            (None, None) => active_functions_with(ctx, t, &tet, self.winner_hint, &mut self.active)?,
         }
         let empty = match ctx.mode {
             Mode::Ia => self.active.is_empty(),

@@ -29,7 +29,9 @@ use rayon::prelude::*;
 
 use crate::complex::{Mode, Options};
 use crate::grid::{Block, BoxGrid, Grid};
-use crate::network::block::{BlockLabels, BlockOut, BlockValues, Ctx, PointValues, Values, Worker};
+use crate::network::block::{
+    mask_applies, BlockLabels, BlockOut, BlockValues, Ctx, CubeMask, PointValues, Values, Worker, NO_ROW,
+};
 use crate::network::dense::{assemble, label_free_cells};
 use crate::network::field::{BoundedField, ByRef};
 use crate::network::topology::{canonicalize_merged, canonicalize_topology, merge, topology, Merged, Merger};
@@ -129,21 +131,39 @@ fn sample_block(
     }
     let k = functions.functions();
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
+    let mask = sub_box_mask(grid, functions, mode, lo, hi);
     // One `sample` call for the whole block (rows along the last axis, in
     // the block's vertex order): one allocation and one split into parallel
     // chunks per block, not per row; the values are the same bits.
     let [xs, ys, zs] = axis_coordinates(grid, lo, hi);
-    let mut points = Vec::with_capacity(vn[0] * vn[1] * vn[2]);
+    let mut points = Vec::with_capacity(mask.as_ref().map_or(vn[0] * vn[1] * vn[2], |m| m.sampled()));
+    let mut local = 0;
     for &x in &xs {
         for &y in &ys {
-            points.extend(zs.iter().map(|&z| [x, y, z]));
+            match &mask {
+                None => points.extend(zs.iter().map(|&z| [x, y, z])),
+                Some(m) => {
+                    for (l, &z) in (local..).zip(&zs) {
+                        if m.row(l) != NO_ROW {
+                            points.push([x, y, z]);
+                        }
+                    }
+                }
+            }
+            local += zs.len();
         }
     }
     let data = functions.sample(&points);
     drop(points);
+    // Vertices of sub-boxes proven empty are proven clean and finite by the
+    // same bounds (`scene/sample.rs`), so only the samples are checked.
     let mut clean = true;
     for (n, row) in data.chunks_exact(k).enumerate() {
         if let Some(f) = row.iter().position(|x| !x.is_finite()) {
+            let n = match &mask {
+                None => n,
+                Some(m) => (0..vn[0] * vn[1] * vn[2]).find(|&l| m.row(l) as usize == n).unwrap_or(n),
+            };
             let ijk = [lo[0] + n / (vn[1] * vn[2]), lo[1] + n / vn[2] % vn[1], lo[2] + n % vn[2]];
             let v = grid.vertex_index(ijk);
             return Err(NetworkError::NonFinite { vertex: v as usize, function: f, value: row[f] });
@@ -156,7 +176,30 @@ fn sample_block(
             }
         };
     }
-    Ok((Sampled::Rows(BlockValues::new(grid, lo, vn, k, data)), clean))
+    let values = match mask {
+        None => BlockValues::new(grid, lo, vn, k, data),
+        Some(m) => BlockValues::masked(grid, lo, vn, k, data, m),
+    };
+    Ok((Sampled::Rows(values), clean))
+}
+
+/// The sub-boxes of the block of cubes `lo..hi` that the functions' bounds
+/// cannot prove empty (`block/mask.rs`), when some can be. Each sub-box's box
+/// runs from its first to its last grid vertex, so it holds every vertex of
+/// its cubes (grid coordinates are monotone in the index), as for blocks.
+fn sub_box_mask(
+    grid: &BoxGrid,
+    functions: &dyn BoundedField,
+    mode: Mode,
+    lo: [usize; 3],
+    hi: [usize; 3],
+) -> Option<CubeMask> {
+    if !mask_applies(mode, functions.functions()) {
+        return None;
+    }
+    let n = [0, 1, 2].map(|a| hi[a] - lo[a]);
+    let at = |l: [usize; 3]| grid.vertex(grid.vertex_index([lo[0] + l[0], lo[1] + l[1], lo[2] + l[2]]));
+    CubeMask::build(n, |a, b| functions.may_be_active_quick(mode, at(a), at(b)))
 }
 
 pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
@@ -485,6 +528,8 @@ fn finish_merged(
     let t2 = Instant::now();
     let g = Grid::Box(grid.clone());
     let c = ctx(&g, k, options, pv);
+    // Cells come from ray shooting here, or the dense path runs instead.
+    m.drop_region_groups();
     let mut topo = topology(&mut m, Some(&c));
     if topo.cells_method != CellMethod::Raytrace {
         return dense_fallback(grid, stats, dense);
@@ -560,7 +605,7 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
     // starts the merge on this thread while the other threads may take the
     // blocks; on one thread it merges first, so then still only one
     // window's outputs are alive at a time.
-    let window = 16 * rayon::current_num_threads().max(1);
+    let window = 4 * rayon::current_num_threads().max(1);
     let mut merger = Merger::new(options.mode);
     let mut merge_time = std::time::Duration::ZERO;
     let mut pending: Vec<BlockResult> = Vec::new();

@@ -56,7 +56,16 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         }
     }
     drop(fill);
-    let mut edges = Vec::new();
+    // Sort the buckets and count the edges first: the edge list is sized
+    // exactly (growing by doubling left up to half of it empty at the
+    // run's peak of memory).
+    let mut ne = 0;
+    for a in 0..nv {
+        let bucket = &mut ef[start[a] as usize..start[a + 1] as usize];
+        bucket.sort_unstable();
+        ne += bucket.iter().enumerate().filter(|&(i, x)| i == 0 || bucket[i - 1].0 != x.0).count();
+    }
+    let mut edges = Vec::with_capacity(ne);
     let mut patch_uf = UnionFind::new(nf);
     let mut vert_uf = UnionFind::new(nv);
     let mut chain_edges = Vec::new();
@@ -69,8 +78,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     // Faces around each chain edge (3 or more), for the cyclic order.
     let mut chain_faces: rustc_hash::FxHashMap<[u32; 2], Vec<u32>> = Default::default();
     for a in 0..nv {
-        let bucket = &mut ef[start[a] as usize..start[a + 1] as usize];
-        bucket.sort_unstable();
+        let bucket = &ef[start[a] as usize..start[a + 1] as usize];
         let a = a as u32;
         let mut i = 0;
         while i < bucket.len() {
@@ -101,7 +109,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     }
     drop(start);
     drop(ef);
-    let (face_patch, np) = patch_uf.components();
+    let (face_patch, np) = patch_uf.into_components();
     // A patch's label is its smallest face label: the faces of a patch share
     // one label except where MI ties on the grid's boundary leave no face
     // between two interfaces (then every path must name it the same way).
@@ -112,7 +120,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         p.faces += 1;
     }
     let (chains, corners) = chains(nv, &chain_edges);
-    let (vertex_comp, components) = vert_uf.components();
+    let (vertex_comp, components) = vert_uf.into_components();
     // Shells: components of face sides joined around edges (block unions),
     // and every side of a half-patch together.
     let mut shell_uf = UnionFind::new(m.shell_nodes);
@@ -147,10 +155,11 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         shells[s as usize].push(hp as u32);
         shell_of_hp[hp] = s;
     }
+    drop(shell_uf);
     // Cells: by ray shooting where it applies, else by region groups.
     // Sheets of one component touching only at points (tangent spheres)
     // have their shells linked at those points first.
-    let (face_sheet, sheets) = sheet_uf.components();
+    let (face_sheet, sheets) = sheet_uf.into_components();
     // Behind a crack (an edge of one face off the grid boundary) the sheets
     // may only seem to touch at points: cells are grouped there.
     let contacts = if sheets == components { Vec::new() } else { contact_points(m, &face_sheet) };
@@ -189,6 +198,22 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
         );
         t.chain_patches = cyclic_patches(m, &t.chains, &t.face_patch, &t.face_cells, &chain_faces);
         return t;
+    }
+    if m.regions_dropped {
+        // The caller falls back to its grouping path (see `Merged::drop_region_groups`).
+        return Topology {
+            edges,
+            face_patch,
+            patches,
+            chains,
+            corners,
+            components,
+            shells,
+            cells: Vec::new(),
+            face_cells: Vec::new(),
+            cells_method: CellMethod::Grouping,
+            chain_patches: Vec::new(),
+        };
     }
     let (region_cell, ncells) = m.region_uf.components();
     let mut cells: Vec<CellInfo> =

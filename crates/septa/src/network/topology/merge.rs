@@ -73,6 +73,37 @@ pub(crate) struct Merged {
     /// Wedges at chain edges: (edge, side `2f+s`, side `2g+t`) facing one cell.
     pub wedges: Vec<([u32; 2], u32, u32)>,
     pub active_tets: usize,
+    /// The region groups were dropped before the topology stage (a caller
+    /// that never groups cells); `region_label` stays.
+    pub regions_dropped: bool,
+}
+
+impl Merged {
+    /// Frees the region union-find for a topology stage that will take its
+    /// cells from ray shooting or not at all (the sparse path falls back to
+    /// the dense one rather than group cells): the topology stage then
+    /// reports grouping without computing it.
+    pub(crate) fn drop_region_groups(&mut self) {
+        self.region_uf = UnionFind::default();
+        self.regions_dropped = true;
+    }
+
+    /// Gives back what the merge's growing arrays hold beyond their
+    /// lengths (up to half of each, from doubling) before the topology
+    /// stage allocates its own: the run's peak of memory is there.
+    fn shrink_to_fit(&mut self) {
+        self.keys.shrink_to_fit();
+        self.points.shrink_to_fit();
+        self.face_start.shrink_to_fit();
+        self.face_verts.shrink_to_fit();
+        self.face_label.shrink_to_fit();
+        self.face_nodes.shrink_to_fit();
+        self.region_uf.shrink_to_fit();
+        self.region_label.data.shrink_to_fit();
+        self.region_volume.shrink_to_fit();
+        self.shell_pairs.shrink_to_fit();
+        self.wedges.shrink_to_fit();
+    }
 }
 
 /// Merges blocks one at a time, in block order, so a caller can drop each
@@ -307,6 +338,7 @@ impl Merger {
             m.region_uf.union(ra, rb);
         }
         m.shell_nodes = (half_extra_base as usize) + halves.len();
+        m.shrink_to_fit();
         m
     }
 }
