@@ -68,6 +68,7 @@ mod repair;
 mod selfx;
 mod shells;
 mod side_filter;
+mod tri_pair;
 // The sidedness filter against exact rationals (internal, so a unit test).
 #[cfg(test)]
 mod side_filter_tests;

@@ -4,14 +4,14 @@
 //! TopoCut Sec. 8, Limitations), the vertices of the offending faces are
 //! moved by a few ulps. Each candidate position is scored by an exact local
 //! check (the triangles at the vertex against every triangle near them,
-//! `selfx::pair_intersects`, plus collinear corners), the best is kept only
+//! `tri_pair::pair_intersects`, plus collinear corners), the best is kept only
 //! if it lowers that count, and the whole result is checked again by
 //! [`super::verify`]: the guarantee is that global check, never the local
 //! score. Input vertices stay exact; faces at a moved vertex are written as
 //! triangles (relax planarity).
 
 use super::geom::Def;
-use super::selfx::pair_intersects;
+use super::tri_pair::pair_intersects;
 use super::triangulate::{triangulate, triangulate_shaped};
 use super::verify::collinear;
 use super::CutCellMesh;

@@ -1,125 +1,71 @@
-//! Tests of `selfx`: the filters against exact signs, exact zeros, and
-//! coplanar triangle pairs.
+//! Tests of `selfx`: the grid finds exactly the intersecting pairs that a
+//! test of every pair finds, also with long triangles over many cells.
 
-mod filters {
-    use super::super::*;
+use super::*;
+use crate::cut::tri_pair::pair_intersects;
 
-    #[test]
-    fn static_filter_agrees_with_exact_orientation() {
-        let x = [[0.1, 0.2, 0.3], [1.7, -0.4, 0.2], [0.3, 2.1, -0.6], [0.5, 0.5, 1.9], [0.9, 0.7, 0.05]];
-        for a in 0..5u32 {
-            for b in 0..5u32 {
-                for c in 0..5u32 {
-                    for d in 0..5u32 {
-                        assert_eq!(orient(&x, a, b, c, d), orient_exact(&x, a, b, c, d));
-                    }
-                }
-            }
-        }
+/// A soup of small triangles in the unit cube with long ones across it
+/// (oblique, axis-aligned, two sharing an edge), from a fixed LCG.
+fn soup() -> (Vec<[f64; 3]>, Vec<[u32; 3]>, usize) {
+    let mut s: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut r = move || {
+        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let (mut x, mut t) = (Vec::new(), Vec::new());
+    let mut tri = |x: &mut Vec<[f64; 3]>, p: [[f64; 3]; 3]| {
+        let i = x.len() as u32;
+        x.extend(p);
+        t.push([i, i + 1, i + 2]);
+    };
+    for _ in 0..1500 {
+        let c = [r(), r(), r()];
+        let p = std::array::from_fn(|_| std::array::from_fn(|k| c[k] + 0.04 * (r() - 0.5)));
+        tri(&mut x, p);
     }
-
-    #[test]
-    fn prepared_plane_filter_never_contradicts_exact_orientation() {
-        // random triangles and query points on, one ulp off, and far from
-        // their planes; the filter may give up but never be wrong
-        let mut s = 0x9e3779b97f4a7c15u64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
-        let (mut decided, mut undecided) = (0, 0);
-        for i in 0..4000 {
-            let mut x: Vec<[f64; 3]> = (0..3).map(|_| [rnd(), rnd(), rnd()]).collect();
-            let (l, m) = (rnd().abs(), rnd().abs());
-            // a point of the plane (rounded), then nudged by `i % 3` ulps
-            let q: [f64; 3] = std::array::from_fn(|k| {
-                let v = x[0][k] + l * (x[1][k] - x[0][k]) + m * (x[2][k] - x[0][k]);
-                let bits = v.to_bits() as i64 + (i % 3) as i64 - 1;
-                if i % 5 == 0 {
-                    v + rnd()
-                } else {
-                    f64::from_bits(bits as u64)
-                }
-            });
-            x.push(q);
-            let p = TriPlane::new(&x, &[0, 1, 2]);
-            match p.side(&x[3]) {
-                Some(sg) => {
-                    decided += 1;
-                    assert_eq!(sg, orient_exact(&x, 0, 1, 2, 3), "case {i}");
-                }
-                None => undecided += 1,
-            }
-        }
-        // both branches exercised
-        assert!(decided > 100 && undecided > 100, "{decided} {undecided}");
+    for _ in 0..5 {
+        tri(&mut x, std::array::from_fn(|_| [r(), r(), r()]));
     }
-
-    #[test]
-    fn axis_plane_points_are_exactly_coplanar() {
-        let x = [[0.1, 0.3, 0.7], [0.9, -2.5, 0.7], [1e-30, 4.0, 0.7], [3.3, 1.0 / 3.0, 0.7]];
-        assert_eq!(orient(&x, 0, 1, 2, 3), Sign::Zero);
-        assert_eq!(orient_exact(&x, 0, 1, 2, 3), Sign::Zero);
-        // 2D: on an axis-parallel line, or a repeated projected point
-        let y = [[0.1, 0.3, 0.7], [0.1, -2.5, 9.0], [0.1, 4.0, 1e-300], [5.0, 0.3, 0.7]];
-        for k in 0..3 {
-            assert_eq!(orient2(&y, k, 0, 0, 3), Sign::Zero);
-        }
-        assert_eq!(orient2(&y, 1, 0, 1, 2), Sign::Zero);
-        assert_eq!(orient2(&y, 2, 0, 1, 2), Sign::Zero);
-        // a projection where they are not collinear still gets its sign
-        assert_ne!(orient2(&y, 2, 0, 1, 3), Sign::Zero);
-        assert_ne!(orient2(&y, 0, 0, 1, 2), Sign::Zero);
-    }
+    tri(&mut x, [[0.0, 0.0, 0.5], [1.0, 0.1, 0.5], [0.2, 1.0, 0.5]]);
+    tri(&mut x, [[0.5, -0.1, 0.0], [0.5, 1.0, 0.1], [0.5, 0.3, 1.0]]);
+    let long = t.len() - 1500;
+    // two long triangles sharing an edge
+    let i = x.len() as u32;
+    x.extend([[0.1, 0.1, 0.1], [0.9, 0.8, 0.9], [0.9, 0.1, 0.2], [0.8, 0.2, 0.25]]);
+    t.push([i, i + 1, i + 2]);
+    t.push([i, i + 1, i + 3]);
+    (x, t, long + 2)
 }
 
-mod overlap {
-    use super::super::*;
-
-    #[test]
-    fn remembered_orientations_match_direct_ones() {
-        // nearly coplanar points (a plane through rounded points, corners one
-        // ulp off) so that the static filter gives up and the memo is used;
-        // every ordering of every 4 of them, twice, including repeated ids
-        let mut x: Vec<[f64; 3]> = Vec::new();
-        for i in 0..6 {
-            let (u, v) = (0.1 + 0.37 * i as f64, 0.3 - 0.21 * i as f64);
-            let z: f64 = 0.3 * u + 0.7 * v + 0.1;
-            let z = f64::from_bits((z.to_bits() as i64 + (i % 3) as i64 - 1) as u64);
-            x.push([u, v, z]);
-        }
-        let mut o = PairOrients::new(&x);
-        let (mut slow, mut nonzero) = (0, 0);
-        for _ in 0..2 {
-            for a in 0..6u32 {
-                for b in 0..6u32 {
-                    for c in 0..6u32 {
-                        for d in 0..6u32 {
-                            let s = orient(&x, a, b, c, d);
-                            assert_eq!(o.orient(a, b, c, d), s, "{a} {b} {c} {d}");
-                            slow += orient_filtered(&x, a, b, c, d).is_none() as usize;
-                            nonzero += (s != Sign::Zero) as usize;
-                        }
-                    }
-                }
+fn every_pair(x: &[[f64; 3]], t: &[[u32; 3]], keep: impl Fn(usize, usize) -> bool) -> Vec<(u32, u32)> {
+    let mut v = Vec::new();
+    for a in 0..t.len() {
+        for b in a + 1..t.len() {
+            if keep(a, b) && pair_intersects(x, &t[a], &t[b]) {
+                v.push((a as u32, b as u32));
             }
-            o = PairOrients::new(&x);
         }
-        assert!(slow > 100 && nonzero > 0, "{slow} {nonzero}");
     }
+    v
+}
 
-    #[test]
-    fn coplanar_triangles_sharing_a_vertex() {
-        // t1 = (0, 1, 2) in z = 0; t2 = (0, 3, 4) in z = 0
-        let x = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, 0.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0]];
-        // edge 0-3 runs along edge 0-1: overlapping
-        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 3]));
-        // (0, 5, ..) pokes into t1's angle
-        assert!(pair_intersects(&x, &[0, 1, 2], &[0, 4, 5]));
-        // mirrored below the x axis: touch only at the shared vertex
-        let y = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [0.0, 2.0, 0.0], [1.0, -0.5, 0.0], [1.0, -1.0, 0.0]];
-        assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
-    }
+#[test]
+fn grid_finds_the_pairs_every_pair_test_finds() {
+    let (x, t, long) = soup();
+    let all = every_pair(&x, &t, |_, _| true);
+    let first_long = (t.len() - long) as u32;
+    // not vacuous: long triangles meet small ones and each other
+    assert!(all.iter().filter(|p| p.1 >= first_long && p.0 < first_long).count() > 50, "{all:?}");
+    assert!(all.iter().any(|p| p.0 >= first_long), "{all:?}");
+    assert_eq!(intersecting_pairs(&x, &t, false), all);
+    assert_eq!(intersecting_pairs(&x, &t, true), all[..1].to_vec());
+}
+
+#[test]
+fn re_check_finds_the_pairs_with_a_fresh_triangle() {
+    let (x, t, _) = soup();
+    let fresh: Vec<bool> = (0..t.len()).map(|i| i % 7 == 3 || i + 3 >= t.len()).collect();
+    let want = every_pair(&x, &t, |a, b| fresh[a] || fresh[b]);
+    assert!(want.len() > 20, "{want:?}");
+    assert_eq!(intersecting_pairs_touching(&x, &t, Some(&fresh), false), want);
 }

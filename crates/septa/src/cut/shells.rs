@@ -15,7 +15,7 @@
 //! a symbolic perturbation of the start point), `s` is the exact sign of the
 //! shell's volume.
 
-use super::selfx::orient2;
+use super::tri_pair::orient2;
 use super::CutError;
 use septa_exact::{det_sign_diff, filtered_sign, Exact, Interval, Ring, Sign};
 

@@ -6,7 +6,7 @@
 //! combinatorial decision of the cut depends on it, and `verify` checks
 //! the written result exactly.
 
-use super::selfx::orient2;
+use super::tri_pair::orient2;
 use septa_exact::Sign;
 
 /// Triangles (vertex ids) covering a planar face given by its loops (outer
@@ -216,7 +216,7 @@ fn proper_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
 }
 
 /// Ear clipping decided by exact 2D orientations of the projected doubles
-/// (`selfx::orient2`, dropping axis `k`; `flip` when the projection reverses
+/// (`tri_pair::orient2`, dropping axis `k`; `flip` when the projection reverses
 /// the loop): an ear is strictly convex and holds no other corner in its
 /// closed triangle, so on a simple projected polygon every triangle is
 /// non-degenerate and none overlaps another (Meisters' two ears). Only a

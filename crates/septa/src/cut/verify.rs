@@ -27,7 +27,8 @@
 //! a poor triangulation of a valid polygon can only add reported
 //! intersections, never hide one, so a zero report is a proof.
 
-use super::selfx::{intersecting_pairs, intersecting_pairs_touching, orient, orient2};
+use super::selfx::{intersecting_pairs, intersecting_pairs_touching};
+use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
 use rustc_hash::FxHashMap;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};

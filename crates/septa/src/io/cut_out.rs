@@ -6,13 +6,6 @@
 use crate::cut::CutCellMesh;
 use std::fmt::Write as _;
 
-/// Boundary polygons of each cell, oriented outwards, each as a face of
-/// one loop ([`CutCellMesh::cell_polygons`]: faces with holes or with
-/// rounded vertices off their plane are written as their triangles).
-pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
-    m.cell_polygons().into_iter().map(|c| c.into_iter().map(|p| vec![p]).collect()).collect()
-}
-
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
 /// (inline base64), with cell data `cell_id` (the cut-cell each row is) and
 /// `volume`. Cells are written by their number of distinct points, fewest
@@ -21,7 +14,7 @@ pub fn cell_faces(m: &CutCellMesh) -> Vec<Vec<Vec<Vec<u32>>>> {
 /// cell data by ascending count, so any other order gives it misaligned
 /// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
 pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
-    let polys = m.cell_polygons();
+    let mut polys = m.cell_polygons();
     let points = |c: &Vec<Vec<u32>>| {
         let mut v: Vec<u32> = c.iter().flatten().copied().collect();
         v.sort_unstable();
@@ -29,10 +22,12 @@ pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
         v.len()
     };
     let mut order: Vec<usize> = (0..polys.len()).collect();
-    order.sort_by_key(|&c| points(&polys[c]));
+    // stable, as `sort_by_key`; each cell's count formed once (it sorts the
+    // cell's vertex ids), not once per comparison
+    order.sort_by_cached_key(|&c| points(&polys[c]));
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
-    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| polys[c].clone()).collect();
+    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| std::mem::take(&mut polys[c])).collect();
     super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &[("volume", &volumes)], &[("cell_id", &ids)])
 }
 
@@ -40,7 +35,10 @@ pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
 pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
-    let cells = cell_faces(m);
+    // boundary polygons of each cell, oriented outwards, each written as a
+    // face of one loop (`CutCellMesh::cell_polygons`: faces with holes or
+    // with rounded vertices off their plane come as their triangles)
+    let cells = m.cell_polygons();
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {
         let n = m.vertices.len().max(1) as f64;
@@ -54,7 +52,7 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     };
     let mut base = 1usize;
     for (i, c) in cells.iter().enumerate() {
-        let mut used: Vec<u32> = c.iter().flatten().flatten().copied().collect();
+        let mut used: Vec<u32> = c.iter().flatten().copied().collect();
         used.sort_unstable();
         used.dedup();
         let mut cen = [0.0; 3];
@@ -70,14 +68,12 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
             let _ = writeln!(s, "v {:?} {:?} {:?}", x[0] + shift[0], x[1] + shift[1], x[2] + shift[2]);
         }
         let local = |v: u32| base + used.binary_search(&v).unwrap();
-        for f in c {
-            for l in f {
-                s.push('f');
-                for &v in l {
-                    let _ = write!(s, " {}", local(v));
-                }
-                s.push('\n');
+        for l in c {
+            s.push('f');
+            for &v in l {
+                let _ = write!(s, " {}", local(v));
             }
+            s.push('\n');
         }
         base += used.len();
     }

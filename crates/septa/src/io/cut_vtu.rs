@@ -11,18 +11,23 @@ const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz012
 
 /// Standard base64 with padding.
 pub fn base64_encode(bytes: &[u8]) -> String {
-    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16 | (*c.get(1).unwrap_or(&0) as u32) << 8 | *c.get(2).unwrap_or(&0) as u32;
+    // whole 3-byte groups as 4 ASCII bytes at once (cells.vtu of a large
+    // cut is tens of MB of base64), then the padded tail
+    let mut s: Vec<u8> = Vec::with_capacity(bytes.len().div_ceil(3) * 4);
+    let sym = |n: u32, k: u32| B64[(n >> (18 - 6 * k) & 63) as usize];
+    let whole = bytes.chunks_exact(3);
+    let tail = whole.remainder();
+    for c in whole {
+        let n = (c[0] as u32) << 16 | (c[1] as u32) << 8 | c[2] as u32;
+        s.extend_from_slice(&[sym(n, 0), sym(n, 1), sym(n, 2), sym(n, 3)]);
+    }
+    if !tail.is_empty() {
+        let n = (tail[0] as u32) << 16 | (*tail.get(1).unwrap_or(&0) as u32) << 8;
         for k in 0..4 {
-            if k <= c.len() {
-                s.push(B64[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
+            s.push(if k as usize <= tail.len() { sym(n, k) } else { b'=' });
         }
     }
-    s
+    String::from_utf8(s).expect("base64 is ASCII")
 }
 
 /// Decodes base64, ignoring whitespace; `None` on a character outside the alphabet.
@@ -63,7 +68,11 @@ fn binary_array(s: &mut String, ty: &str, name: Option<&str>, comps: usize, raw:
 }
 
 fn le<T: Copy>(v: &[T], f: impl Fn(T) -> [u8; 8]) -> Vec<u8> {
-    v.iter().flat_map(|&x| f(x)).collect()
+    let mut out = Vec::with_capacity(8 * v.len());
+    for &x in v {
+        out.extend_from_slice(&f(x));
+    }
+    out
 }
 
 /// A binary `.vtu` of polyhedral cells: `points`, each cell a list of

@@ -1,0 +1,478 @@
+//! The exact triangle-pair test of the self-intersection check (TopoCut
+//! App. A): do two triangles of doubles meet anywhere besides their shared
+//! vertices and edges? Quick sufficient tests first (one triangle strictly
+//! on one side of the other's plane by orient3d's static filter, projections
+//! separated by an edge line), then edge-against-triangle tests whose
+//! every decision is an exact orientation sign. `selfx` finds the candidate
+//! pairs.
+
+use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+
+pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_slow(x, a, b, c, d))
+}
+
+/// [`orient`] after its static filter gave up.
+fn orient_slow(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    // Four points with one coordinate exactly equal lie in one axis
+    // plane: exactly coplanar. Cut-faces on axis-aligned planes (their
+    // cut-vertices are snapped onto them) are all of this kind; without
+    // this shortcut each of their planarity and coplanar-pair tests
+    // went through the interval and exact determinants.
+    let same = |k: usize| [b, c, d].iter().all(|&i| x[i as usize][k] == x[a as usize][k]);
+    if (0..3).any(same) {
+        return Sign::Zero;
+    }
+    orient_exact(x, a, b, c, d)
+}
+
+/// The orientations one triangle pair's test asks for, remembered while it
+/// runs: the edge-against-triangle tests ask for the same determinant
+/// several times (each corner against the other triangle's plane once per
+/// edge through it; an edge against an edge from both triangles' sides),
+/// and on nearly degenerate pairs (rounded cut-vertices along a nearly
+/// straight chain next to a nearly perpendicular face: plate_genus9,
+/// staircase) each of them went through intervals and the exact
+/// determinant again. Only signs the static filter cannot decide are kept,
+/// under the sorted vertex ids (the sign flips with the permutation's
+/// parity, exactly).
+///
+/// A corner against the other triangle's plane, asked with that triangle's
+/// corners in their order, first goes through the prepared plane's filter
+/// ([`TriPlane::side`]: `orient(a, b, c, d)` is the sign of
+/// `det(b - a, c - a, d - a)`, which `side` bounds), cheaper than the
+/// general one (instead of it: when it cannot decide, the exact sign is
+/// computed, as after the general filter).
+struct PairOrients<'a> {
+    x: &'a [[f64; 3]],
+    planes: [(&'a [u32; 3], Option<&'a TriPlane>); 2],
+    keys: [[u32; 4]; 16],
+    signs: [Sign; 16],
+    n: usize,
+}
+
+impl<'a> PairOrients<'a> {
+    fn new(x: &'a [[f64; 3]], planes: [(&'a [u32; 3], Option<&'a TriPlane>); 2]) -> Self {
+        PairOrients { x, planes, keys: [[0; 4]; 16], signs: [Sign::Zero; 16], n: 0 }
+    }
+
+    fn orient(&mut self, a: u32, b: u32, c: u32, d: u32) -> Sign {
+        let plane = self.planes.iter().find(|(t, p)| p.is_some() && **t == [a, b, c]).and_then(|q| q.1);
+        let filtered = match plane {
+            Some(p) => p.side(&self.x[d as usize]),
+            None => orient_filtered(self.x, a, b, c, d),
+        };
+        if let Some(s) = filtered {
+            return s;
+        }
+        let mut k = [a, b, c, d];
+        let mut odd = false;
+        for i in 0..3 {
+            for j in 0..3 - i {
+                if k[j] > k[j + 1] {
+                    k.swap(j, j + 1);
+                    odd = !odd;
+                }
+            }
+        }
+        let s = match self.keys[..self.n].iter().position(|q| *q == k) {
+            Some(i) => self.signs[i],
+            None => {
+                let s = orient_slow(self.x, k[0], k[1], k[2], k[3]);
+                if self.n < self.keys.len() {
+                    (self.keys[self.n], self.signs[self.n]) = (k, s);
+                    self.n += 1;
+                }
+                s
+            }
+        };
+        if odd {
+            s.flip()
+        } else {
+            s
+        }
+    }
+}
+
+/// A triangle's plane prepared once for many [`TriPlane::side`] queries:
+/// the corner `a`, the edge vectors' cross product `n = (b - a) x (c - a)`
+/// and the three partial permanents of Shewchuk's orient3d bound, all in
+/// floating point exactly as `orient_filtered` forms them.
+#[derive(Clone, Copy)]
+pub(crate) struct TriPlane {
+    a: [f64; 3],
+    n: [f64; 3],
+    perm: [f64; 3],
+}
+
+impl TriPlane {
+    pub(crate) fn new(x: &[[f64; 3]], t: &[u32; 3]) -> Self {
+        let (a, b, c) = (x[t[0] as usize], x[t[1] as usize], x[t[2] as usize]);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let (yz, zy) = (u[1] * v[2], u[2] * v[1]);
+        let (zx, xz) = (u[2] * v[0], u[0] * v[2]);
+        let (xy, yx) = (u[0] * v[1], u[1] * v[0]);
+        TriPlane {
+            a,
+            n: [yz - zy, zx - xz, xy - yx],
+            perm: [yz.abs() + zy.abs(), zx.abs() + xz.abs(), xy.abs() + yx.abs()],
+        }
+    }
+
+    /// Side of `q`: the sign of `det(b - a, c - a, q - a)` when the static
+    /// filter proves it, else `None` (never an exact fallback). This is
+    /// Shewchuk's orient3d filter (`o3derrboundA = 7u + 56u^2`) on the
+    /// transposed matrix: the nine entries are the same kind of rounded
+    /// differences, the determinant is expanded along `q - a` with the 2x2
+    /// minors of `b - a, c - a` in the same order of operations, and the
+    /// permanent is formed alike, so the bound carries over unchanged.
+    /// Only the strict sign is used (a zero is never claimed).
+    #[inline]
+    pub(crate) fn side(&self, q: &[f64; 3]) -> Option<Sign> {
+        let w = [q[0] - self.a[0], q[1] - self.a[1], q[2] - self.a[2]];
+        let det = w[0] * self.n[0] + w[1] * self.n[1] + w[2] * self.n[2];
+        let perm = self.perm[0] * w[0].abs() + self.perm[1] * w[1].abs() + self.perm[2] * w[2].abs();
+        const U: f64 = f64::EPSILON / 2.0;
+        let bound = (7.0 * U + 56.0 * U * U) * perm;
+        if det.is_finite() && perm.is_finite() && perm > 1e-280 {
+            if det > bound {
+                return Some(Sign::Positive);
+            }
+            if -det > bound {
+                return Some(Sign::Negative);
+            }
+        }
+        None
+    }
+}
+
+/// [`orient`] when its static filter decides it, else `None` (no exact
+/// fallback: for quick rejections that may give up).
+fn orient_filtered(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Option<Sign> {
+    // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
+    // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
+    // permanent of absolute values of the same products.
+    let (pa, pb, pc, pd) = (&x[a as usize], &x[b as usize], &x[c as usize], &x[d as usize]);
+    let adx = pa[0] - pd[0];
+    let bdx = pb[0] - pd[0];
+    let cdx = pc[0] - pd[0];
+    let ady = pa[1] - pd[1];
+    let bdy = pb[1] - pd[1];
+    let cdy = pc[1] - pd[1];
+    let adz = pa[2] - pd[2];
+    let bdz = pb[2] - pd[2];
+    let cdz = pc[2] - pd[2];
+    let bdxcdy = bdx * cdy;
+    let cdxbdy = cdx * bdy;
+    let cdxady = cdx * ady;
+    let adxcdy = adx * cdy;
+    let adxbdy = adx * bdy;
+    let bdxady = bdx * ady;
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let perm = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (7.0 * U + 56.0 * U * U) * perm;
+    if det.is_finite() && perm.is_finite() && perm > 1e-280 {
+        // orient3d(a,b,c,d) with d as origin equals -det(a-d, b-d, c-d) ... sign
+        // convention fixed below against the generic version
+        if det > bound {
+            return Some(Sign::Negative);
+        }
+        if -det > bound {
+            return Some(Sign::Positive);
+        }
+    }
+    None
+}
+
+fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
+    fn f(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Interval {
+        let p = |i: u32| {
+            [Interval::point(x[i as usize][0]), Interval::point(x[i as usize][1]), Interval::point(x[i as usize][2])]
+        };
+        let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+        let u: [Interval; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let v: [Interval; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [Interval; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        u[0].mul(&v[1].mul(&w[2]).sub(&v[2].mul(&w[1])))
+            .sub(&u[1].mul(&v[0].mul(&w[2]).sub(&v[2].mul(&w[0]))))
+            .add(&u[2].mul(&v[0].mul(&w[1]).sub(&v[1].mul(&w[0]))))
+    }
+    if let Some(s) = f(x, a, b, c, d).sign() {
+        return s;
+    }
+    // det(b - a, c - a, d - a), differences formed exactly inside septa-exact
+    let p = |i: u32| x[i as usize];
+    let pa = p(a);
+    septa_exact::det_sign_diff::<3>(&[p(b), p(c), p(d)], &[pa, pa, pa])
+}
+
+/// 2D orientation of points projected by dropping axis `k`.
+pub(crate) fn orient2(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32) -> Sign {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    // Shewchuk's static filter for orient2d (`ccwerrboundA` = (3u + 16u^2))
+    let (pa, pb, pc) = (&x[a as usize], &x[b as usize], &x[c as usize]);
+    let l = (pb[i] - pa[i]) * (pc[j] - pa[j]);
+    let r = (pb[j] - pa[j]) * (pc[i] - pa[i]);
+    let det = l - r;
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (3.0 * U + 16.0 * U * U) * (l.abs() + r.abs());
+    if det.is_finite() && (l.abs() + r.abs()) > 1e-280 {
+        if det > bound {
+            return Sign::Positive;
+        }
+        if -det > bound {
+            return Sign::Negative;
+        }
+    }
+    // Exact zeros the filter cannot see, common on axis-aligned cut-faces
+    // (cube A10 used to send ~15k of them to the exact fallback): three
+    // points on one axis-parallel line, or two of them the same projected
+    // point, are exactly collinear.
+    let eq = |p: &[f64; 3], q: &[f64; 3]| p[i] == q[i] && p[j] == q[j];
+    if (pa[i] == pb[i] && pa[i] == pc[i]) || (pa[j] == pb[j] && pa[j] == pc[j]) {
+        return Sign::Zero;
+    }
+    if eq(pa, pb) || eq(pa, pc) || eq(pb, pc) {
+        return Sign::Zero;
+    }
+    // det [b - a; c - a] with the differences formed inside the exact
+    // predicate (its own filter, then i128 or expansion arithmetic, bignums
+    // only outside their exponent window): nearly collinear rounded rims of
+    // flat cut-faces (plate_genus9: ~11k signs per check) used to go through
+    // intervals and then allocating bignums.
+    septa_exact::det_sign_diff::<2>(&[[pb[i], pb[j]], [pc[i], pc[j]]], &[[pa[i], pa[j]], [pa[i], pa[j]]])
+}
+
+/// Sign of `(w - v) . (o - v)` in the projection dropping axis `k`.
+fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    fn f<R: Ring>(x: &[[f64; 3]], i: usize, j: usize, v: u32, w: u32, o: u32) -> R {
+        let c = |t: u32, a: usize| R::of(x[t as usize][a]);
+        let (wi, wj) = (c(w, i).sub(&c(v, i)), c(w, j).sub(&c(v, j)));
+        let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
+        wi.mul(&oi).add(&wj.mul(&oj))
+    }
+    filtered_sign(|| f::<Interval>(x, i, j, v, w, o), || f::<Exact>(x, i, j, v, w, o))
+}
+
+/// An axis along which the plane of triangle `t` projects without collapse.
+fn proj_axis(x: &[[f64; 3]], t: &[u32; 3]) -> usize {
+    (0..3)
+        .find(|&k| {
+            let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+            let _ = (i, j);
+            orient2(x, k, t[0], t[1], t[2]) != Sign::Zero
+        })
+        .unwrap_or(2)
+}
+
+/// Closed 2D segment-segment intersection (coplanar points, axis `k` dropped).
+fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
+    let (o1, o2) = (orient2(x, k, p, q, a), orient2(x, k, p, q, b));
+    let (o3, o4) = (orient2(x, k, a, b, p), orient2(x, k, a, b, q));
+    if o1 != Sign::Zero && o1 == o2 || o3 != Sign::Zero && o3 == o4 {
+        return false;
+    }
+    if o1 == Sign::Zero && o2 == Sign::Zero {
+        // collinear: overlap of projections on the axis with most spread
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let ax = if x[p as usize][i] != x[q as usize][i] { i } else { j };
+        let (l1, h1) = (x[p as usize][ax].min(x[q as usize][ax]), x[p as usize][ax].max(x[q as usize][ax]));
+        let (l2, h2) = (x[a as usize][ax].min(x[b as usize][ax]), x[a as usize][ax].max(x[b as usize][ax]));
+        return l1 <= h2 && l2 <= h1;
+    }
+    true
+}
+
+/// Closed 2D point-in-triangle (coplanar, axis `k` dropped).
+fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
+    let s = [orient2(x, k, t[0], t[1], p), orient2(x, k, t[1], t[2], p), orient2(x, k, t[2], t[0], p)];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Closed segment `pq` against closed triangle `t`.
+fn seg_tri(o: &mut PairOrients, p: u32, q: u32, t: &[u32; 3]) -> bool {
+    let x = o.x;
+    let o1 = o.orient(t[0], t[1], t[2], p);
+    let o2 = o.orient(t[0], t[1], t[2], q);
+    if o1 != Sign::Zero && o1 == o2 {
+        return false;
+    }
+    if o1 == Sign::Zero && o2 == Sign::Zero {
+        let k = proj_axis(x, t);
+        return in_tri2(x, k, p, t)
+            || in_tri2(x, k, q, t)
+            || (0..3).any(|e| seg_seg2(x, k, p, q, t[e], t[(e + 1) % 3]));
+    }
+    let s = [o.orient(p, q, t[0], t[1]), o.orient(p, q, t[1], t[2]), o.orient(p, q, t[2], t[0])];
+    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
+}
+
+/// Are `c` and `d` on the same side of the line `ab` (positive dot product
+/// of their components perpendicular to `ab`)?
+fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
+    fn f<R: Ring>(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> R {
+        let p = |i: u32| [R::of(x[i as usize][0]), R::of(x[i as usize][1]), R::of(x[i as usize][2])];
+        let (pa, pb, pc, pd) = (p(a), p(b), p(c), p(d));
+        let e: [R; 3] = std::array::from_fn(|k| pb[k].sub(&pa[k]));
+        let u: [R; 3] = std::array::from_fn(|k| pc[k].sub(&pa[k]));
+        let w: [R; 3] = std::array::from_fn(|k| pd[k].sub(&pa[k]));
+        let dot = |p: &[R; 3], q: &[R; 3]| p[0].mul(&q[0]).add(&p[1].mul(&q[1])).add(&p[2].mul(&q[2]));
+        // (u.w)|e|^2 - (u.e)(w.e) = |e|^2 (u_perp . w_perp)
+        dot(&u, &w).mul(&dot(&e, &e)).sub(&dot(&u, &e).mul(&dot(&w, &e)))
+    }
+    filtered_sign(|| f::<Interval>(x, a, b, c, d), || f::<Exact>(x, a, b, c, d)) == Sign::Positive
+}
+
+/// Sufficient test that two triangles meet at most in shared vertices:
+/// their projections along a coordinate axis are separated by an edge line
+/// of one of them (all other corners strictly outside; shared corners on
+/// the line). Exact (2D orientations of input coordinates), and cheap where
+/// the 3D predicates are nearly degenerate (flat fans of nearly coplanar
+/// triangles).
+fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], n: &[f64; 3], t2: &[u32; 3]) -> bool {
+    // `n`: t1's floating-point normal; it only picks the projection axis
+    let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
+    for (ta, tb) in [(t1, t2), (t2, t1)] {
+        let inner = orient2(x, k, ta[0], ta[1], ta[2]);
+        if inner == Sign::Zero {
+            return false;
+        }
+        for e in 0..3 {
+            let (a, b) = (ta[e], ta[(e + 1) % 3]);
+            let sep = tb.iter().all(|&w| {
+                if w == a || w == b {
+                    return true;
+                }
+                if ta.contains(&w) {
+                    return false;
+                }
+                orient2(x, k, a, b, w) == inner.flip()
+            });
+            if sep {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Quick sufficient test that two triangles meet at most in shared
+/// vertices: the corners of `t2` that `t1` does not share lie strictly on
+/// one side of `t1`'s plane, as proven by orient3d's static filter (`false`
+/// when the filter cannot tell; no exact fallback). `t2` then meets `t1`'s
+/// plane only in the shared vertices (none, one, or the shared edge).
+/// Most candidate pairs of a cut-cell mesh (triangles of different faces
+/// in one grid cell) end here, before the 2D projection tests.
+pub(super) fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u32; 3]) -> bool {
+    let mut side = None;
+    let mut free = 0;
+    for &w in t2 {
+        if t1.contains(&w) {
+            continue;
+        }
+        free += 1;
+        match p1.side(&x[w as usize]) {
+            Some(s) if s != Sign::Zero && side.is_none_or(|t| t == s) => side = Some(s),
+            _ => return false,
+        }
+    }
+    free >= 1
+}
+
+/// Do two triangles meet anywhere besides their shared vertices?
+pub(crate) fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+    pair_intersects_planes(x, t1, &TriPlane::new(x, t1), t2, &TriPlane::new(x, t2))
+}
+
+/// [`pair_intersects`] with both triangles' planes prepared.
+pub(super) fn pair_intersects_planes(
+    x: &[[f64; 3]],
+    t1: &[u32; 3],
+    p1: &TriPlane,
+    t2: &[u32; 3],
+    p2: &TriPlane,
+) -> bool {
+    if plane_separated(x, t1, p1, t2) || plane_separated(x, t2, p2, t1) {
+        return false;
+    }
+    if projections_separated(x, t1, &p1.n, t2) {
+        return false;
+    }
+    let mut o = PairOrients::new(x, [(t1, Some(p1)), (t2, Some(p2))]);
+    let mut shared = [0u32; 3];
+    let mut ns = 0;
+    for &v in t1 {
+        if t2.contains(&v) {
+            shared[ns] = v;
+            ns += 1;
+        }
+    }
+    match ns {
+        0 => {
+            (0..3).any(|e| seg_tri(&mut o, t1[e], t1[(e + 1) % 3], t2))
+                || (0..3).any(|e| seg_tri(&mut o, t2[e], t2[(e + 1) % 3], t1))
+        }
+        1 => {
+            let v = shared[0];
+            let other = |t: &[u32; 3]| -> [u32; 2] {
+                let k = t.iter().position(|&w| w == v).unwrap();
+                [t[(k + 1) % 3], t[(k + 2) % 3]]
+            };
+            let (o1, o2) = (other(t1), other(t2));
+            if seg_tri(&mut o, o1[0], o1[1], t2) || seg_tri(&mut o, o2[0], o2[1], t1) {
+                return true;
+            }
+            // an edge from v lying in the other triangle's plane may run into it
+            for (os, t) in [(&o1, t2), (&o2, t1)] {
+                for &w in os.iter() {
+                    if o.orient(t[0], t[1], t[2], w) == Sign::Zero {
+                        let k = proj_axis(x, t);
+                        let opp = other(t);
+                        if in_tri2(x, k, w, t) || seg_seg2(x, k, v, w, opp[0], opp[1]) {
+                            return true;
+                        }
+                        // the edge v-w starts inside the angle of t at v
+                        let s1 = orient2(x, k, v, opp[0], w);
+                        let s2 = orient2(x, k, v, opp[1], w);
+                        let inside = orient2(x, k, v, opp[0], opp[1]);
+                        if s1 == inside && s2 == inside.flip() {
+                            return true;
+                        }
+                        // the edge v-w runs along an edge v-opp of t: overlap
+                        for (sk, o) in [(s1, opp[0]), (s2, opp[1])] {
+                            if sk == Sign::Zero && dot2(x, k, v, w, o) == Sign::Positive {
+                                return true;
+                            }
+                        }
+                    }
+                }
+            }
+            false
+        }
+        2 => {
+            // folded onto each other: the other apex on the same side of the
+            // shared edge (checked first: it is rarely so) and coplanar
+            let shared = [shared[0], shared[1]];
+            let c = *t1.iter().find(|w| !shared.contains(w)).unwrap();
+            let d = *t2.iter().find(|w| !shared.contains(w)).unwrap();
+            if !same_side_of_edge(x, shared[0], shared[1], c, d) {
+                return false;
+            }
+            if orient(x, shared[0], shared[1], c, d) != Sign::Zero {
+                return false;
+            }
+            let k = proj_axis(x, t1);
+            orient2(x, k, shared[0], shared[1], c) == orient2(x, k, shared[0], shared[1], d)
+        }
+        _ => true,
+    }
+}
+
+#[cfg(test)]
+#[path = "tri_pair_tests.rs"]
+mod tests;
