@@ -77,7 +77,7 @@ mod tests {
         let mut state = 7u64;
         for d in [2u32, 3, 5, 7, 17, 101, 4097, 65_537, 1_000_003, u32::MAX / 3, u32::MAX - 1, u32::MAX] {
             let f = FastDiv::new(d);
-            let mut check = |n: u32| assert_eq!(f.div_rem(n), (n / d, n % d), "{n} / {d}");
+            let check = |n: u32| assert_eq!(f.div_rem(n), (n / d, n % d), "{n} / {d}");
             for n in [0, 1, d - 1, d, d.wrapping_add(1), u32::MAX, u32::MAX - 1, u32::MAX - d] {
                 check(n);
             }
