@@ -1,6 +1,7 @@
 //! Topology of the merged network (Du et al. Sec. 7): edges, patches,
 //! chains, corners, components, shells, and cells by cell grouping.
 
+use super::buckets::for_each_bucket;
 use super::merge::Merged;
 use crate::complex::NONE;
 use crate::grid::Grid;
@@ -59,12 +60,10 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     // Sort the buckets and count the edges first: the edge list is sized
     // exactly (growing by doubling left up to half of it empty at the
     // run's peak of memory).
-    let mut ne = 0;
-    for a in 0..nv {
-        let bucket = &mut ef[start[a] as usize..start[a + 1] as usize];
+    let ne = for_each_bucket(&mut ef, &start, |_, bucket| {
         bucket.sort_unstable();
-        ne += bucket.iter().enumerate().filter(|&(i, x)| i == 0 || bucket[i - 1].0 != x.0).count();
-    }
+        bucket.iter().enumerate().filter(|&(i, x)| i == 0 || bucket[i - 1].0 != x.0).count()
+    });
     let mut edges = Vec::with_capacity(ne);
     let mut patch_uf = UnionFind::new(nf);
     let mut vert_uf = UnionFind::new(nv);

@@ -13,7 +13,10 @@
 //! here by their smallest shell and cyclic patch orders by their smallest
 //! rotation.
 
+use rayon::prelude::*;
 use smallvec::SmallVec;
+
+use super::buckets::for_each_bucket;
 
 use super::build::Topology;
 use super::merge::Merged;
@@ -52,16 +55,15 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
     for (i, &o) in order.iter().enumerate() {
         vnew[o as usize] = i as u32;
     }
-    m.keys = order.iter().map(|&o| m.keys[o as usize]).collect();
-    m.points = order.iter().map(|&o| m.points[o as usize]).collect();
-    for v in m.face_verts.iter_mut() {
-        *v = vnew[*v as usize];
-    }
+    m.keys = order.par_iter().map(|&o| m.keys[o as usize]).collect();
+    m.points = order.par_iter().map(|&o| m.points[o as usize]).collect();
+    m.face_verts.par_iter_mut().for_each(|v| *v = vnew[*v as usize]);
     // Faces: by sorted vertex ids, then (degenerate duplicates only) label.
     // Sort inline keys of the two smallest vertices, then the short runs of
     // faces sharing them by all their vertices.
     let face = |f: usize| &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
     let mut two: Vec<[u32; 2]> = (0..nf)
+        .into_par_iter()
         .map(|f| {
             let (mut a, mut b) = (u32::MAX, u32::MAX);
             for &v in face(f) {
@@ -94,33 +96,38 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
     drop(two);
     let mut fnew = vec![0u32; nf];
     let mut start = Vec::with_capacity(nf + 1);
-    let mut verts = Vec::with_capacity(m.face_verts.len());
     start.push(0u32);
     for (i, &o) in forder.iter().enumerate() {
         fnew[o as usize] = i as u32;
-        let vs = face(o as usize);
-        let r = (0..vs.len()).min_by_key(|&j| vs[j]).unwrap_or(0);
-        verts.extend_from_slice(&vs[r..]);
-        verts.extend_from_slice(&vs[..r]);
-        start.push(verts.len() as u32);
+        start.push(start[i] + (m.face_start[o as usize + 1] - m.face_start[o as usize]));
     }
+    // Each face's loop, rotated to start at its smallest vertex, written
+    // into its new place: face `i` is bucket `i` of the new vertex list.
+    let mut verts = vec![0u32; m.face_verts.len()];
+    for_each_bucket(&mut verts, &start, |i, out| {
+        let vs = face(forder[i] as usize);
+        let r = (0..vs.len()).min_by_key(|&j| vs[j]).unwrap_or(0);
+        out[..vs.len() - r].copy_from_slice(&vs[r..]);
+        out[vs.len() - r..].copy_from_slice(&vs[..r]);
+        0
+    });
     m.face_start = start;
     m.face_verts = verts;
-    m.face_label = forder.iter().map(|&o| m.face_label[o as usize]).collect();
-    m.face_nodes = forder.iter().map(|&o| m.face_nodes[o as usize]).collect();
+    m.face_label = forder.par_iter().map(|&o| m.face_label[o as usize]).collect();
+    m.face_nodes = forder.par_iter().map(|&o| m.face_nodes[o as usize]).collect();
     // Shell nodes `2f + s` follow their faces; other nodes keep their ids.
     let sides = 2 * nf as u32;
     let side = |x: u32| if x < sides { 2 * fnew[x as usize / 2] + (x & 1) } else { x };
-    for p in m.shell_pairs.iter_mut() {
-        *p = (side(p.0), side(p.1));
-    }
-    for w in m.wedges.iter_mut() {
+    m.shell_pairs.par_iter_mut().for_each(|p| *p = (side(p.0), side(p.1)));
+    m.wedges.par_iter_mut().for_each(|w| {
         let (a, b) = (vnew[w.0[0] as usize], vnew[w.0[1] as usize]);
         *w = ([a.min(b), a.max(b)], side(w.1), side(w.2));
-    }
+    });
     // Same order as before for equal edges: keep the wedges sorted by edge
-    // and side so the cyclic walk starts the same way every time.
-    m.wedges.sort_unstable();
+    // and side so the cyclic walk starts the same way every time (the
+    // parallel sort gives the same order: the entries are distinct or equal
+    // as a whole).
+    m.wedges.par_sort_unstable();
 }
 
 /// Renumbers cells by their smallest shell (a cell without shells, the
@@ -146,15 +153,17 @@ pub(crate) fn canonicalize_topology(t: &mut Topology) {
 }
 
 /// `0..n` ordered by `bucket` (a counting sort over `0..nb`), then within
-/// each bucket by `cmp`: linear time when buckets are short.
+/// each bucket by `cmp`: linear time when buckets are short. The keys and
+/// the buckets' sorts run in parallel ([`for_each_bucket`]); the order is
+/// the same on any number of threads.
 fn bucket_sort(
     n: usize,
     nb: usize,
-    bucket: impl Fn(usize) -> u32,
-    cmp: impl Fn(&u32, &u32) -> std::cmp::Ordering,
+    bucket: impl Fn(usize) -> u32 + Sync + Send,
+    cmp: impl Fn(&u32, &u32) -> std::cmp::Ordering + Sync,
 ) -> Vec<u32> {
     let mut start = vec![0u32; nb + 1];
-    let keys: Vec<u32> = (0..n).map(&bucket).collect();
+    let keys: Vec<u32> = (0..n).into_par_iter().map(&bucket).collect();
     for &k in &keys {
         start[k as usize + 1] += 1;
     }
@@ -167,12 +176,13 @@ fn bucket_sort(
         order[fill[k as usize] as usize] = i as u32;
         fill[k as usize] += 1;
     }
-    for b in 0..nb {
-        let r = start[b] as usize..start[b + 1] as usize;
+    drop((keys, fill));
+    for_each_bucket(&mut order, &start, |_, r| {
         if r.len() > 1 {
-            order[r].sort_unstable_by(&cmp);
+            r.sort_unstable_by(&cmp);
         }
-    }
+        0
+    });
     order
 }
 
