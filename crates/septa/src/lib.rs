@@ -24,6 +24,7 @@
 
 #[cfg(feature = "tools")]
 pub mod baseline;
+mod buckets;
 pub mod complex;
 pub mod cut;
 pub mod grid;

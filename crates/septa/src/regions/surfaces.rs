@@ -3,6 +3,7 @@
 
 use rustc_hash::FxHashMap;
 
+use crate::buckets::for_each_bucket;
 use crate::network::Network;
 use crate::scene::{must_flip, Interest, RegionId};
 use crate::uf::UnionFind;
@@ -118,9 +119,10 @@ fn sorted_edge_entries(loop_start: &[u32], loops: &[u32], rank: impl Fn(usize) -
             *slot += 1;
         }
     }
-    for v in 0..points {
-        by_edge[start[v] as usize..start[v + 1] as usize].sort_unstable();
-    }
+    for_each_bucket(&mut by_edge, &start, |_, entries| {
+        entries.sort_unstable();
+        0
+    });
     by_edge
 }
 

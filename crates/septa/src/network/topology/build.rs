@@ -1,8 +1,8 @@
 //! Topology of the merged network (Du et al. Sec. 7): edges, patches,
 //! chains, corners, components, shells, and cells by cell grouping.
 
-use super::buckets::for_each_bucket;
 use super::merge::Merged;
+use crate::buckets::for_each_bucket;
 use crate::complex::NONE;
 use crate::grid::Grid;
 use crate::network::block::Ctx;

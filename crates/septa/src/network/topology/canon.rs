@@ -16,7 +16,7 @@
 use rayon::prelude::*;
 use smallvec::SmallVec;
 
-use super::buckets::for_each_bucket;
+use crate::buckets::for_each_bucket;
 
 use super::build::Topology;
 use super::merge::Merged;

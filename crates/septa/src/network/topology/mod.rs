@@ -4,7 +4,6 @@
 //! chains, corners, shells and cells (`build`), cells by topological ray
 //! shooting (`raytrace`, Sec. 7.1) or by grouping.
 
-mod buckets;
 mod build;
 mod canon;
 mod contact;

@@ -1,7 +1,7 @@
-//! Work on the buckets of a counting sort in parallel. The canonical order
-//! and the edge list both bucket their items by a vertex id and then sort
-//! each short bucket; the buckets are independent, so contiguous runs of
-//! them go to different threads. Each bucket is handled by the same code
+//! Work on the buckets of a counting sort in parallel. The network's
+//! canonical order, its edge list and the surfaces' edge entries all bucket
+//! their items by a vertex id and then sort each short bucket; the buckets
+//! are independent, so contiguous runs of them go to different threads. Each bucket is handled by the same code
 //! whatever the thread count, so the result does not depend on it.
 
 use rayon::prelude::*;
