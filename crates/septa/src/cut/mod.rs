@@ -480,7 +480,7 @@ fn cut_impl(
             }
         }
     }
-    out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
+    out.cell_volume_signs = volume::cell_volume_signs(&c, &out, &boxes);
     // planarity on the written doubles, exactly: a face whose rounded
     // vertices leave its plane is written as triangles
     out.face_split = out
