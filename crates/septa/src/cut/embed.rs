@@ -71,7 +71,7 @@ pub struct EmbedStats {
 
 /// Exact side of cut-vertex `d` with respect to the supporting plane of `s`
 /// (for a triangle, the sign of `n_t . (x - a)`, `n_t` its outward normal).
-pub fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
+pub(super) fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
     // A triple that names the support lies on it: no arithmetic needed.
     let named = match (d, s) {
         (Def::EP(_, p), Support::Plane(q)) => p == q,
@@ -85,6 +85,52 @@ pub fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
     if named {
         return Sign::Zero;
     }
+    if let Support::Tri(t) = s {
+        if let Some(side) = side_by_corners(c, d, t) {
+            return side;
+        }
+    }
+    exact_side_full(c, d, s)
+}
+
+/// Exact side of a cut-vertex on the surface with respect to the plane of
+/// triangle `t`, from the corners of the mesh element it lies strictly
+/// inside: an input vertex is its own corner, `EP(e, p)` is
+/// `lu u + lv v` on edge `e = (u, v)` and `TPP(s, p, q)` is `la a + lb b +
+/// lc c` inside triangle `s = (a, b, c)`, all weights positive and summing
+/// to 1. The orientation `det[b' - a', c' - a', x - a']` is affine in `x`,
+/// so when the corners' exact orientations (input doubles) share one sign
+/// or are 0, so does the vertex's. Nearly coplanar neighbouring triangles
+/// (plate_genus9) are the pairs the interval filter cannot decide; this
+/// decides them with three orientations instead of the cut-vertex's
+/// rational coordinates. `None`: corners on both sides (or a vertex
+/// inside the domain), left to [`exact_side_full`].
+fn side_by_corners(c: &Ctx, d: Def, t: u32) -> Option<Sign> {
+    let corners: &[u32] = match &d {
+        Def::V(v) => std::slice::from_ref(v),
+        Def::EP(e, _) => &c.edges[*e as usize],
+        Def::TPP(u, _, _) => &c.tris[*u as usize],
+        Def::PPP(..) => return None,
+    };
+    let (mut pos, mut neg) = (false, false);
+    for &v in corners {
+        match float_side(c, &c.verts[v as usize], Support::Tri(t)) {
+            Sign::Positive => pos = true,
+            Sign::Negative => neg = true,
+            Sign::Zero => {}
+        }
+    }
+    match (pos, neg) {
+        (true, true) => None,
+        (true, false) => Some(Sign::Positive),
+        (false, true) => Some(Sign::Negative),
+        (false, false) => Some(Sign::Zero),
+    }
+}
+
+/// [`exact_side`] from the cut-vertex's homogeneous coordinates (no
+/// shortcut).
+pub(super) fn exact_side_full(c: &Ctx, d: Def, s: Support) -> Sign {
     match s {
         Support::Plane(p) => c.side(d, p),
         Support::Tri(t) => {

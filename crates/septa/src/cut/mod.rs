@@ -54,6 +54,9 @@ pub mod bench;
 mod cells;
 mod clip;
 mod embed;
+// The embedding's corner sides against the full exact sides (internal).
+#[cfg(test)]
+mod embed_tests;
 mod error;
 mod geom;
 mod holes;
