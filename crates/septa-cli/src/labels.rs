@@ -69,7 +69,7 @@ pub fn run(a: Args) -> CliResult {
 /// arrays were a fifth of a 128^3 run. Allocations up to 32 MiB come from the
 /// heap (not from a fresh mapping each), and the heap is not trimmed while
 /// the process runs. Costs some resident memory (about 15% more on 128^3).
-fn keep_freed_memory() {
+pub(crate) fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: mallopt only changes allocator parameters; no memory is touched.
     unsafe {

@@ -71,7 +71,7 @@ pub struct EmbedStats {
 
 /// Exact side of cut-vertex `d` with respect to the supporting plane of `s`
 /// (for a triangle, the sign of `n_t . (x - a)`, `n_t` its outward normal).
-pub fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
+pub(super) fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
     // A triple that names the support lies on it: no arithmetic needed.
     let named = match (d, s) {
         (Def::EP(_, p), Support::Plane(q)) => p == q,
@@ -85,6 +85,52 @@ pub fn exact_side(c: &Ctx, d: Def, s: Support) -> Sign {
     if named {
         return Sign::Zero;
     }
+    if let Support::Tri(t) = s {
+        if let Some(side) = side_by_corners(c, d, t) {
+            return side;
+        }
+    }
+    exact_side_full(c, d, s)
+}
+
+/// Exact side of a cut-vertex on the surface with respect to the plane of
+/// triangle `t`, from the corners of the mesh element it lies strictly
+/// inside: an input vertex is its own corner, `EP(e, p)` is
+/// `lu u + lv v` on edge `e = (u, v)` and `TPP(s, p, q)` is `la a + lb b +
+/// lc c` inside triangle `s = (a, b, c)`, all weights positive and summing
+/// to 1. The orientation `det[b' - a', c' - a', x - a']` is affine in `x`,
+/// so when the corners' exact orientations (input doubles) share one sign
+/// or are 0, so does the vertex's. Nearly coplanar neighbouring triangles
+/// (plate_genus9) are the pairs the interval filter cannot decide; this
+/// decides them with three orientations instead of the cut-vertex's
+/// rational coordinates. `None`: corners on both sides (or a vertex
+/// inside the domain), left to [`exact_side_full`].
+fn side_by_corners(c: &Ctx, d: Def, t: u32) -> Option<Sign> {
+    let corners: &[u32] = match &d {
+        Def::V(v) => std::slice::from_ref(v),
+        Def::EP(e, _) => &c.edges[*e as usize],
+        Def::TPP(u, _, _) => &c.tris[*u as usize],
+        Def::PPP(..) => return None,
+    };
+    let (mut pos, mut neg) = (false, false);
+    for &v in corners {
+        match float_side(c, &c.verts[v as usize], Support::Tri(t)) {
+            Sign::Positive => pos = true,
+            Sign::Negative => neg = true,
+            Sign::Zero => {}
+        }
+    }
+    match (pos, neg) {
+        (true, true) => None,
+        (true, false) => Some(Sign::Positive),
+        (false, true) => Some(Sign::Negative),
+        (false, false) => Some(Sign::Zero),
+    }
+}
+
+/// [`exact_side`] from the cut-vertex's homogeneous coordinates (no
+/// shortcut).
+pub(super) fn exact_side_full(c: &Ctx, d: Def, s: Support) -> Sign {
     match s {
         Support::Plane(p) => c.side(d, p),
         Support::Tri(t) => {
@@ -385,8 +431,9 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     }
     let x = &out.vertices;
     // per cell: its vertices near each of its faces, by brute force on
-    // small cells and through a grid of buckets on large ones
-    let per_cell: Vec<(Vec<Bad>, Vec<NearPair>)> = cell_faces
+    // small cells and through a grid of buckets on large ones; with the
+    // pairs the float filter leaves undecided
+    let per_cell: Vec<(Vec<NearPair>, Vec<u32>)> = cell_faces
         .par_iter()
         .map(|fs| {
             let mut vs: Vec<u32> =
@@ -395,15 +442,17 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
             vs.dedup();
             let (items, wild): (Vec<GridItem>, Vec<GridItem>) =
                 vs.iter().map(|&v| (v, rlo[v as usize], rhi[v as usize])).partition(|it| r[it.0 as usize].is_finite());
-            let (mut b, mut pairs) = (Vec::new(), Vec::new());
+            let (mut pairs, mut open) = (Vec::new(), Vec::new());
             let mut near = |it: &GridItem, fi: u32| {
                 let (flo, fhi) = &face_box[fi as usize];
                 // a face's own vertices lie on its plane
                 if overlap(&it.1, &it.2, flo, fhi) && !out.faces[fi as usize].loops.iter().flatten().any(|&u| u == it.0)
                 {
-                    let mut known = 2;
-                    b.extend(check(x, &r, it.0, fi, &mut known));
-                    pairs.push((it.0, fi, known));
+                    let fp = planes[code(out.faces[fi as usize].support, np)].as_ref().unwrap();
+                    if fp.box_sign(&x[it.0 as usize], &[r[it.0 as usize]; 3]).is_none() {
+                        open.push(pairs.len() as u32);
+                    }
+                    pairs.push((it.0, fi, 2));
                 }
             };
             if fs.len() * items.len() <= BRUTE {
@@ -423,12 +472,44 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
                 }
             }
             fs.iter().for_each(|&fi| wild.iter().for_each(|it| near(it, fi)));
-            (b, pairs)
+            (pairs, open)
         })
         .collect();
-    let mut bad: Vec<Bad> = per_cell.iter().flat_map(|(b, _)| b.iter().copied()).collect();
+    // the exact side of each undecided (vertex, supporting plane) once: a
+    // vertex meets the same plane through both cells of a face and through
+    // the several pieces of one input triangle
+    let mut sides: Vec<(u32, usize, u32, i8)> = per_cell
+        .iter()
+        .flat_map(|(p, open)| open.iter().map(|&i| p[i as usize]))
+        .map(|(v, fi, _)| (v, code(out.faces[fi as usize].support, np), fi, 2))
+        .collect();
+    sides.sort_unstable_by_key(|k| (k.0, k.1));
+    sides.dedup_by_key(|k| (k.0, k.1));
+    sides.par_iter_mut().for_each(|(v, _, fi, e)| *e = exact_side(c, defs[*v as usize], out.faces[*fi as usize].support).as_i8());
+    let side_of = |v: u32, fi: u32| {
+        let k = (v, code(out.faces[fi as usize].support, np));
+        sides[sides.binary_search_by_key(&k, |s| (s.0, s.1)).unwrap()].3
+    };
+    let per_cell: Vec<Vec<NearPair>> = per_cell
+        .into_iter()
+        .map(|(mut pairs, open)| {
+            for &i in &open {
+                let (v, fi, known) = &mut pairs[i as usize];
+                *known = side_of(*v, *fi);
+            }
+            pairs
+        })
+        .collect();
+    // a near pair fails when its rounded point is not strictly on the exact side
+    let mut bad: Vec<Bad> = sides
+        .iter()
+        .filter_map(|&(v, _, fi, e)| {
+            let (s, e) = (out.faces[fi as usize].support, Sign::from_i8(e));
+            (e != Sign::Zero && float_side(c, &x[v as usize], s) != e).then_some((v, s, e))
+        })
+        .collect();
     if dbg {
-        eprintln!("embed pairs {:.4}", t0.elapsed().as_secs_f64());
+        eprintln!("embed pairs {:.4} (exact sides {})", t0.elapsed().as_secs_f64(), sides.len());
     }
     let key = |b: &Bad| (b.0, code(b.1, np));
     bad.sort_unstable_by_key(key);
@@ -441,7 +522,7 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     let (mut start, mut flat) = (vec![0u32; nv + 1], Vec::new());
     if !bad.is_empty() {
         // the near faces of each vertex, compressed rows
-        let all = || per_cell.iter().flat_map(|(_, p)| p.iter());
+        let all = || per_cell.iter().flatten();
         all().for_each(|&(v, _, _)| start[v as usize + 1] += 1);
         for i in 0..nv {
             start[i + 1] += start[i];

@@ -54,6 +54,9 @@ pub mod bench;
 mod cells;
 mod clip;
 mod embed;
+// The embedding's corner sides against the full exact sides (internal).
+#[cfg(test)]
+mod embed_tests;
 mod error;
 mod geom;
 mod holes;
@@ -480,7 +483,7 @@ fn cut_impl(
             }
         }
     }
-    out.cell_volume_signs = volume::cell_volume_signs(&c, &out);
+    out.cell_volume_signs = volume::cell_volume_signs(&c, &out, &boxes);
     // planarity on the written doubles, exactly: a face whose rounded
     // vertices leave its plane is written as triangles
     out.face_split = out

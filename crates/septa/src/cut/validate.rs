@@ -3,6 +3,7 @@
 
 use super::{CutCellMesh, CutError, CutFace, Support};
 use crate::cut::triangulate;
+use rayon::prelude::*;
 use septa_exact::Sign;
 
 /// Results of [`CutCellMesh::validate`].
@@ -91,36 +92,55 @@ impl CutCellMesh {
             return Err(CutError::Inconsistent(format!("a cell has volume {min}")));
         }
         let c = &self.counts;
-        // per-cell boundary complexes: (cell, vertex), (cell, edge) pairs,
-        // faces and join edges (one per hole) per cell
-        let mut cv: Vec<(u32, u32)> = Vec::new();
-        let mut ce: Vec<(u32, u32, u32)> = Vec::new();
-        let mut cf = vec![0i64; self.num_cells];
+        // per-cell boundary complexes: each cell's vertices and edges
+        // counted from its own faces (small sorted lists, not one global
+        // sort of (cell, vertex) and (cell, edge) pairs), faces and join
+        // edges (one per hole)
+        let mut start = vec![0usize; self.num_cells + 1];
         for f in &self.faces {
             for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
-                cf[cell as usize] += 1;
-                // a joined hole adds one edge and keeps one face: chi contribution 0
-                cf[cell as usize] -= f.loops.len() as i64 - 1;
-                for l in &f.loops {
-                    for (k, &v) in l.iter().enumerate() {
-                        let w = l[(k + 1) % l.len()];
-                        cv.push((cell, v));
-                        ce.push((cell, v.min(w), v.max(w)));
-                    }
-                }
+                start[cell as usize + 1] += 1;
             }
         }
-        cv.sort_unstable();
-        cv.dedup();
-        ce.sort_unstable();
-        ce.dedup();
-        let mut chi2 = cf;
-        for &(cell, _) in &cv {
-            chi2[cell as usize] += 1;
+        for k in 0..self.num_cells {
+            start[k + 1] += start[k];
         }
-        for &(cell, _, _) in &ce {
-            chi2[cell as usize] -= 1;
+        let mut faces_of = vec![0u32; start[self.num_cells]];
+        let mut fill = start.clone();
+        for (i, f) in self.faces.iter().enumerate() {
+            for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
+                faces_of[fill[cell as usize]] = i as u32;
+                fill[cell as usize] += 1;
+            }
         }
+        let chi2: Vec<i64> = (0..self.num_cells)
+            .into_par_iter()
+            .map_init(
+                || (Vec::new(), Vec::new()),
+                |(vs, es): &mut (Vec<u32>, Vec<(u32, u32)>), cell| {
+                    vs.clear();
+                    es.clear();
+                    let mut chi = 0i64;
+                    for &i in &faces_of[start[cell]..start[cell + 1]] {
+                        let f = &self.faces[i as usize];
+                        // a joined hole adds one edge and keeps one face: chi contribution 0
+                        chi += 1 - (f.loops.len() as i64 - 1);
+                        for l in &f.loops {
+                            for (k, &v) in l.iter().enumerate() {
+                                let w = l[(k + 1) % l.len()];
+                                vs.push(v);
+                                es.push((v.min(w), v.max(w)));
+                            }
+                        }
+                    }
+                    vs.sort_unstable();
+                    vs.dedup();
+                    es.sort_unstable();
+                    es.dedup();
+                    chi + vs.len() as i64 - es.len() as i64
+                },
+            )
+            .collect();
         let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
         let non_ball = chi2.iter().filter(|&&x| x != 2).count();
         Ok(Validation {

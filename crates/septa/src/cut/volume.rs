@@ -47,10 +47,14 @@ fn fan(out: &CutCellMesh, faces: &[usize], cell: u32) -> Vec<([u32; 3], bool)> {
     tris
 }
 
+/// Interval box enclosing cut-vertex `v`'s exact point `H / W`, or `None`
+/// when its `W` interval contains 0 (as `embed::round` computes it).
+type PointBox<'a> = &'a (dyn Fn(u32) -> Option<[Interval; 3]> + Sync);
+
 /// Interval enclosure of `6 vol`, or `None` when a vertex's `W` interval
 /// contains 0 (cannot happen for a valid cut-vertex, but then the exact
-/// path decides).
-fn volume_interval(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Option<Interval> {
+/// path decides). `point` encloses each vertex's exact point.
+fn volume_interval(out: &CutCellMesh, tris: &[([u32; 3], bool)], point: PointBox) -> Option<Interval> {
     // Relative to a float point `o` near the cell (exactly representable,
     // so the sum is unchanged: a closed surface's fan sum does not depend
     // on the origin), keeping the terms as small as the cell.
@@ -65,8 +69,8 @@ fn volume_interval(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Opt
     ids.dedup();
     let mut pts: Vec<V3<Interval>> = Vec::with_capacity(ids.len());
     for &v in &ids {
-        let (h, w) = c.hom::<Interval>(out.vertex_defs[v as usize]);
-        pts.push([h[0].div(&w)?.sub(&o[0]), h[1].div(&w)?.sub(&o[1]), h[2].div(&w)?.sub(&o[2])]);
+        let b = point(v)?;
+        pts.push([b[0].sub(&o[0]), b[1].sub(&o[1]), b[2].sub(&o[2])]);
     }
     let mut acc = Interval::point(0.0);
     for (t, positive) in tris {
@@ -108,15 +112,27 @@ fn volume_exact(c: &Ctx, out: &CutCellMesh, tris: &[([u32; 3], bool)]) -> Sign {
 
 /// Exact sign of the volume of `cell`, bounded by the faces `faces`.
 pub(crate) fn cell_volume_sign(c: &Ctx, out: &CutCellMesh, faces: &[usize], cell: u32) -> Sign {
+    let point = |v: u32| {
+        let (h, w) = c.hom::<Interval>(out.vertex_defs[v as usize]);
+        super::side_filter::exact_box(&h, &w)
+    };
+    volume_sign_with(c, out, faces, cell, &point)
+}
+
+fn volume_sign_with(c: &Ctx, out: &CutCellMesh, faces: &[usize], cell: u32, point: PointBox) -> Sign {
     let tris = fan(out, faces, cell);
-    match volume_interval(c, out, &tris).and_then(|v| v.sign()) {
+    match volume_interval(out, &tris, point).and_then(|v| v.sign()) {
         Some(s) => s,
         None => volume_exact(c, out, &tris),
     }
 }
 
-/// Exact sign of every cell's volume (after voids are attached).
-pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh) -> Vec<Sign> {
+/// Exact sign of every cell's volume (after voids are attached). `boxes`
+/// enclose the cut-vertices' exact points (`embed::round`: the same
+/// quotients `H / W` in intervals, formed once per vertex instead of once
+/// per cell of the vertex).
+pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh, boxes: &[Option<[Interval; 3]>]) -> Vec<Sign> {
+    let point = |v: u32| boxes[v as usize];
     let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); out.num_cells];
     for (i, f) in out.faces.iter().enumerate() {
         for &cell in f.cells.iter().filter(|&&x| x != u32::MAX) {
@@ -125,5 +141,5 @@ pub(crate) fn cell_volume_signs(c: &Ctx, out: &CutCellMesh) -> Vec<Sign> {
             }
         }
     }
-    (0..out.num_cells).into_par_iter().map(|k| cell_volume_sign(c, out, &faces_of[k], k as u32)).collect()
+    (0..out.num_cells).into_par_iter().map(|k| volume_sign_with(c, out, &faces_of[k], k as u32, &point)).collect()
 }

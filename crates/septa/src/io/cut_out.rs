@@ -3,8 +3,8 @@
 //! arrays), `cells.obj` (one group per cell) and `cut.json`. Every file is written to a temporary name in
 //! the same folder and renamed, so a reader never sees half a file.
 
+use super::cut_float::FloatText;
 use crate::cut::CutCellMesh;
-use std::fmt::Write as _;
 
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
 /// (inline base64), with cell data `cell_id` (the cut-cell each row is) and
@@ -50,6 +50,8 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
         }
         c
     };
+    // the text `{:?}` and `{}` give, without the formatting machinery
+    let (mut float, mut int) = (FloatText::default(), itoa::Buffer::new());
     let mut base = 1usize;
     for (i, c) in cells.iter().enumerate() {
         let mut used: Vec<u32> = c.iter().flatten().copied().collect();
@@ -62,16 +64,24 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
             }
         }
         let shift: [f64; 3] = std::array::from_fn(|k| explode * (cen[k] - centre[k]));
-        let _ = writeln!(s, "g cell_{i}");
+        s.push_str("g cell_");
+        s.push_str(int.format(i));
+        s.push('\n');
         for &v in &used {
             let x = m.vertices[v as usize];
-            let _ = writeln!(s, "v {:?} {:?} {:?}", x[0] + shift[0], x[1] + shift[1], x[2] + shift[2]);
+            s.push('v');
+            for k in 0..3 {
+                s.push(' ');
+                float.push_f64(&mut s, x[k] + shift[k]);
+            }
+            s.push('\n');
         }
         let local = |v: u32| base + used.binary_search(&v).unwrap();
         for l in c {
             s.push('f');
             for &v in l {
-                let _ = write!(s, " {}", local(v));
+                s.push(' ');
+                s.push_str(int.format(local(v)));
             }
             s.push('\n');
         }

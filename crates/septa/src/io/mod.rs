@@ -5,6 +5,7 @@
 //! `septa::io::read_mesh`, ...).
 
 mod atomic;
+mod cut_float;
 mod cut_foam;
 mod cut_out;
 mod cut_vtu;

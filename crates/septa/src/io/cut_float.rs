@@ -1,0 +1,144 @@
+//! Text of doubles for `cells.obj`, byte for byte what `format!("{x:?}")`
+//! writes, from the shortest round-trip digits of `zmij` (Schubfach).
+//!
+//! Both give the shortest decimal digit string that reads back as `x`
+//! (the closest such to `x`), so only the layout differs: Rust's `Debug`
+//! writes `1e-4 <= |x| < 1e16` as a decimal with at least one fraction
+//! digit (`0.25`, `3.0`, `1000000000000000.0`) and everything else as
+//! `d.ddde-7` / `1e16`. The layout is re-made here from the digits; the
+//! tests compare with `{:?}` on random bit patterns over every exponent,
+//! values near the decimal/exponential switch and the coordinates of
+//! every cut case (`cells.obj` byte-identical).
+
+use std::fmt::Write as _;
+
+/// Digits as text (always ASCII).
+fn ascii(b: &[u8]) -> &str {
+    std::str::from_utf8(b).unwrap_or_default()
+}
+
+/// Reusable buffers of [`push_f64`].
+#[derive(Default)]
+pub(crate) struct FloatText {
+    z: zmij::Buffer,
+}
+
+impl FloatText {
+    /// Appends `x` to `s` exactly as `write!(s, "{x:?}")` would.
+    pub(crate) fn push_f64(&mut self, s: &mut String, x: f64) {
+        if !x.is_finite() || x == 0.0 {
+            let _ = write!(s, "{x:?}");
+            return;
+        }
+        // the shortest digits d1 d2 .. dn and k with |x| ~ 0.d1..dn * 10^k
+        let t = self.z.format_finite(x).as_bytes();
+        let mut digits = [0u8; 32];
+        let (mut n, mut k, mut seen_point, mut i) = (0usize, 0i32, false, 0usize);
+        if t.first() == Some(&b'-') {
+            i = 1;
+        }
+        while i < t.len() {
+            match t[i] {
+                b'.' => seen_point = true,
+                d @ b'0'..=b'9' => {
+                    if n == 0 && d == b'0' {
+                        // a leading zero: before the point it carries no
+                        // weight, after it the value moves one place down
+                        if seen_point {
+                            k -= 1;
+                        }
+                    } else {
+                        digits[n] = d;
+                        n += 1;
+                        if !seen_point {
+                            k += 1;
+                        }
+                    }
+                }
+                _ => break, // 'e' or 'E'
+            }
+            i += 1;
+        }
+        if i < t.len() {
+            let e = std::str::from_utf8(&t[i + 1..]).ok().and_then(|e| e.trim_start_matches('+').parse::<i32>().ok());
+            match e {
+                Some(e) => k += e,
+                None => {
+                    let _ = write!(s, "{x:?}");
+                    return;
+                }
+            }
+        }
+        while n > 1 && digits[n - 1] == b'0' {
+            n -= 1;
+        }
+        let d = &digits[..n];
+        if x < 0.0 {
+            s.push('-');
+        }
+        let abs = x.abs();
+        if (1e-4..1e16).contains(&abs) {
+            if k <= 0 {
+                s.push_str("0.");
+                (0..-k).for_each(|_| s.push('0'));
+                s.push_str(ascii(d));
+            } else if (k as usize) < n {
+                s.push_str(ascii(&d[..k as usize]));
+                s.push('.');
+                s.push_str(ascii(&d[k as usize..]));
+            } else {
+                s.push_str(ascii(d));
+                (0..k as usize - n).for_each(|_| s.push('0'));
+                s.push_str(".0");
+            }
+        } else {
+            s.push(d[0] as char);
+            if n > 1 {
+                s.push('.');
+                s.push_str(ascii(&d[1..]));
+            }
+            s.push('e');
+            s.push_str(itoa::Buffer::new().format(k - 1));
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::FloatText;
+    use rand::{Rng, SeedableRng};
+
+    fn check(f: &mut FloatText, x: f64) {
+        let mut s = String::new();
+        f.push_f64(&mut s, x);
+        assert_eq!(s, format!("{x:?}"), "bits {:#x}", x.to_bits());
+    }
+
+    #[test]
+    fn same_text_as_debug() {
+        let mut f = FloatText::default();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        // every exponent, random mantissas, both signs (NaN / inf included)
+        for _ in 0..400_000 {
+            check(&mut f, f64::from_bits(rng.gen::<u64>()));
+        }
+        // coordinate-like values, short decimals, integers
+        for _ in 0..200_000 {
+            let x: f64 = rng.gen_range(-2.0..2.0);
+            check(&mut f, x);
+            check(&mut f, (x * 1e4).round() / 1e4);
+            check(&mut f, (x * 1e6).round());
+        }
+        // around the switch between decimal and exponential text, powers
+        // of ten and their neighbours, zeros, subnormals, extremes
+        for e in -330..=310 {
+            let p: f64 = format!("1e{e}").parse().unwrap();
+            for x in [p, -p, f64::from_bits(p.to_bits().wrapping_add(1)), f64::from_bits(p.to_bits().wrapping_sub(1))] {
+                check(&mut f, x);
+            }
+        }
+        for x in [0.0, -0.0, f64::MIN_POSITIVE, f64::MAX, f64::MIN, 5e-324, 1e-4, 9.999999999999999e15, 0.1 + 0.2] {
+            check(&mut f, x);
+        }
+    }
+}
