@@ -23,6 +23,14 @@ fn orient_slow(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
     if (0..3).any(same) {
         return Sign::Zero;
     }
+    // nearby points (the nearly degenerate pairs of neighbouring
+    // triangles) subtract exactly: their determinant is then computed
+    // exactly from the rounded differences, several times cheaper than
+    // intervals followed by the general exact tiers
+    let p = |i: u32| &x[i as usize];
+    if let Some(s) = septa_exact::orient3d_exact_diffs(p(a), p(b), p(c), p(d)) {
+        return s;
+    }
     orient_exact(x, a, b, c, d)
 }
 
