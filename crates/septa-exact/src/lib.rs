@@ -43,6 +43,7 @@ mod expansion;
 mod expansion_det;
 mod filter;
 mod integer_det;
+mod orient3d;
 mod plane;
 mod sign;
 pub mod stats;
@@ -53,6 +54,7 @@ pub use barycentric::{
 };
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;
+pub use orient3d::orient3d_exact_diffs;
 pub use plane::{fallback_count, filtered_sign, plane_point_sign, Interval, Ring};
 pub use sign::Sign;
 pub use validate::{check_finite, NonFinite};

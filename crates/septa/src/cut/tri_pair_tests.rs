@@ -126,3 +126,100 @@ mod overlap {
         assert!(!pair_intersects(&y, &[0, 1, 2], &[0, 4, 3]));
     }
 }
+
+mod general_position {
+    use super::super::*;
+    use crate::cut::verify::collinear;
+
+    /// The pair test with only the edge tests (no general-position
+    /// shortcut): the reference the shortcut must agree with.
+    fn by_edges(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> bool {
+        let (p1, p2) = (TriPlane::new(x, t1), TriPlane::new(x, t2));
+        edge_tests(&mut PairOrients::new(x, [(t1, Some(&p1)), (t2, Some(&p2))]), t1, t2)
+    }
+
+    /// Every pair of non-degenerate triangles over the points `x`, drawn by
+    /// `pick`; returns, per number of shared corners, how many pairs the
+    /// shortcut decided as meeting and as apart.
+    fn agree(x: &[[f64; 3]], tris: &[[u32; 3]]) -> [[usize; 2]; 3] {
+        let mut decided = [[0; 2]; 3];
+        for (i, t1) in tris.iter().enumerate() {
+            for t2 in &tris[i + 1..] {
+                let want = by_edges(x, t1, t2);
+                assert_eq!(pair_intersects(x, t1, t2), want, "{t1:?} {t2:?} {x:?}");
+                let (p1, p2) = (TriPlane::new(x, t1), TriPlane::new(x, t2));
+                let mut o = PairOrients::new(x, [(t1, Some(&p1)), (t2, Some(&p2))]);
+                if let Some(meet) = general_position(&mut o, t1, t2) {
+                    assert_eq!(meet, want, "{t1:?} {t2:?} {x:?}");
+                    let ns = t1.iter().filter(|v| t2.contains(v)).count();
+                    decided[ns][meet as usize] += 1;
+                }
+            }
+        }
+        decided
+    }
+
+    fn triangles(x: &[[f64; 3]], n: usize, mut r: impl FnMut() -> u64) -> Vec<[u32; 3]> {
+        let mut t = Vec::new();
+        while t.len() < n {
+            let c = [0, 1, 2].map(|_| (r() % x.len() as u64) as u32);
+            if c[0] != c[1] && c[1] != c[2] && c[0] != c[2] && !collinear(x, c[0], c[1], c[2]) {
+                t.push(c);
+            }
+        }
+        t
+    }
+
+    fn lcg(seed: u64) -> impl FnMut() -> u64 {
+        let mut s = seed;
+        move || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s >> 33
+        }
+    }
+
+    #[test]
+    fn agrees_with_edge_tests_on_small_integer_points() {
+        // a small pool of points with coordinates in -2..=2: shared corners,
+        // corners on the other plane, coplanar and touching pairs abound
+        let mut total = [[0; 2]; 3];
+        for seed in 0..40 {
+            let mut r = lcg(seed);
+            let x: Vec<[f64; 3]> = (0..10).map(|_| [0, 1, 2].map(|_| (r() % 5) as f64 - 2.0)).collect();
+            let t = triangles(&x, 40, &mut r);
+            let d = agree(&x, &t);
+            for ns in 0..3 {
+                for m in 0..2 {
+                    total[ns][m] += d[ns][m];
+                }
+            }
+        }
+        // every case of the shortcut exercised, meeting and apart
+        // (two shared corners off each other's plane never meet)
+        for (ns, m) in [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0)] {
+            assert!(total[ns][m] > 20, "{total:?}");
+        }
+    }
+
+    #[test]
+    fn agrees_with_edge_tests_on_nearly_coplanar_points() {
+        // points of one plane rounded to doubles and moved by a few ulps:
+        // the static filters give up and every sign is exact
+        let mut total = 0;
+        for seed in 0..20 {
+            let mut r = lcg(100 + seed);
+            let mut f = || (r() % 1_000_000) as f64 / 1e6;
+            let x: Vec<[f64; 3]> = (0..9)
+                .map(|i| {
+                    let (u, v) = (f(), f());
+                    let z: f64 = 0.3 * u - 0.7 * v + 0.1;
+                    [u, v, f64::from_bits((z.to_bits() as i64 + (i % 5) - 2) as u64)]
+                })
+                .collect();
+            let mut r = lcg(seed);
+            let t = triangles(&x, 30, &mut r);
+            total += agree(&x, &t).iter().flatten().sum::<usize>();
+        }
+        assert!(total > 100, "{total}");
+    }
+}
