@@ -161,8 +161,7 @@ pub fn run(a: Args) -> CliResult {
     let read_s = t0.elapsed().as_secs_f64();
     // With the global pool sized here, the cut runs in it (threads 0 below)
     // instead of starting a second pool of the same size.
-    let global =
-        a.threads > 0 && rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global().is_ok();
+    let global = a.threads > 0 && rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global().is_ok();
     let t1 = Instant::now();
     // A bar over the cut's stages (on a terminal only), moved by the library.
     let bar = crate::progress::bar(a.json || a.quiet, "cut stages");

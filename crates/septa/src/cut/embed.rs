@@ -485,7 +485,9 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
         .collect();
     sides.sort_unstable_by_key(|k| (k.0, k.1));
     sides.dedup_by_key(|k| (k.0, k.1));
-    sides.par_iter_mut().for_each(|(v, _, fi, e)| *e = exact_side(c, defs[*v as usize], out.faces[*fi as usize].support).as_i8());
+    sides
+        .par_iter_mut()
+        .for_each(|(v, _, fi, e)| *e = exact_side(c, defs[*v as usize], out.faces[*fi as usize].support).as_i8());
     let side_of = |v: u32, fi: u32| {
         let k = (v, code(out.faces[fi as usize].support, np));
         sides[sides.binary_search_by_key(&k, |s| (s.0, s.1)).unwrap()].3

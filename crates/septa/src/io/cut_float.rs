@@ -17,6 +17,32 @@ fn ascii(b: &[u8]) -> &str {
     std::str::from_utf8(b).unwrap_or_default()
 }
 
+/// Whether the exact decimal expansion of `x` has at most 18 significant
+/// digits. Only such a double can lie exactly half way between two
+/// shortest candidates (a tie needs the digit after the last one to be a
+/// final 5, and the candidates of 16 or 17 digits that can share a rounding
+/// interval), and the two algorithms break ties differently
+/// (`2086845729129147.25`: `{:?}` writes `.3`, zmij `.2`). Such doubles
+/// (input coordinates like 0.5, large integers, tiny dyadics) take `{:?}`.
+fn short_decimal(x: f64) -> bool {
+    let bits = x.to_bits();
+    let exp = ((bits >> 52) & 0x7ff) as i32;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (mut m, mut e) = if exp == 0 { (frac, -1074) } else { (frac | (1u64 << 52), exp - 1075) };
+    let tz = m.trailing_zeros() as i32;
+    m >>= tz;
+    e += tz;
+    const LIMIT: u128 = 1_000_000_000_000_000_000; // 10^18
+    if e >= 0 {
+        // an integer m 2^e
+        e < 64 && ((m as u128) << e) < LIMIT
+    } else {
+        // m 2^e = m 5^-e / 10^-e: the digits of m 5^-e
+        let k = -e;
+        k <= 27 && (m as u128) * 5u128.pow(k as u32) < LIMIT
+    }
+}
+
 /// Reusable buffers of [`push_f64`].
 #[derive(Default)]
 pub(crate) struct FloatText {
@@ -26,7 +52,7 @@ pub(crate) struct FloatText {
 impl FloatText {
     /// Appends `x` to `s` exactly as `write!(s, "{x:?}")` would.
     pub(crate) fn push_f64(&mut self, s: &mut String, x: f64) {
-        if !x.is_finite() || x == 0.0 {
+        if !x.is_finite() || x == 0.0 || short_decimal(x) {
             let _ = write!(s, "{x:?}");
             return;
         }
@@ -136,6 +162,15 @@ mod tests {
             for x in [p, -p, f64::from_bits(p.to_bits().wrapping_add(1)), f64::from_bits(p.to_bits().wrapping_sub(1))] {
                 check(&mut f, x);
             }
+        }
+        // ties between two shortest candidates (broken differently)
+        for x in [f64::from_bits(0x431da7e6898b0aed), 3.0 * 2f64.powi(-24), 2086845729129147.5, 1e17 + 16.0] {
+            check(&mut f, x);
+        }
+        for _ in 0..200_000 {
+            // dyadics with short expansions around the tie-prone range
+            let m = rng.gen_range(1u64..1 << 20) as f64;
+            check(&mut f, m * 2f64.powi(rng.gen_range(-40..60)));
         }
         for x in [0.0, -0.0, f64::MIN_POSITIVE, f64::MAX, f64::MIN, 5e-324, 1e-4, 9.999999999999999e15, 0.1 + 0.2] {
             check(&mut f, x);
