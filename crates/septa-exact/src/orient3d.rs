@@ -102,8 +102,7 @@ mod tests {
             // (rounded), moved by -1..=1 ulps; every 4th case exactly
             // degenerate (integer multiples of 2^-10 on a plane)
             let base = [1.0 + r(), 2.0 + r(), 3.0 + r()];
-            let mut p: [[f64; 3]; 4] =
-                std::array::from_fn(|_| std::array::from_fn(|k| base[k] + 0.01 * (r() - 0.5)));
+            let mut p: [[f64; 3]; 4] = std::array::from_fn(|_| std::array::from_fn(|k| base[k] + 0.01 * (r() - 0.5)));
             if i % 4 == 0 {
                 for q in p.iter_mut() {
                     let (u, v) = ((r() * 1024.0).floor() / 1024.0, (r() * 1024.0).floor() / 1024.0);
@@ -155,7 +154,13 @@ mod tests {
         let o = [0.0; 3];
         assert_eq!(orient3d_exact_diffs(&[1.0, 0.0, 0.0], &[1e-20, 0.0, 0.0], &o, &o), None);
         assert_eq!(orient3d_exact_diffs(&o, &[1e-300, 0.0, 0.0], &[0.0, 1.0, 0.0], &[0.0, 0.0, 1.0]), None);
-        assert_eq!(orient3d_exact_diffs(&o, &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], &[0.0, 0.0, 1.0]), Some(Sign::Positive));
-        assert_eq!(orient3d_exact_diffs(&o, &[0.0, 1.0, 0.0], &[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0]), Some(Sign::Negative));
+        assert_eq!(
+            orient3d_exact_diffs(&o, &[1.0, 0.0, 0.0], &[0.0, 1.0, 0.0], &[0.0, 0.0, 1.0]),
+            Some(Sign::Positive)
+        );
+        assert_eq!(
+            orient3d_exact_diffs(&o, &[0.0, 1.0, 0.0], &[1.0, 0.0, 0.0], &[0.0, 0.0, 1.0]),
+            Some(Sign::Negative)
+        );
     }
 }

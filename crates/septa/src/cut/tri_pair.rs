@@ -503,15 +503,12 @@ fn general_position(o: &mut PairOrients, t1: &[u32; 3], t2: &[u32; 3]) -> Option
     // the corner alone on its side, and the side it counts on
     let lone = |s: &[Sign; 3]| -> Option<(usize, Sign)> {
         let others = |k: usize| [s[(k + 1) % 3], s[(k + 2) % 3]];
-        (0..3)
-            .find(|&k| s[k] != Sign::Zero && !others(k).contains(&s[k]))
-            .map(|k| (k, s[k]))
-            .or_else(|| {
-                (0..3).find_map(|k| {
-                    let [p, q] = others(k);
-                    (s[k] == Sign::Zero && p == q && p != Sign::Zero).then(|| (k, p.flip()))
-                })
+        (0..3).find(|&k| s[k] != Sign::Zero && !others(k).contains(&s[k])).map(|k| (k, s[k])).or_else(|| {
+            (0..3).find_map(|k| {
+                let [p, q] = others(k);
+                (s[k] == Sign::Zero && p == q && p != Sign::Zero).then(|| (k, p.flip()))
             })
+        })
     };
     let ((k1, g1), (k2, g2)) = (lone(&s1)?, lone(&s2)?);
     let (p1, mut q1, mut r1) = (t1[k1], t1[(k1 + 1) % 3], t1[(k1 + 2) % 3]);
