@@ -141,16 +141,27 @@ impl TriPlane {
         let w = [q[0] - self.a[0], q[1] - self.a[1], q[2] - self.a[2]];
         let det = w[0] * self.n[0] + w[1] * self.n[1] + w[2] * self.n[2];
         let perm = self.perm[0] * w[0].abs() + self.perm[1] * w[1].abs() + self.perm[2] * w[2].abs();
-        const U: f64 = f64::EPSILON / 2.0;
-        let bound = (7.0 * U + 56.0 * U * U) * perm;
-        if det.is_finite() && perm.is_finite() && perm > 1e-280 {
-            if det > bound {
-                return Some(Sign::Positive);
-            }
-            if -det > bound {
-                return Some(Sign::Negative);
-            }
-        }
+        proven_sign(det, perm)
+    }
+}
+
+/// The sign of a floating-point orient3d determinant `det` when Shewchuk's
+/// static bound proves it (Shewchuk 1997, `o3derrboundA`: |det - fl(det)|
+/// <= (7u + 56u^2) * permanent, u = 2^-53, `perm` the permanent of absolute
+/// values of the same products), else `None`. Non-finite values and
+/// permanents small enough for underflow to void the bound give `None`.
+#[inline]
+fn proven_sign(det: f64, perm: f64) -> Option<Sign> {
+    const U: f64 = f64::EPSILON / 2.0;
+    let bound = (7.0 * U + 56.0 * U * U) * perm;
+    if !(det.is_finite() && perm.is_finite() && perm > 1e-280) {
+        return None;
+    }
+    if det > bound {
+        Some(Sign::Positive)
+    } else if -det > bound {
+        Some(Sign::Negative)
+    } else {
         None
     }
 }
@@ -158,9 +169,7 @@ impl TriPlane {
 /// [`orient`] when its static filter decides it, else `None` (no exact
 /// fallback: for quick rejections that may give up).
 fn orient_filtered(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Option<Sign> {
-    // Shewchuk's static filter for orient3d (Shewchuk 1997, `o3derrboundA`):
-    // |det - fl(det)| <= (7u + 56u^2) * permanent, u = 2^-53, with the
-    // permanent of absolute values of the same products.
+    // Shewchuk's static filter for orient3d ([`proven_sign`]).
     let (pa, pb, pc, pd) = (&x[a as usize], &x[b as usize], &x[c as usize], &x[d as usize]);
     let adx = pa[0] - pd[0];
     let bdx = pb[0] - pd[0];
@@ -181,19 +190,9 @@ fn orient_filtered(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Option<Sig
     let perm = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
         + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
         + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
-    const U: f64 = f64::EPSILON / 2.0;
-    let bound = (7.0 * U + 56.0 * U * U) * perm;
-    if det.is_finite() && perm.is_finite() && perm > 1e-280 {
-        // orient3d(a,b,c,d) with d as origin equals -det(a-d, b-d, c-d) ... sign
-        // convention fixed below against the generic version
-        if det > bound {
-            return Some(Sign::Negative);
-        }
-        if -det > bound {
-            return Some(Sign::Positive);
-        }
-    }
-    None
+    // `det` is det(a - d, b - d, c - d), the opposite sign of
+    // `orient(a, b, c, d)` = sign det(b - a, c - a, d - a).
+    proven_sign(det, perm).map(|s| -s)
 }
 
 fn orient_exact(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
