@@ -101,6 +101,11 @@ pub(super) fn read(path: &Path) -> Option<([usize; 3], Vec<i64>, bool)> {
     if (need as u64) > available {
         return None; // truncated: the general reader says so
     }
+    // The data goes from the file straight into `chunk`: through the
+    // `BufReader` every byte would be copied twice (a chunk's read after the
+    // header straddles the reader's buffer, which then refills itself).
+    let rest = r.buffer().to_vec();
+    let mut r = rest.as_slice().chain(r.into_inner());
     let mut labels = Vec::with_capacity(count);
     let mut chunk = vec![0u8; (1 << 16) / el.size * el.size];
     let mut left = need;

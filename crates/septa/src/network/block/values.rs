@@ -24,6 +24,12 @@ pub(crate) trait Values: Sync {
     fn label(&self, _v: u32) -> Option<u32> {
         None
     }
+    /// [`Values::label`] of every vertex of the block `lo..lo + vn` (grid
+    /// coordinates), in local order (`(i * vn[1] + j) * vn[2] + k`), when
+    /// held as such: read as a slice, not vertex by vertex from grid ids.
+    fn block_labels(&self, _lo: [usize; 3], _vn: [usize; 3]) -> Option<&[u32]> {
+        None
+    }
     /// The block's cubes that may hold a part of the network, when the
     /// vertices of the others were not sampled (`mask.rs`).
     fn mask(&self) -> Option<&CubeMask> {
@@ -214,6 +220,10 @@ impl Values for BlockLabels {
     #[inline]
     fn label(&self, v: u32) -> Option<u32> {
         Some(self.labels[self.at.local(v, None)])
+    }
+
+    fn block_labels(&self, lo: [usize; 3], vn: [usize; 3]) -> Option<&[u32]> {
+        (self.at.lo == lo && self.at.vn == vn).then_some(&self.labels[..])
     }
 }
 

@@ -570,7 +570,9 @@ fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4]
 fn finish(mut st: State) -> BlockOut {
     let (comp, count) = st.uf.components();
     let mut out = st.out;
-    out.comp_label = vec![SmallVec::new(); count];
+    // Not `vec![SmallVec::new(); count]`: that clones the empty label
+    // `count` times through `SmallVec`'s `extend`.
+    out.comp_label = std::iter::repeat_with(SmallVec::new).take(count).collect();
     out.comp_volume = vec![0.0; count];
     for (n, label) in st.node_label.into_iter().enumerate() {
         let c = comp[n] as usize;
