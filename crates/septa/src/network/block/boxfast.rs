@@ -12,7 +12,7 @@ use smallvec::SmallVec;
 
 use super::mask::NO_ROW;
 use super::simple::CubeCorners;
-use super::types::Label;
+use super::types::{copy_label, Label};
 use super::values::Ctx;
 use super::worker::{contact, face_key, State, Worker};
 use crate::complex::{Mode, NONE};
@@ -267,7 +267,7 @@ pub(super) fn run_box(
                                 continue;
                             }
                         }
-                        let l = st.node_label[id as usize].clone();
+                        let l = copy_label(&st.node_label[id as usize]);
                         for &(lt, f) in &tables[parity][axis * 2 + side] {
                             let tet = g.tet(cube * per + lt);
                             contact(st, face_key(&tet, f), &l, id);

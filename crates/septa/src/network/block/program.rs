@@ -20,7 +20,7 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::keys::{key_of, position_on, vertex_id_by_key};
-use super::types::{BlockOut, Label, SRef};
+use super::types::{copy_label, BlockOut, Label, SRef};
 use super::values::Ctx;
 use super::worker::State;
 use crate::complex::{Complex, Mode};
@@ -165,7 +165,7 @@ pub(crate) fn record(c: &Complex, active: &[u16], vid: &[u32], st: &State, mark:
 pub(crate) fn push_cell(mode: Mode, st: &mut State, base_label: &Label, active: &[u16], cell: u64) {
     let label: Label = match mode {
         Mode::Ia => {
-            let mut l = base_label.clone();
+            let mut l = copy_label(base_label);
             for (li, &g) in active.iter().enumerate() {
                 let (w, b) = (g as usize / 64, g % 64);
                 if cell >> li & 1 == 1 {

@@ -10,6 +10,14 @@ use crate::network::VKey;
 /// `f > 0`), MI the material in word 0.
 pub(crate) type Label = SmallVec<[u64; 2]>;
 
+/// A copy of `l`: `Label::clone` goes element by element through
+/// `SmallVec`'s `extend` (a measurable share of a block's work); the words
+/// are plain data and copy as a slice.
+#[inline]
+pub(crate) fn copy_label(l: &[u64]) -> Label {
+    Label::from_slice(l)
+}
+
 /// Sorted grid vertices of a tet face.
 pub(crate) type FaceKey = [u32; 3];
 

@@ -10,7 +10,7 @@ use smallvec::SmallVec;
 
 use super::active::{active_functions_with, ia_base_label};
 use super::keys::{vertex_id_by_key, vertex_key};
-use super::types::{BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
+use super::types::{copy_label, BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
 use super::values::Ctx;
 use crate::complex::{Complex, Mode, Plane, NONE};
 use crate::grid::{Block, Grid};
@@ -251,7 +251,7 @@ impl Worker {
         for cell in c.cells() {
             let label: Label = match ctx.mode {
                 Mode::Ia => {
-                    let mut l = base_label.clone();
+                    let mut l = copy_label(&base_label);
                     for (li, &g) in self.active.iter().enumerate() {
                         let (w, b) = (g as usize / 64, g % 64);
                         if cell.is_positive(li as u16) {
@@ -265,7 +265,7 @@ impl Worker {
                 Mode::Mi => SmallVec::from_elem(self.active[cell.material() as usize] as u64, 1),
             };
             st.uf.push();
-            st.node_label.push(label.clone());
+            st.node_label.push(copy_label(&label));
             st.node_volume.push(0.0);
             self.cell_labels.push(label);
         }
@@ -331,7 +331,7 @@ impl Worker {
         if st.grouping {
             for j in 0..self.pairs.len() {
                 let (i, cell) = self.pairs[j];
-                let label = self.cell_labels[cell as usize].clone();
+                let label = copy_label(&self.cell_labels[cell as usize]);
                 contact(st, face_key(&tet, i as usize), &label, base + cell);
             }
         }
@@ -441,7 +441,7 @@ impl Worker {
                 let fk = face_key(tet, i as usize);
                 let a = vertex_id(self, c, ctx, st, tet, u);
                 let b = vertex_id(self, c, ctx, st, tet, w);
-                let key = (fk, self.cell_labels[cell as usize].clone(), a.min(b), a.max(b));
+                let key = (fk, copy_label(&self.cell_labels[cell as usize]), a.min(b), a.max(b));
                 if let Some(t) = st.tmap.remove(&key) {
                     SRef::T(t)
                 } else {
@@ -509,7 +509,7 @@ pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
     if !st.grouping {
         return;
     }
-    match st.contacts.entry((face, label.clone())) {
+    match st.contacts.entry((face, copy_label(label))) {
         Entry::Occupied(o) => {
             let other = o.remove();
             st.uf.union(other, node)
