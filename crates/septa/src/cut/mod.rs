@@ -58,6 +58,7 @@ mod embed;
 #[cfg(test)]
 mod embed_tests;
 mod error;
+mod exact_round;
 mod geom;
 mod holes;
 mod input;
