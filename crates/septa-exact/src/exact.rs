@@ -63,6 +63,11 @@ impl Exact {
         top * 2f64.powi((self.exponent + shift).clamp(-2000, 2000) as i32)
     }
 
+    /// `mantissa * 2^exponent` (for the expansion tier's conversion).
+    pub(crate) fn from_parts(mantissa: BigInt, exponent: i64) -> Exact {
+        Exact { mantissa, exponent }
+    }
+
     fn aligned(a: &Exact, b: &Exact) -> (BigInt, BigInt, i64) {
         let e = a.exponent.min(b.exponent);
         let ma = &a.mantissa << ((a.exponent - e) as usize);

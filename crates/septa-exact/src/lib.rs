@@ -41,6 +41,7 @@ mod det;
 mod exact;
 mod expansion;
 mod expansion_det;
+mod expansion_ring;
 mod filter;
 mod integer_det;
 mod orient3d;
@@ -54,6 +55,7 @@ pub use barycentric::{
 };
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;
+pub use expansion_ring::{expansion_window, Expansion};
 pub use orient3d::orient3d_exact_diffs;
 pub use plane::{fallback_count, filtered_sign, plane_point_sign, Interval, Ring};
 pub use sign::Sign;

@@ -339,10 +339,7 @@ fn round_unsnapped(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
     if tight && guess.iter().all(|x| x.is_finite()) {
         return (guess, bx);
     }
-    let (he, we) = c.hom::<Exact>(d);
-    let wf = we.to_f64_approx();
-    let x = [0, 1, 2].map(|k| he[k].to_f64_approx() / wf);
-    (if x.iter().all(|v| v.is_finite()) { x } else { c.approx(d) }, bx)
+    (super::exact_round::exact_rounding(c, d).unwrap_or_else(|| c.approx(d)), bx)
 }
 
 /// The embedding: `out.vertices` holds the rounded `out.vertex_defs` and

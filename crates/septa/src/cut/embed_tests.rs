@@ -52,7 +52,17 @@ fn corner_sides_equal_the_sides_from_coordinates() {
     let nv = verts.len();
     let pv: Vec<i8> =
         planes.iter().flat_map(|pl| verts.iter().map(|x| septa_exact::plane_point_sign(pl, x).as_i8())).collect();
-    let c = Ctx { verts: &verts, tris: &tris, planes: &planes, edges, tri_edges, edge_tris, pv, tn_iv: Vec::new() };
+    let c = Ctx {
+        verts: &verts,
+        tris: &tris,
+        planes: &planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv,
+        tn_iv: Vec::new(),
+        pp_iv: Vec::new(),
+    };
     let tn_iv: Vec<[Interval; 3]> = (0..tris.len() as u32).map(|t| c.tn_compute::<Interval>(t)).collect();
     let c = Ctx { tn_iv, ..c };
     let np = planes.len() as u32;

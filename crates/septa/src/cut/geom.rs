@@ -48,6 +48,10 @@ pub struct Ctx<'a> {
     /// Triangle normals in interval arithmetic (the filter's copy of
     /// [`Ctx::tn`], computed once).
     pub tn_iv: Vec<[Interval; 3]>,
+    /// Plane-pair line directions `n_p x n_q` in interval arithmetic,
+    /// `pp_iv[p * np + q]` for `p < q` (the filter's copy of
+    /// [`Ctx::line_dir`], computed once; empty: computed on each call).
+    pub pp_iv: Vec<[Interval; 3]>,
 }
 
 /// A 3-vector over a ring.
@@ -133,8 +137,21 @@ impl Ctx<'_> {
                 sub3(&v3(&self.verts[v as usize]), &v3(&self.verts[u as usize]))
             }
             LineDir::TriPlane(t, p) => cross3(&self.pn(p), &self.tn(t)),
-            LineDir::PlanePlane(p, q) => cross3(&self.pn(p), &self.pn(q)),
+            LineDir::PlanePlane(p, q) => {
+                let i = p as usize * self.planes.len() + q as usize;
+                if p < q {
+                    if let Some(v) = self.pp_iv.get(i).and_then(|v| (v as &dyn std::any::Any).downcast_ref::<V3<R>>()) {
+                        return v.clone();
+                    }
+                }
+                self.pp_compute(p, q)
+            }
         }
+    }
+
+    /// Direction `n_p x n_q` of the line of planes `p` and `q`.
+    pub fn pp_compute<R: Ring>(&self, p: u32, q: u32) -> V3<R> {
+        cross3(&self.pn(p), &self.pn(q))
     }
 
     /// Homogeneous coordinates `(H, W)` of a cut-vertex: the point is `H / W`.

@@ -4,14 +4,19 @@
 //! cut-edges on that line. (Lines `(T,P)` inside a triangle are ordered by
 //! the clipping in [`super::clip`].)
 
-use super::geom::{dot3, Ctx, Def, LineDir};
+use super::geom::{dot3, Ctx, Def, LineDir, V3};
 use super::nodes::{FxMap, Nodes};
 use septa_exact::{Interval, Ring, Sign};
 use std::cmp::Ordering;
 
+/// Interval homogeneous coordinates `(H, W)` of three-plane points, kept
+/// across the three plane-pair lines each lies on.
+pub type HomCache = FxMap<u32, (V3<Interval>, Interval)>;
+
 /// Sorts nodes along a line direction, merges equal points, and returns one
-/// node per distinct point in increasing order.
-pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir) -> Vec<u32> {
+/// node per distinct point in increasing order. `cache` keeps the interval
+/// coordinates of `PPP` nodes between calls.
+pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir, cache: &mut HomCache) -> Vec<u32> {
     pts.sort_unstable();
     pts.dedup();
     // floating-point pre-sort keys (paper Sec. 6.3, "line sorting speedup"),
@@ -20,16 +25,33 @@ pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir) -
     let keys: Vec<(Interval, Interval)> = pts
         .iter()
         .map(|&n| {
-            let (h, w) = c.hom::<Interval>(nodes.defs[n as usize]);
+            let d = nodes.defs[n as usize];
+            let (h, w) = if let Def::PPP(..) = d {
+                cache.entry(n).or_insert_with(|| c.hom::<Interval>(d)).clone()
+            } else {
+                c.hom::<Interval>(d)
+            };
             (dot3(&h, &dv), w)
         })
         .collect();
+    // First tier: enclosures of the exact line parameters `H.d / W`; two
+    // disjoint ones order their points (the comparison below is the sign
+    // of the same difference), overlapping ones go on to the products.
+    let params: Vec<Option<Interval>> = keys.iter().map(|(h, w)| h.div(w)).collect();
     let mut idx: Vec<usize> = (0..pts.len()).collect();
     let defs = &nodes.defs;
     let memo: std::cell::RefCell<FxMap<(usize, usize), Sign>> = Default::default();
     let cmp = |&i: &usize, &j: &usize| -> Ordering {
         if i == j {
             return Ordering::Equal;
+        }
+        if let (Some(a), Some(b)) = (params[i], params[j]) {
+            if a.hi < b.lo {
+                return Ordering::Less;
+            }
+            if a.lo > b.hi {
+                return Ordering::Greater;
+            }
         }
         let (ha, wa) = keys[i];
         let (hb, wb) = keys[j];
@@ -103,6 +125,7 @@ pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &
     let np = c.planes.len();
     let mut chains = Vec::with_capacity(c.edges.len());
     let mut pts = Vec::new();
+    let mut cache = HomCache::default();
     for (e, &[u, v]) in c.edges.iter().enumerate() {
         let e = e as u32;
         pts.clear();
@@ -117,7 +140,7 @@ pub fn mesh_edges(c: &Ctx, nodes: &mut Nodes, lines: &mut LinePoints, crosses: &
         }
         let mut chain = vec![nodes.get(Def::V(u))];
         if !pts.is_empty() {
-            let sorted = sort_line(c, nodes, &mut pts, LineDir::Mesh(e));
+            let sorted = sort_line(c, nodes, &mut pts, LineDir::Mesh(e), &mut cache);
             for &n in &sorted {
                 // all planes crossing here, plus those containing the edge
                 let r = nodes.find(n);
@@ -159,6 +182,7 @@ pub fn plane_lines(
 ) -> Vec<((u32, u32), Vec<u32>)> {
     let np = c.planes.len() as u32;
     let mut out = Vec::new();
+    let mut cache = HomCache::default();
     for p in 0..np {
         for q in p + 1..np {
             if !crosses[(p * np + q) as usize] {
@@ -180,7 +204,7 @@ pub fn plane_lines(
             if pts.is_empty() {
                 continue;
             }
-            let sorted = sort_line(c, nodes, &mut pts, LineDir::PlanePlane(p, q));
+            let sorted = sort_line(c, nodes, &mut pts, LineDir::PlanePlane(p, q), &mut cache);
             out.push(((p, q), sorted));
         }
     }

@@ -58,6 +58,7 @@ mod embed;
 #[cfg(test)]
 mod embed_tests;
 mod error;
+mod exact_round;
 mod geom;
 mod holes;
 mod input;
@@ -80,6 +81,7 @@ mod validate;
 mod verify;
 mod voids;
 mod volume;
+mod volume_filter;
 
 pub use cells::Support;
 pub use error::CutError;
@@ -293,11 +295,31 @@ fn cut_impl(
             }
         });
     }
-    let c =
-        Ctx { verts: vertices, tris: triangles, planes: &planes, edges, tri_edges, edge_tris, pv, tn_iv: Vec::new() };
+    let c = Ctx {
+        verts: vertices,
+        tris: triangles,
+        planes: &planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv,
+        tn_iv: Vec::new(),
+        pp_iv: Vec::new(),
+    };
     let tn_iv: Vec<[septa_exact::Interval; 3]> =
         (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Interval>(t)).collect();
-    let c = Ctx { tn_iv, ..c };
+    // entries p < q (`line_dir` reads no others; lines are keyed so)
+    let pp_iv: Vec<[septa_exact::Interval; 3]> = (0..(np * np) as u32)
+        .map(|i| {
+            let (p, q) = (i / np as u32, i % np as u32);
+            if p < q {
+                c.pp_compute::<septa_exact::Interval>(p, q)
+            } else {
+                [septa_exact::Interval::point(0.0); 3]
+            }
+        })
+        .collect();
+    let c = Ctx { tn_iv, pp_iv, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {

@@ -28,16 +28,53 @@ impl super::CutCellMesh {
     /// [`super::CutCellMesh::face_split`] says so (holes, or rounded
     /// vertices not exactly coplanar).
     pub fn cell_polygons(&self) -> Vec<Vec<Vec<u32>>> {
-        let mut cells: Vec<Vec<Vec<u32>>> = vec![Vec::new(); self.num_cells];
+        // Each cell's list sized first and each polygon copied once, into
+        // its cell (no per-face list, no regrowth of the cells' lists): the
+        // writers and the exact check each form these polygons.
+        let count = |i: usize| -> usize {
+            let f = &self.faces[i];
+            let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
+            match self.face_triangles.get(i).filter(|t| split && !t.is_empty()) {
+                Some(t) => t.len(),
+                None if !split => 1,
+                None => self.face_polygons(i).len(),
+            }
+        };
+        let mut sizes = vec![0usize; self.num_cells];
         for (i, f) in self.faces.iter().enumerate() {
-            let polys = self.face_polygons(i);
-            // the face normal points away from cells[0] (negative side): outward for it
+            let k = count(i);
+            for &c in f.cells.iter().filter(|&&c| c != u32::MAX) {
+                sizes[c as usize] += k;
+            }
+        }
+        let mut cells: Vec<Vec<Vec<u32>>> = sizes.iter().map(|&n| Vec::with_capacity(n)).collect();
+        for (i, f) in self.faces.iter().enumerate() {
+            let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
+            let tris = self.face_triangles.get(i).filter(|t| split && !t.is_empty());
+            let computed;
+            let polys: &[Vec<u32>] = match tris {
+                Some(_) => &[],
+                None if !split => std::slice::from_ref(&f.loops[0]),
+                None => {
+                    computed = self.face_polygons(i);
+                    &computed
+                }
+            };
+            // the face normal points away from cells[0] (negative side):
+            // outward for it; reversed for cells[1] (listed first, as before)
             if f.cells[1] != u32::MAX {
                 let c = &mut cells[f.cells[1] as usize];
-                c.extend(polys.iter().map(|l| l.iter().rev().copied().collect::<Vec<u32>>()));
+                match tris {
+                    Some(t) => c.extend(t.iter().map(|t| vec![t[2], t[1], t[0]])),
+                    None => c.extend(polys.iter().map(|l| l.iter().rev().copied().collect::<Vec<u32>>())),
+                }
             }
             if f.cells[0] != u32::MAX {
-                cells[f.cells[0] as usize].extend(polys);
+                let c = &mut cells[f.cells[0] as usize];
+                match tris {
+                    Some(t) => c.extend(t.iter().map(|t| t.to_vec())),
+                    None => c.extend(polys.iter().cloned()),
+                }
             }
         }
         cells

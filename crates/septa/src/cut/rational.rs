@@ -58,6 +58,7 @@ pub fn exact_coordinates(
         edge_tris,
         pv: Vec::new(),
         tn_iv: Vec::new(),
+        pp_iv: Vec::new(),
     };
     let out = defs
         .par_iter()

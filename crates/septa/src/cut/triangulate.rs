@@ -57,6 +57,14 @@ pub fn triangulate_shaped(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) 
     };
     // closed segment intersection in projection
     let meets = |p: u32, q: u32, a: u32, b: u32| {
+        // closed segments whose bounding boxes (in the projection) are
+        // apart cannot meet: the exact test below would say so too, at the
+        // price of four orientations (most boundary edges are far from a
+        // candidate diagonal)
+        let (pp, pq, pa, pb) = (x[p as usize], x[q as usize], x[a as usize], x[b as usize]);
+        if [i2, j2].iter().any(|&c| pp[c].max(pq[c]) < pa[c].min(pb[c]) || pa[c].max(pb[c]) < pp[c].min(pq[c])) {
+            return false;
+        }
         let (s1, s2) = (o2(p, q, a), o2(p, q, b));
         let (s3, s4) = (o2(a, b, p), o2(a, b, q));
         if s1 != Sign::Zero && s1 == s2 || s3 != Sign::Zero && s3 == s4 {
