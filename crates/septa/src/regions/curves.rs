@@ -68,7 +68,7 @@ pub(crate) fn extract_with(
         let p = net.face(f);
         let cells = net.face_cells[f];
         for k in 0..p.len() {
-            let (a, b) = (p[k], p[(k + 1) % p.len()]);
+            let (a, b) = (p[k], p[if k + 1 == p.len() { 0 } else { k + 1 }]);
             if !(may_be_curve(a) && may_be_curve(b)) {
                 continue;
             }

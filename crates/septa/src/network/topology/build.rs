@@ -31,7 +31,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     // A counting sort by the smaller vertex `a`, then each short bucket
     // sorted: linear time instead of a global sort of every polygon side.
     let side = |vs: &[u32], j: usize| {
-        let (a, b) = (vs[j], vs[(j + 1) % vs.len()]);
+        let (a, b) = (vs[j], vs[if j + 1 == vs.len() { 0 } else { j + 1 }]);
         (a.min(b), a.max(b))
     };
     let mut start = vec![0u32; nv + 1];
