@@ -136,13 +136,18 @@ fn newell(x: &[[f64; 3]], poly: &[u32]) -> [f64; 3] {
 /// The rotation of a loop starting at its smallest vertex, read in the
 /// direction whose second vertex is smaller: the same key for a face seen
 /// from either of its cells; `true` when it had to be reversed.
-fn face_key(poly: &[u32]) -> (Vec<u32>, bool) {
+/// The key is written into `key` (a buffer reused across faces: most faces
+/// are met twice, and the second time the key is only looked up).
+fn face_key(poly: &[u32], key: &mut Vec<u32>) -> bool {
     let n = poly.len();
     let m = (0..n).min_by_key(|&i| poly[i]).unwrap_or(0);
+    key.clear();
     if n > 1 && poly[(m + n - 1) % n] < poly[(m + 1) % n] {
-        ((0..n).map(|i| poly[(m + n - i) % n]).collect(), true)
+        key.extend((0..n).map(|i| poly[(m + n - i) % n]));
+        true
     } else {
-        ((0..n).map(|i| poly[(m + i) % n]).collect(), false)
+        key.extend((0..n).map(|i| poly[(m + i) % n]));
+        false
     }
 }
 
@@ -188,15 +193,17 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
     let mut face_keys: Vec<Vec<u32>> = Vec::new();
     let mut bad_faces: Vec<u32> = Vec::new();
     let mut cell_faces: Vec<Vec<(u32, bool)>> = Vec::with_capacity(cells.len());
+    let (mut key, mut distinct) = (Vec::new(), Vec::new());
     for (ci, cell) in cells.iter().enumerate() {
         let mut refs = Vec::with_capacity(cell.len());
         for (fi, poly) in cell.iter().enumerate() {
-            let (key, rev) = face_key(poly);
-            let id = match face_of.get(&key) {
+            let rev = face_key(poly, &mut key);
+            let id = match face_of.get(key.as_slice()) {
                 Some(&id) => id,
                 None => {
                     let id = face_tris.len() as u32;
-                    let mut distinct = poly.clone();
+                    distinct.clear();
+                    distinct.extend_from_slice(poly);
                     distinct.sort_unstable();
                     distinct.dedup();
                     let tris = match polygon_planar(x, &key) {
@@ -222,7 +229,7 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
                         Vec::new()
                     });
                     face_keys.push(key.clone());
-                    face_of.insert(key, id);
+                    face_of.insert(key.clone(), id);
                     face_tris.push(tris);
                     id
                 }
