@@ -82,6 +82,7 @@ mod validate;
 mod verify;
 mod voids;
 mod volume;
+mod volume_filter;
 
 pub use cells::Support;
 pub use error::CutError;

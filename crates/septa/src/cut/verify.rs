@@ -30,6 +30,7 @@
 use super::selfx::{intersecting_pairs, intersecting_pairs_touching};
 use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
+use super::volume_filter::volume_sign_static;
 use rustc_hash::FxHashMap;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
@@ -156,20 +157,25 @@ fn face_key(poly: &[u32], key: &mut Vec<u32>) -> bool {
 fn volume_sign(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Sign {
     let Some(t0) = tris.first() else { return Sign::Zero };
     let o = x[t0[0] as usize];
-    fn f<R: Ring>(x: &[[f64; 3]], o: [f64; 3], tris: &[[u32; 3]]) -> R {
-        let mut s = R::of(0.0);
-        for t in tris {
-            let p = |i: u32| -> [R; 3] { std::array::from_fn(|k| R::of(x[i as usize][k]).sub(&R::of(o[k]))) };
-            let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
-            let d = a[0]
-                .mul(&b[1].mul(&c[2]).sub(&b[2].mul(&c[1])))
-                .sub(&a[1].mul(&b[0].mul(&c[2]).sub(&b[2].mul(&c[0]))))
-                .add(&a[2].mul(&b[0].mul(&c[1]).sub(&b[1].mul(&c[0]))));
-            s = s.add(&d);
-        }
-        s
+    if let Some(s) = volume_sign_static(x, o, tris) {
+        return s;
     }
-    filtered_sign(|| f::<Interval>(x, o, tris), || f::<Exact>(x, o, tris))
+    filtered_sign(|| volume_sum::<Interval>(x, o, tris), || volume_sum::<Exact>(x, o, tris))
+}
+
+/// `sum det(b - o, c - o, d - o)` over the triangles `(b, c, d)` in `R`.
+pub(super) fn volume_sum<R: Ring>(x: &[[f64; 3]], o: [f64; 3], tris: &[[u32; 3]]) -> R {
+    let mut s = R::of(0.0);
+    for t in tris {
+        let p = |i: u32| -> [R; 3] { std::array::from_fn(|k| R::of(x[i as usize][k]).sub(&R::of(o[k]))) };
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let d = a[0]
+            .mul(&b[1].mul(&c[2]).sub(&b[2].mul(&c[1])))
+            .sub(&a[1].mul(&b[0].mul(&c[2]).sub(&b[2].mul(&c[0]))))
+            .add(&a[2].mul(&b[0].mul(&c[1]).sub(&b[1].mul(&c[0]))));
+        s = s.add(&d);
+    }
+    s
 }
 
 /// Checks `cells` (each a list of polygons of vertex ids into `x`, oriented
