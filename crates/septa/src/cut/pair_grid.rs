@@ -52,33 +52,25 @@ impl PairGrid {
             len => *extents.select_nth_unstable_by(len / 2, f64::total_cmp).1,
         };
         let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-        let mut res: usize = ((ext / (1.5 * median).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
-        // each box's low and high cells at `res`, and their number of
-        // entries; `None` as soon as a coarser grid is needed (the entries
-        // passed the budget), so a trial that fails stops early
-        let cells_at = |res: usize, cells: &mut Vec<[[u32; 3]; 2]>| -> Option<usize> {
+        let mut res = ((ext / (1.5 * median).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
+        let cells_at = |res: usize| -> Vec<[[u32; 3]; 2]> {
             let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
             let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1) as u32;
-            cells.clear();
-            let mut total = 0usize;
-            for b in boxes {
-                let c: [[u32; 3]; 2] =
-                    [std::array::from_fn(|k| cell(b.0[k], k)), std::array::from_fn(|k| cell(b.1[k], k))];
-                total += (0..3).map(|k| (c[1][k] - c[0][k]) as usize + 1).product::<usize>();
-                if res > 1 && total > 8 * n {
-                    return None;
-                }
-                cells.push(c);
-            }
-            Some(total)
+            boxes
+                .iter()
+                .map(|b| [std::array::from_fn(|k| cell(b.0[k], k)), std::array::from_fn(|k| cell(b.1[k], k))])
+                .collect()
         };
-        let mut cells = Vec::with_capacity(n);
-        let total = loop {
-            match cells_at(res, &mut cells) {
-                Some(total) => break total,
-                None => res = res * 3 / 4,
-            }
+        let count = |c: &[[[u32; 3]; 2]]| -> usize {
+            c.iter().map(|[l, h]| (0..3).map(|k| (h[k] - l[k]) as usize + 1).product::<usize>()).sum()
         };
+        let mut cells = cells_at(res);
+        let mut total = count(&cells);
+        while res > 1 && total > 8 * n {
+            res = res * 3 / 4;
+            cells = cells_at(res);
+            total = count(&cells);
+        }
         let r = res as u64;
         let key = |i: u32, j: u32, l: u32| (i as u64 * r + j as u64) * r + l as u64;
         // the boxes in order of their low x, then their entries in that order
