@@ -1,9 +1,10 @@
 //! Exact self-intersection test of the input mesh (TopoCut App. A): no
 //! edge may meet a triangle except at their shared vertices. Candidate
-//! pairs come from a uniform grid over the bounding box (each pair is
-//! tested once, in the grid cell holding the low corner of the overlap of
-//! their boxes); every decision is an exact orientation sign.
+//! pairs come from a uniform grid over the bounding box (`pair_grid`; each
+//! pair is tested once, in the grid cell holding the low corner of the
+//! overlap of their boxes); every decision is an exact orientation sign.
 
+use super::pair_grid::PairGrid;
 use super::tri_pair::{pair_intersects_planes, TriPlane};
 use super::CutError;
 use rayon::prelude::*;
@@ -53,112 +54,51 @@ pub fn intersecting_pairs_touching(
             (lo, hi)
         })
         .collect();
-    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for b in &boxes {
-        for k in 0..3 {
-            lo[k] = lo[k].min(b.0[k]);
-            hi[k] = hi[k].max(b.1[k]);
-        }
-    }
-    // cells about the size of a typical (median) triangle: a surface mesh
-    // then puts a few triangles in each occupied cell. The mean would let
-    // the long triangles of a large cut-face's triangulation coarsen the
-    // grid for all; they enter many cells instead, as long as the entries
-    // stay within a budget (else the grid is coarsened).
-    let mut extents: Vec<f64> = boxes.iter().map(|b| (0..3).map(|k| b.1[k] - b.0[k]).fold(0.0, f64::max)).collect();
-    let mid = extents.len() / 2;
-    let median = *extents.select_nth_unstable_by(mid, f64::total_cmp).1;
-    let ext = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-    let mut res = ((ext / (1.5 * median).max(f64::MIN_POSITIVE)).ceil() as usize).clamp(1, 1 << 20);
-    let entries_at = |res: usize| -> usize {
-        let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
-        let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
-        boxes.iter().map(|b| (0..3).map(|k| cell(b.1[k], k) - cell(b.0[k], k) + 1).product::<usize>()).sum()
-    };
-    while res > 1 && entries_at(res) > 8 * n {
-        res = res * 3 / 4;
-    }
-    let size: [f64; 3] = std::array::from_fn(|k| ((hi[k] - lo[k]) / res as f64).max(f64::MIN_POSITIVE));
-    let cell = |p: f64, k: usize| (((p - lo[k]) / size[k]) as usize).min(res - 1);
-    let key = |c: [usize; 3]| ((c[0] as u64 * res as u64 + c[1] as u64) * res as u64) + c[2] as u64;
-    // each triangle's low grid corner, once: `cell` is monotonic, so the
-    // cell of the low corner of two boxes' overlap is the larger of their
-    // low cells, per axis (no division per pair)
-    let low_cell: Vec<[u32; 3]> = boxes.iter().map(|b| [0, 1, 2].map(|k| cell(b.0[k], k) as u32)).collect();
+    let grid = PairGrid::new(&boxes, fresh);
+    let (low_cell, entries) = (&grid.low_cell, &grid.entries);
     let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
-    let mut entries: Vec<(u64, u32)> = Vec::new();
-    let cells_of = |t: usize, f: &mut dyn FnMut(u64)| {
-        let (c0, c1) = (low_cell[t].map(|c| c as usize), [0, 1, 2].map(|k| cell(boxes[t].1[k], k)));
-        for i in c0[0]..=c1[0] {
-            for j in c0[1]..=c1[1] {
-                for l in c0[2]..=c1[2] {
-                    f(key([i, j, l]));
-                }
-            }
-        }
-    };
-    match fresh {
-        None => (0..n).for_each(|t| cells_of(t, &mut |k| entries.push((k, t as u32)))),
-        Some(fresh) => {
-            // the cells of the fresh triangles, then every triangle in them
-            let mut hot: rustc_hash::FxHashSet<u64> = Default::default();
-            (0..n).filter(|&t| fresh[t]).for_each(|t| {
-                cells_of(t, &mut |k| {
-                    hot.insert(k);
-                })
-            });
-            for t in 0..n {
-                cells_of(t, &mut |k| {
-                    if fresh[t] || hot.contains(&k) {
-                        entries.push((k, t as u32))
-                    }
-                });
-            }
-        }
-    }
-    // the order inside a cell is irrelevant (it is sorted by x below)
-    entries.sort_unstable_by_key(|e| e.0);
-    let mut groups: Vec<(usize, usize)> = Vec::new();
-    let mut s = 0;
-    while s < entries.len() {
-        let mut e = s + 1;
-        while e < entries.len() && entries[e].0 == entries[s].0 {
-            e += 1;
-        }
-        groups.push((s, e));
-        s = e;
-    }
-    // One grid cell's triangles, copied next to each other (box, low cell,
-    // id) and swept along x: sorted by the low x of their boxes, each
-    // triangle meets only the following ones that start before it ends,
-    // instead of every other triangle of the cell. The found pairs are
-    // sorted at the end, so the order of the tests changes nothing.
-    type Local = ([f64; 3], [f64; 3], [u32; 3], u32);
-    let per_group = |buf: &mut Vec<Local>, &(s, e): &(usize, usize)| -> Vec<(u32, u32)> {
-        let here = entries[s].0;
+    // One grid cell's triangles, copied next to each other (box, start
+    // bits, id) and swept along x: in order of the low x of their boxes (as
+    // the grid leaves them), each triangle meets only the following ones
+    // that start before it ends, instead of every other triangle of the
+    // cell. The found pairs are sorted at the end, so the order of the
+    // tests changes nothing.
+    //
+    // Each pair is tested once, in the cell of the low corner of the overlap
+    // of the boxes, `max(low_a, low_b)` per axis: as both boxes enter this
+    // cell (their low cells are at most its coordinates), that is this cell
+    // iff on every axis one of the two starts in it. The triangles starting
+    // before it in x come first in the sweep order (the cell of a coordinate
+    // is monotonic in it), so they are only paired with the later ones that
+    // start in it; the start bits in y and z are compared per pair. Long
+    // triangles (slivers of the large cut-faces) enter many cells and met
+    // each other in every one of them before being turned away by this rule.
+    type Local = ([f64; 3], [f64; 3], u8, u32);
+    let per_group = |buf: &mut Vec<Local>, &(s, e): &(u32, u32)| -> Vec<(u32, u32)> {
+        let (s, e) = (s as usize, e as usize);
+        let here = grid.coords(entries[s].0);
         buf.clear();
         buf.extend(entries[s..e].iter().map(|&(_, t)| {
-            let b = &boxes[t as usize];
-            (b.0, b.1, low_cell[t as usize], t)
+            let (b, l) = (&boxes[t as usize], &low_cell[t as usize]);
+            let starts = (l[0] == here[0]) as u8 | ((l[1] == here[1]) as u8) << 1 | ((l[2] == here[2]) as u8) << 2;
+            (b.0, b.1, starts, t)
         }));
-        buf.sort_unstable_by(|p, q| p.0[0].total_cmp(&q.0[0]));
+        let first_here = buf.partition_point(|q| q.2 & 1 == 0);
         let mut found: Vec<(u32, u32)> = Vec::new();
         for a in 0..buf.len() {
-            let (lo1, hi1, l1, t1) = buf[a];
+            let (lo1, hi1, m1, t1) = buf[a];
             let old1 = fresh.is_some_and(|f| !f[t1 as usize]);
-            for &(lo2, hi2, l2, t2) in &buf[a + 1..] {
+            for &(lo2, hi2, m2, t2) in &buf[(a + 1).max(first_here)..] {
                 if lo2[0] > hi1[0] {
                     break;
+                }
+                if (m1 | m2) & 6 != 6 {
+                    continue;
                 }
                 if old1 && fresh.is_some_and(|f| !f[t2 as usize]) {
                     continue;
                 }
                 if lo1[1] > hi2[1] || lo2[1] > hi1[1] || lo1[2] > hi2[2] || lo2[2] > hi1[2] {
-                    continue;
-                }
-                // test each pair once: in the cell of the overlap's low corner
-                let low = key([0, 1, 2].map(|k| l1[k].max(l2[k]) as usize));
-                if low != here {
                     continue;
                 }
                 let (u1, u2) = (t1 as usize, t2 as usize);
@@ -175,7 +115,8 @@ pub fn intersecting_pairs_touching(
         found
     };
     if first_only {
-        return groups
+        return grid
+            .groups
             .par_iter()
             .map_init(Vec::new, per_group)
             .filter_map(|v| v.first().copied())
@@ -183,7 +124,7 @@ pub fn intersecting_pairs_touching(
             .into_iter()
             .collect();
     }
-    let mut all: Vec<(u32, u32)> = groups.par_iter().map_init(Vec::new, per_group).flatten().collect();
+    let mut all: Vec<(u32, u32)> = grid.groups.par_iter().map_init(Vec::new, per_group).flatten().collect();
     all.sort_unstable();
     all
 }

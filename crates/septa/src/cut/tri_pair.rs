@@ -150,11 +150,18 @@ impl TriPlane {
 /// <= (7u + 56u^2) * permanent, u = 2^-53, `perm` the permanent of absolute
 /// values of the same products), else `None`. Non-finite values and
 /// permanents small enough for underflow to void the bound give `None`.
+///
+/// Non-finite values need no test of their own: rounding is monotonic, so
+/// each rounded product and sum of `perm` is at least the absolute value of
+/// the corresponding one of `det` (`|fl(a - b)| <= fl(|a| + |b|)`, `|fl(a b)|
+/// = fl(|a| |b|)`), hence `|det| <= perm` in floating point: an infinite
+/// `det` comes with `perm = inf`, so `bound = inf`, and comparisons with a
+/// NaN (`det` or `perm`) are false; every such case gives `None`.
 #[inline]
 fn proven_sign(det: f64, perm: f64) -> Option<Sign> {
     const U: f64 = f64::EPSILON / 2.0;
     let bound = (7.0 * U + 56.0 * U * U) * perm;
-    if !(det.is_finite() && perm.is_finite() && perm > 1e-280) {
+    if !(perm > 1e-280) {
         return None;
     }
     if det > bound {
@@ -375,20 +382,24 @@ fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], n: &[f64; 3], t2: &[u32;
 /// plane only in the shared vertices (none, one, or the shared edge).
 /// Most candidate pairs of a cut-cell mesh (triangles of different faces
 /// in one grid cell) end here, before the 2D projection tests.
+#[inline(always)]
 pub(super) fn plane_separated(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u32; 3]) -> bool {
-    let mut side = None;
-    let mut free = 0;
+    // the free corners counted by the side the filter proves (an undecided
+    // corner ends the test); the same answer as stopping at the first
+    // corner on another side, without a branch per corner
+    let (mut free, mut pos, mut neg) = (0u32, 0u32, 0u32);
     for &w in t2 {
-        if t1.contains(&w) {
+        if w == t1[0] || w == t1[1] || w == t1[2] {
             continue;
         }
         free += 1;
         match p1.side(&x[w as usize]) {
-            Some(s) if s != Sign::Zero && side.is_none_or(|t| t == s) => side = Some(s),
+            Some(Sign::Positive) => pos += 1,
+            Some(Sign::Negative) => neg += 1,
             _ => return false,
         }
     }
-    free >= 1
+    free >= 1 && (pos == free || neg == free)
 }
 
 /// Do two triangles meet anywhere besides their shared vertices?
@@ -396,7 +407,10 @@ pub(crate) fn pair_intersects(x: &[[f64; 3]], t1: &[u32; 3], t2: &[u32; 3]) -> b
     pair_intersects_planes(x, t1, &TriPlane::new(x, t1), t2, &TriPlane::new(x, t2))
 }
 
-/// [`pair_intersects`] with both triangles' planes prepared.
+/// [`pair_intersects`] with both triangles' planes prepared (inlined into
+/// the sweep of candidate pairs: most pairs end at the plane sides, where
+/// a call's prologue was a sixth of their cost).
+#[inline(always)]
 pub(super) fn pair_intersects_planes(
     x: &[[f64; 3]],
     t1: &[u32; 3],
@@ -407,6 +421,13 @@ pub(super) fn pair_intersects_planes(
     if plane_separated(x, t1, p1, t2) || plane_separated(x, t2, p2, t1) {
         return false;
     }
+    pair_intersects_unseparated(x, t1, p1, t2, p2)
+}
+
+/// [`pair_intersects_planes`] after the plane-side rejections (out of line:
+/// most pairs end there, and this part's frame is large).
+#[inline(never)]
+fn pair_intersects_unseparated(x: &[[f64; 3]], t1: &[u32; 3], p1: &TriPlane, t2: &[u32; 3], p2: &TriPlane) -> bool {
     if projections_separated(x, t1, &p1.n, t2) {
         return false;
     }

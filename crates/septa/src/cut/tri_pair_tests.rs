@@ -58,6 +58,48 @@ mod filters {
     }
 
     #[test]
+    fn filters_at_extreme_magnitudes_give_up_or_are_exact() {
+        // differences that overflow to infinity (coordinates near f64::MAX
+        // of both signs), products that overflow, permanents that underflow,
+        // and exactly coplanar points at every scale: `proven_sign` relies on
+        // |det| <= perm in floating point instead of testing for non-finite
+        // values, so neither filter may claim a sign the exact one denies
+        let mut s = 0x2545f4914f6cdd1du64;
+        let mut rnd = || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut decided, mut undecided) = (0, 0);
+        for i in 0..3000 {
+            let scale =
+                [2f64.powi(-1070), 2f64.powi(-600), 1.0, 2f64.powi(400), 2f64.powi(511), 2f64.powi(1000), f64::MAX]
+                    [i % 7];
+            let mut x: Vec<[f64; 3]> = (0..4).map(|_| [rnd() * scale, rnd() * scale, rnd() * scale]).collect();
+            if i % 4 == 0 {
+                // exactly coplanar: all on the plane z = c
+                let c = x[0][2];
+                x.iter_mut().for_each(|p| p[2] = c);
+            }
+            if i % 9 == 0 {
+                x[3] = [f64::MAX, -f64::MAX, f64::MAX];
+            }
+            let exact = orient_exact(&x, 0, 1, 2, 3);
+            for got in [TriPlane::new(&x, &[0, 1, 2]).side(&x[3]), orient_filtered(&x, 0, 1, 2, 3)] {
+                match got {
+                    Some(sg) => {
+                        decided += 1;
+                        assert_eq!(sg, exact, "case {i}: {x:?}");
+                    }
+                    None => undecided += 1,
+                }
+            }
+        }
+        assert!(decided > 500 && undecided > 500, "{decided} {undecided}");
+    }
+
+    #[test]
     fn axis_plane_points_are_exactly_coplanar() {
         let x = [[0.1, 0.3, 0.7], [0.9, -2.5, 0.7], [1e-30, 4.0, 0.7], [3.3, 1.0 / 3.0, 0.7]];
         assert_eq!(orient(&x, 0, 1, 2, 3), Sign::Zero);

@@ -30,6 +30,7 @@
 use super::selfx::{intersecting_pairs, intersecting_pairs_touching};
 use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
+use super::verify_volume::volume_sign_static;
 use rustc_hash::FxHashMap;
 use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
 
@@ -136,13 +137,18 @@ fn newell(x: &[[f64; 3]], poly: &[u32]) -> [f64; 3] {
 /// The rotation of a loop starting at its smallest vertex, read in the
 /// direction whose second vertex is smaller: the same key for a face seen
 /// from either of its cells; `true` when it had to be reversed.
-fn face_key(poly: &[u32]) -> (Vec<u32>, bool) {
+/// The key is written into `key` (a buffer reused across faces: most faces
+/// are met twice, and the second time the key is only looked up).
+fn face_key(poly: &[u32], key: &mut Vec<u32>) -> bool {
     let n = poly.len();
     let m = (0..n).min_by_key(|&i| poly[i]).unwrap_or(0);
+    key.clear();
     if n > 1 && poly[(m + n - 1) % n] < poly[(m + 1) % n] {
-        ((0..n).map(|i| poly[(m + n - i) % n]).collect(), true)
+        key.extend((0..n).map(|i| poly[(m + n - i) % n]));
+        true
     } else {
-        ((0..n).map(|i| poly[(m + i) % n]).collect(), false)
+        key.extend((0..n).map(|i| poly[(m + i) % n]));
+        false
     }
 }
 
@@ -151,20 +157,25 @@ fn face_key(poly: &[u32]) -> (Vec<u32>, bool) {
 fn volume_sign(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Sign {
     let Some(t0) = tris.first() else { return Sign::Zero };
     let o = x[t0[0] as usize];
-    fn f<R: Ring>(x: &[[f64; 3]], o: [f64; 3], tris: &[[u32; 3]]) -> R {
-        let mut s = R::of(0.0);
-        for t in tris {
-            let p = |i: u32| -> [R; 3] { std::array::from_fn(|k| R::of(x[i as usize][k]).sub(&R::of(o[k]))) };
-            let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
-            let d = a[0]
-                .mul(&b[1].mul(&c[2]).sub(&b[2].mul(&c[1])))
-                .sub(&a[1].mul(&b[0].mul(&c[2]).sub(&b[2].mul(&c[0]))))
-                .add(&a[2].mul(&b[0].mul(&c[1]).sub(&b[1].mul(&c[0]))));
-            s = s.add(&d);
-        }
-        s
+    if let Some(s) = volume_sign_static(x, o, tris) {
+        return s;
     }
-    filtered_sign(|| f::<Interval>(x, o, tris), || f::<Exact>(x, o, tris))
+    filtered_sign(|| volume_sum::<Interval>(x, o, tris), || volume_sum::<Exact>(x, o, tris))
+}
+
+/// `sum det(b - o, c - o, d - o)` over the triangles `(b, c, d)` in `R`.
+pub(super) fn volume_sum<R: Ring>(x: &[[f64; 3]], o: [f64; 3], tris: &[[u32; 3]]) -> R {
+    let mut s = R::of(0.0);
+    for t in tris {
+        let p = |i: u32| -> [R; 3] { std::array::from_fn(|k| R::of(x[i as usize][k]).sub(&R::of(o[k]))) };
+        let (a, b, c) = (p(t[0]), p(t[1]), p(t[2]));
+        let d = a[0]
+            .mul(&b[1].mul(&c[2]).sub(&b[2].mul(&c[1])))
+            .sub(&a[1].mul(&b[0].mul(&c[2]).sub(&b[2].mul(&c[0]))))
+            .add(&a[2].mul(&b[0].mul(&c[1]).sub(&b[1].mul(&c[0]))));
+        s = s.add(&d);
+    }
+    s
 }
 
 /// Checks `cells` (each a list of polygons of vertex ids into `x`, oriented
@@ -188,15 +199,17 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
     let mut face_keys: Vec<Vec<u32>> = Vec::new();
     let mut bad_faces: Vec<u32> = Vec::new();
     let mut cell_faces: Vec<Vec<(u32, bool)>> = Vec::with_capacity(cells.len());
+    let (mut key, mut distinct) = (Vec::new(), Vec::new());
     for (ci, cell) in cells.iter().enumerate() {
         let mut refs = Vec::with_capacity(cell.len());
         for (fi, poly) in cell.iter().enumerate() {
-            let (key, rev) = face_key(poly);
-            let id = match face_of.get(&key) {
+            let rev = face_key(poly, &mut key);
+            let id = match face_of.get(key.as_slice()) {
                 Some(&id) => id,
                 None => {
                     let id = face_tris.len() as u32;
-                    let mut distinct = poly.clone();
+                    distinct.clear();
+                    distinct.extend_from_slice(poly);
                     distinct.sort_unstable();
                     distinct.dedup();
                     let tris = match polygon_planar(x, &key) {
@@ -222,7 +235,7 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
                         Vec::new()
                     });
                     face_keys.push(key.clone());
-                    face_of.insert(key, id);
+                    face_of.insert(key.clone(), id);
                     face_tris.push(tris);
                     id
                 }

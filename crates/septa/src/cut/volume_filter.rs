@@ -7,6 +7,8 @@
 //! an input error). When the float sum is farther from zero than the bound
 //! its sign is the exact sign; otherwise the interval path (then the exact
 //! one) decides, so no sign is ever taken from an undecided filter.
+//! (The check of the written doubles has its own, tighter filter in
+//! `verify_volume.rs`: there the points are exact doubles, not boxes.)
 //!
 //! The bound. For each vertex let `P = fl(m - o)` (`m` the box midpoint)
 //! and `R >= |p - o - P|` componentwise (`p` the exact point: the box
