@@ -87,10 +87,12 @@ fn block<T: Copy, const N: usize>(v: &[T], f: impl Fn(T) -> [u8; N]) -> Vec<u8> 
 }
 
 /// A binary `.vtu` of polyhedral cells: `points`, each cell a list of
-/// outward polygons, and `Float64` / `Int64` cell data arrays.
+/// outward polygons and its distinct points ascending (`cell_points`),
+/// and `Float64` / `Int64` cell data arrays.
 pub fn polyhedra_vtu(
     points: &[[f64; 3]],
     cells: &[Vec<Vec<u32>>],
+    cell_points: &[Vec<u32>],
     float_data: &[(&str, &[f64])],
     int_data: &[(&str, &[i64])],
 ) -> String {
@@ -104,10 +106,7 @@ pub fn polyhedra_vtu(
     binary_array(&mut s, "Float64", None, 3, &block(&flat, f64::to_le_bytes));
     s.extend_from_slice(b"</Points>\n<Cells>\n");
     let (mut conn, mut offsets, mut faces, mut face_offsets) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for c in cells {
-        let mut used: Vec<u32> = c.iter().flatten().copied().collect();
-        used.sort_unstable();
-        used.dedup();
+    for (c, used) in cells.iter().zip(cell_points) {
         conn.extend(used.iter().map(|&v| v as i64));
         offsets.push(conn.len() as i64);
         faces.push(c.len() as i64);
