@@ -62,8 +62,10 @@ impl FloatText {
         // zmij lays out the same digits as a decimal (`12.34`, `0.001234`,
         // `12340000000.0`, `5.0`) when their exponent is in -5..=15, and
         // `{:?}` does so, identically, when 1e-4 <= |x| < 1e16: where both
-        // chose the decimal the texts are equal and need no re-layout
-        if (1e-4..1e16).contains(&x.abs()) && !text.as_bytes().contains(&b'e') {
+        // chose the decimal the texts are equal and need no re-layout (an
+        // exponent, `e-324` at the longest, would be among the last 5 bytes)
+        let exponent = text.as_bytes().iter().rev().take(5).any(|&b| b == b'e');
+        if (1e-4..1e16).contains(&x.abs()) && !exponent {
             s.push_str(text);
             return;
         }

@@ -72,6 +72,8 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     let (mut float, mut int) = (FloatText::default(), itoa::Buffer::new());
     let mut base = 1usize;
     let points = cell_points(&cells, m.vertices.len());
+    // the file's number of each point of the cell being written
+    let mut local = vec![0usize; m.vertices.len()];
     for (i, (c, used)) in cells.iter().zip(&points).enumerate() {
         let mut cen = [0.0; 3];
         for &v in used {
@@ -83,7 +85,8 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
         s.push_str("g cell_");
         s.push_str(int.format(i));
         s.push('\n');
-        for &v in used {
+        for (j, &v) in used.iter().enumerate() {
+            local[v as usize] = base + j;
             let x = m.vertices[v as usize];
             s.push('v');
             for k in 0..3 {
@@ -92,12 +95,11 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
             }
             s.push('\n');
         }
-        let local = |v: u32| base + used.binary_search(&v).unwrap();
         for l in c {
             s.push('f');
             for &v in l {
                 s.push(' ');
-                s.push_str(int.format(local(v)));
+                s.push_str(int.format(local[v as usize]));
             }
             s.push('\n');
         }
