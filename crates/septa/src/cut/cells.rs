@@ -101,11 +101,18 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             // the filters' in-face directions n_f x (+-D): one enclosure of
             // n_f x D from the D already formed, negated for faces running
             // along -D (negation is exact on intervals, so it still encloses
-            // the real vector); the exact fallbacks use `wvec` itself
+            // the real vector); the exact fallbacks use `wvec` itself. Only
+            // the first face and those off its support are ever filtered
+            // (the others are class 2 below): no product for the rest.
             let iws: Vec<V3<Interval>> = items
                 .iter()
-                .map(|&(f, up)| {
-                    let w = cross3(&normal::<Interval>(c, faces[f as usize].support), &dv_i);
+                .enumerate()
+                .map(|(i, &(f, up))| {
+                    let sup = faces[f as usize].support;
+                    if i > 0 && sup == faces[items[0].0 as usize].support {
+                        return [Interval::of(0.0); 3];
+                    }
+                    let w = cross3(&normal::<Interval>(c, sup), &dv_i);
                     if up {
                         w
                     } else {
