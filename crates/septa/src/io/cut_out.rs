@@ -14,14 +14,19 @@ use crate::cut::CutCellMesh;
 /// cell data by ascending count, so any other order gives it misaligned
 /// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
 pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
-    let mut polys = m.cell_polygons();
-    let mut points = cell_points(&polys, m.vertices.len());
+    cut_cells_vtu_of(m, &m.cell_polygons())
+}
+
+/// [`cut_cells_vtu`] of the cells' polygons already formed
+/// (`CutCellMesh::cell_polygons`; once for both files when both are written).
+pub fn cut_cells_vtu_of(m: &CutCellMesh, polys: &[Vec<Vec<u32>>]) -> String {
+    let mut points = cell_points(polys, m.vertices.len());
     let mut order: Vec<usize> = (0..polys.len()).collect();
     // stable: id order among cells with as many points
     order.sort_by_key(|&c| points[c].len());
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
-    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| std::mem::take(&mut polys[c])).collect();
+    let cells: Vec<&[Vec<u32>]> = order.iter().map(|&c| polys[c].as_slice()).collect();
     let points: Vec<Vec<u32>> = order.iter().map(|&c| std::mem::take(&mut points[c])).collect();
     super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &points, &[("volume", &volumes)], &[("cell_id", &ids)])
 }
@@ -53,10 +58,14 @@ fn cell_points(cells: &[Vec<Vec<u32>>], vertices: usize) -> Vec<Vec<u32>> {
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
 pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
-    // boundary polygons of each cell, oriented outwards, each written as a
-    // face of one loop (`CutCellMesh::cell_polygons`: faces with holes or
-    // with rounded vertices off their plane come as their triangles)
-    let cells = m.cell_polygons();
+    cut_cells_obj_of(m, &m.cell_polygons(), explode)
+}
+
+/// [`cut_cells_obj`] of the cells' polygons already formed: the boundary
+/// polygons of each cell, oriented outwards, each written as a face of one
+/// loop (`CutCellMesh::cell_polygons`: faces with holes or with rounded
+/// vertices off their plane come as their triangles).
+pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &[Vec<Vec<u32>>], explode: f64) -> String {
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {
         let n = m.vertices.len().max(1) as f64;
@@ -71,7 +80,7 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     // the text `{:?}` and `{}` give, without the formatting machinery
     let (mut float, mut int) = (FloatText::default(), itoa::Buffer::new());
     let mut base = 1usize;
-    let points = cell_points(&cells, m.vertices.len());
+    let points = cell_points(cells, m.vertices.len());
     // the file's number of each point of the cell being written
     let mut local = vec![0usize; m.vertices.len()];
     for (i, (c, used)) in cells.iter().zip(&points).enumerate() {
