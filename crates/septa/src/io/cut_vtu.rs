@@ -296,7 +296,7 @@ mod tests {
 
     #[test]
     fn base64_round_trip() {
-        for n in 0..40 {
+        for n in 0..40usize {
             let b: Vec<u8> = (0..n as u8).map(|i| i.wrapping_mul(97).wrapping_add(13)).collect();
             let text = base64_encode(&b);
             assert_eq!(text.len(), n.div_ceil(3) * 4);
