@@ -4,7 +4,7 @@
 //! OpenFOAM `constant/polyMesh`) and `cut.json`.
 use crate::CliResult;
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{cut_cells_obj, cut_cells_vtu, grid_planes, random_planes, read_mesh, read_planes};
+use septa::io::{cut_cells_obj_of, cut_cells_vtu_of, grid_planes, random_planes, read_mesh, read_planes};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -193,11 +193,13 @@ pub fn run(a: Args) -> CliResult {
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     let wants = |f: MeshFormat| !a.no_mesh_output && a.format.0.contains(&f);
+    // the cells' polygons formed once for both files
+    let polys = if wants(MeshFormat::Vtu) || wants(MeshFormat::Obj) { out.cell_polygons() } else { Vec::new() };
     if wants(MeshFormat::Vtu) {
-        dir.write("cells.vtu", cut_cells_vtu(&out).as_bytes())?;
+        dir.write("cells.vtu", cut_cells_vtu_of(&out, &polys).as_bytes())?;
     }
     if wants(MeshFormat::Obj) {
-        dir.write("cells.obj", cut_cells_obj(&out, a.explode).as_bytes())?;
+        dir.write("cells.obj", cut_cells_obj_of(&out, &polys, a.explode).as_bytes())?;
     }
     let mut foam_swapped = None;
     if wants(MeshFormat::Foam) {

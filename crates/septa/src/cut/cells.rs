@@ -98,8 +98,28 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
             let dv_i = dir_vec::<Interval>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
-            let iws: Vec<V3<Interval>> =
-                items.iter().map(|&(f, up)| wvec::<Interval>(c, faces[f as usize].support, hof(up))).collect();
+            // the filters' in-face directions n_f x (+-D): one enclosure of
+            // n_f x D from the D already formed, negated for faces running
+            // along -D (negation is exact on intervals, so it still encloses
+            // the real vector); the exact fallbacks use `wvec` itself. Only
+            // the first face and those off its support are ever filtered
+            // (the others are class 2 below): no product for the rest.
+            let iws: Vec<V3<Interval>> = items
+                .iter()
+                .enumerate()
+                .map(|(i, &(f, up))| {
+                    let sup = faces[f as usize].support;
+                    if i > 0 && sup == faces[items[0].0 as usize].support {
+                        return [Interval::of(0.0); 3];
+                    }
+                    let w = cross3(&normal::<Interval>(c, sup), &dv_i);
+                    if up {
+                        w
+                    } else {
+                        neg3(&w)
+                    }
+                })
+                .collect();
             let class = |x: (Support, (LineDir, bool)), iwx: &V3<Interval>| -> u8 {
                 fn b<R: Ring>(
                     c: &Ctx,
@@ -215,6 +235,5 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             cell_of[n as usize] = id;
         }
     }
-    let _ = neg3::<Interval>;
     Cells { cell_of, count: ids.len(), edges: nedges, ordered_edges: ordered }
 }

@@ -5,7 +5,9 @@
 //! (the closest such to `x`), so only the layout differs: Rust's `Debug`
 //! writes `1e-4 <= |x| < 1e16` as a decimal with at least one fraction
 //! digit (`0.25`, `3.0`, `1000000000000000.0`) and everything else as
-//! `d.ddde-7` / `1e16`. The layout is re-made here from the digits; the
+//! `d.ddde-7` / `1e16`. zmij's own text is kept where it is a decimal in
+//! that range too (the same layout), else the layout is re-made from its
+//! digits; the
 //! tests compare with `{:?}` on random bit patterns over every exponent,
 //! values near the decimal/exponential switch and the coordinates of
 //! every cut case (`cells.obj` byte-identical).
@@ -56,8 +58,19 @@ impl FloatText {
             let _ = write!(s, "{x:?}");
             return;
         }
+        let text = self.z.format_finite(x);
+        // zmij lays out the same digits as a decimal (`12.34`, `0.001234`,
+        // `12340000000.0`, `5.0`) when their exponent is in -5..=15, and
+        // `{:?}` does so, identically, when 1e-4 <= |x| < 1e16: where both
+        // chose the decimal the texts are equal and need no re-layout (an
+        // exponent, `e-324` at the longest, would be among the last 5 bytes)
+        let exponent = text.as_bytes().iter().rev().take(5).any(|&b| b == b'e');
+        if (1e-4..1e16).contains(&x.abs()) && !exponent {
+            s.push_str(text);
+            return;
+        }
+        let t = text.as_bytes();
         // the shortest digits d1 d2 .. dn and k with |x| ~ 0.d1..dn * 10^k
-        let t = self.z.format_finite(x).as_bytes();
         let mut digits = [0u8; 32];
         let (mut n, mut k, mut seen_point, mut i) = (0usize, 0i32, false, 0usize);
         if t.first() == Some(&b'-') {

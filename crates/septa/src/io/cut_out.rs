@@ -14,31 +14,58 @@ use crate::cut::CutCellMesh;
 /// cell data by ascending count, so any other order gives it misaligned
 /// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
 pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
-    let mut polys = m.cell_polygons();
-    let points = |c: &Vec<Vec<u32>>| {
-        let mut v: Vec<u32> = c.iter().flatten().copied().collect();
-        v.sort_unstable();
-        v.dedup();
-        v.len()
-    };
+    cut_cells_vtu_of(m, &m.cell_polygons())
+}
+
+/// [`cut_cells_vtu`] of the cells' polygons already formed
+/// (`CutCellMesh::cell_polygons`; once for both files when both are written).
+pub fn cut_cells_vtu_of(m: &CutCellMesh, polys: &[Vec<Vec<u32>>]) -> String {
+    let mut points = cell_points(polys, m.vertices.len());
     let mut order: Vec<usize> = (0..polys.len()).collect();
-    // stable, as `sort_by_key`; each cell's count formed once (it sorts the
-    // cell's vertex ids), not once per comparison
-    order.sort_by_cached_key(|&c| points(&polys[c]));
+    // stable: id order among cells with as many points
+    order.sort_by_key(|&c| points[c].len());
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
-    let cells: Vec<Vec<Vec<u32>>> = order.iter().map(|&c| std::mem::take(&mut polys[c])).collect();
-    super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &[("volume", &volumes)], &[("cell_id", &ids)])
+    let cells: Vec<&[Vec<u32>]> = order.iter().map(|&c| polys[c].as_slice()).collect();
+    let points: Vec<Vec<u32>> = order.iter().map(|&c| std::mem::take(&mut points[c])).collect();
+    super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &points, &[("volume", &volumes)], &[("cell_id", &ids)])
+}
+
+/// The distinct points of each cell, ascending (what `sort` + `dedup` of
+/// its polygons' corners gives): a stamp per mesh vertex keeps each point's
+/// first corner, so only the distinct ids, about a third of the corners,
+/// are sorted.
+fn cell_points(cells: &[Vec<Vec<u32>>], vertices: usize) -> Vec<Vec<u32>> {
+    let mut stamp = vec![usize::MAX; vertices];
+    cells
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let mut used = Vec::new();
+            for &v in c.iter().flatten() {
+                if stamp[v as usize] != i {
+                    stamp[v as usize] = i;
+                    used.push(v);
+                }
+            }
+            used.sort_unstable();
+            used
+        })
+        .collect()
 }
 
 /// `cells.obj`: a group `cell_<i>` per cut-cell with its faces oriented
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
 pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
-    // boundary polygons of each cell, oriented outwards, each written as a
-    // face of one loop (`CutCellMesh::cell_polygons`: faces with holes or
-    // with rounded vertices off their plane come as their triangles)
-    let cells = m.cell_polygons();
+    cut_cells_obj_of(m, &m.cell_polygons(), explode)
+}
+
+/// [`cut_cells_obj`] of the cells' polygons already formed: the boundary
+/// polygons of each cell, oriented outwards, each written as a face of one
+/// loop (`CutCellMesh::cell_polygons`: faces with holes or with rounded
+/// vertices off their plane come as their triangles).
+pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &[Vec<Vec<u32>>], explode: f64) -> String {
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {
         let n = m.vertices.len().max(1) as f64;
@@ -53,12 +80,12 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
     // the text `{:?}` and `{}` give, without the formatting machinery
     let (mut float, mut int) = (FloatText::default(), itoa::Buffer::new());
     let mut base = 1usize;
-    for (i, c) in cells.iter().enumerate() {
-        let mut used: Vec<u32> = c.iter().flatten().copied().collect();
-        used.sort_unstable();
-        used.dedup();
+    let points = cell_points(cells, m.vertices.len());
+    // the file's number of each point of the cell being written
+    let mut local = vec![0usize; m.vertices.len()];
+    for (i, (c, used)) in cells.iter().zip(&points).enumerate() {
         let mut cen = [0.0; 3];
-        for &v in &used {
+        for &v in used {
             for k in 0..3 {
                 cen[k] += m.vertices[v as usize][k] / used.len() as f64;
             }
@@ -67,7 +94,8 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
         s.push_str("g cell_");
         s.push_str(int.format(i));
         s.push('\n');
-        for &v in &used {
+        for (j, &v) in used.iter().enumerate() {
+            local[v as usize] = base + j;
             let x = m.vertices[v as usize];
             s.push('v');
             for k in 0..3 {
@@ -76,12 +104,11 @@ pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
             }
             s.push('\n');
         }
-        let local = |v: u32| base + used.binary_search(&v).unwrap();
         for l in c {
             s.push('f');
             for &v in l {
                 s.push(' ');
-                s.push_str(int.format(local(v)));
+                s.push_str(int.format(local[v as usize]));
             }
             s.push('\n');
         }

@@ -4,30 +4,50 @@
 //! it) and a reader of the points and cell faces of any such file, ASCII or
 //! binary, so that `septa cut --verify FILE.vtu` can check what was written.
 
-use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
-/// Standard base64 with padding.
-pub fn base64_encode(bytes: &[u8]) -> String {
-    // whole 3-byte groups as 4 ASCII bytes at once (cells.vtu of a large
-    // cut is tens of MB of base64), then the padded tail
-    let mut s: Vec<u8> = Vec::with_capacity(bytes.len().div_ceil(3) * 4);
+/// Standard base64 with padding (the tests' view of [`push_base64`]).
+#[cfg(test)]
+fn base64_encode(bytes: &[u8]) -> String {
+    let mut out = Vec::new();
+    push_base64(&mut out, bytes);
+    String::from_utf8(out).expect("base64 is ASCII")
+}
+
+/// Appends the base64 text of `bytes` to `out`: the text is sized first
+/// (padding included) and written in place, two 3-byte groups (8 symbols)
+/// per step, then the last group and the padded tail (cells.vtu of a large
+/// cut is tens of MB of base64).
+fn push_base64(out: &mut Vec<u8>, bytes: &[u8]) {
+    let start = out.len();
+    out.resize(start + bytes.len().div_ceil(3) * 4, b'=');
+    let pairs = bytes.len() / 6;
+    let (head, rest) = bytes.split_at(pairs * 6);
+    let (text_head, text) = out[start..].split_at_mut(pairs * 8);
+    for (o, c) in text_head.chunks_exact_mut(8).zip(head.chunks_exact(6)) {
+        // the 48 bits in the top of a word, 6 bits a symbol from the top
+        let n = u64::from_be_bytes([c[0], c[1], c[2], c[3], c[4], c[5], 0, 0]);
+        let sym = |k: u32| B64[(n >> (58 - 6 * k) & 63) as usize];
+        o.copy_from_slice(&[sym(0), sym(1), sym(2), sym(3), sym(4), sym(5), sym(6), sym(7)]);
+    }
     let sym = |n: u32, k: u32| B64[(n >> (18 - 6 * k) & 63) as usize];
-    let whole = bytes.chunks_exact(3);
+    let whole = rest.chunks_exact(3);
     let tail = whole.remainder();
-    for c in whole {
+    for (o, c) in text.chunks_exact_mut(4).zip(whole) {
         let n = (c[0] as u32) << 16 | (c[1] as u32) << 8 | c[2] as u32;
-        s.extend_from_slice(&[sym(n, 0), sym(n, 1), sym(n, 2), sym(n, 3)]);
+        o.copy_from_slice(&[sym(n, 0), sym(n, 1), sym(n, 2), sym(n, 3)]);
     }
     if !tail.is_empty() {
         let n = (tail[0] as u32) << 16 | (*tail.get(1).unwrap_or(&0) as u32) << 8;
-        for k in 0..4 {
-            s.push(if k as usize <= tail.len() { sym(n, k) } else { b'=' });
+        let last = text.len() - 4;
+        // the symbols the tail's bytes reach; the rest stays '='
+        for k in 0..=tail.len() {
+            text[last + k] = sym(n, k as u32);
         }
     }
-    String::from_utf8(s).expect("base64 is ASCII")
 }
 
 /// Decodes base64, ignoring whitespace; `None` on a character outside the alphabet.
@@ -55,20 +75,20 @@ pub fn base64_decode(s: &str) -> Option<Vec<u8>> {
     Some(out)
 }
 
-/// One binary `DataArray` element: little-endian values behind a `UInt64`
-/// byte count, base64-encoded as one block.
-fn binary_array(s: &mut String, ty: &str, name: Option<&str>, comps: usize, raw: &[u8]) {
-    let mut block = (raw.len() as u64).to_le_bytes().to_vec();
-    block.extend_from_slice(raw);
+/// One binary `DataArray` element: `block` (from [`block`]) base64-encoded.
+fn binary_array(s: &mut Vec<u8>, ty: &str, name: Option<&str>, comps: usize, block: &[u8]) {
     let name = name.map(|n| format!(" Name=\"{n}\"")).unwrap_or_default();
     let comps = if comps > 1 { format!(" NumberOfComponents=\"{comps}\"") } else { String::new() };
     let _ = writeln!(s, "<DataArray type=\"{ty}\"{name}{comps} format=\"binary\">");
-    s.push_str(&base64_encode(&block));
-    s.push_str("\n</DataArray>\n");
+    push_base64(s, block);
+    s.extend_from_slice(b"\n</DataArray>\n");
 }
 
-fn le<T: Copy>(v: &[T], f: impl Fn(T) -> [u8; 8]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(8 * v.len());
+/// The binary block of one array: its `UInt64` byte count, then the values
+/// little-endian (one buffer, encoded as one base64 text).
+fn block<T: Copy, const N: usize>(v: &[T], f: impl Fn(T) -> [u8; N]) -> Vec<u8> {
+    let mut out = Vec::with_capacity(8 + N * v.len());
+    out.extend_from_slice(&((N * v.len()) as u64).to_le_bytes());
     for &x in v {
         out.extend_from_slice(&f(x));
     }
@@ -76,48 +96,49 @@ fn le<T: Copy>(v: &[T], f: impl Fn(T) -> [u8; 8]) -> Vec<u8> {
 }
 
 /// A binary `.vtu` of polyhedral cells: `points`, each cell a list of
-/// outward polygons, and `Float64` / `Int64` cell data arrays.
+/// outward polygons and its distinct points ascending (`cell_points`),
+/// and `Float64` / `Int64` cell data arrays.
 pub fn polyhedra_vtu(
     points: &[[f64; 3]],
-    cells: &[Vec<Vec<u32>>],
+    cells: &[&[Vec<u32>]],
+    cell_points: &[Vec<u32>],
     float_data: &[(&str, &[f64])],
     int_data: &[(&str, &[i64])],
 ) -> String {
-    let mut s = String::new();
-    s.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
+    // bytes, not a String: the base64 goes in place, and the text is
+    // checked as UTF-8 once at the end
+    let mut s: Vec<u8> = Vec::new();
+    s.extend_from_slice(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n<UnstructuredGrid>\n");
     let _ = writeln!(s, "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", points.len(), cells.len());
-    s.push_str("<Points>\n");
+    s.extend_from_slice(b"<Points>\n");
     let flat: Vec<f64> = points.iter().flatten().copied().collect();
-    binary_array(&mut s, "Float64", None, 3, &le(&flat, f64::to_le_bytes));
-    s.push_str("</Points>\n<Cells>\n");
+    binary_array(&mut s, "Float64", None, 3, &block(&flat, f64::to_le_bytes));
+    s.extend_from_slice(b"</Points>\n<Cells>\n");
     let (mut conn, mut offsets, mut faces, mut face_offsets) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for c in cells {
-        let mut used: Vec<u32> = c.iter().flatten().copied().collect();
-        used.sort_unstable();
-        used.dedup();
+    for (c, used) in cells.iter().zip(cell_points) {
         conn.extend(used.iter().map(|&v| v as i64));
         offsets.push(conn.len() as i64);
         faces.push(c.len() as i64);
-        for p in c {
+        for p in c.iter() {
             faces.push(p.len() as i64);
             faces.extend(p.iter().map(|&v| v as i64));
         }
         face_offsets.push(faces.len() as i64);
     }
-    binary_array(&mut s, "Int64", Some("connectivity"), 1, &le(&conn, i64::to_le_bytes));
-    binary_array(&mut s, "Int64", Some("offsets"), 1, &le(&offsets, i64::to_le_bytes));
-    binary_array(&mut s, "UInt8", Some("types"), 1, &vec![42u8; cells.len()]);
-    binary_array(&mut s, "Int64", Some("faces"), 1, &le(&faces, i64::to_le_bytes));
-    binary_array(&mut s, "Int64", Some("faceoffsets"), 1, &le(&face_offsets, i64::to_le_bytes));
-    s.push_str("</Cells>\n<CellData>\n");
+    binary_array(&mut s, "Int64", Some("connectivity"), 1, &block(&conn, i64::to_le_bytes));
+    binary_array(&mut s, "Int64", Some("offsets"), 1, &block(&offsets, i64::to_le_bytes));
+    binary_array(&mut s, "UInt8", Some("types"), 1, &block(&vec![42u8; cells.len()], |t| [t]));
+    binary_array(&mut s, "Int64", Some("faces"), 1, &block(&faces, i64::to_le_bytes));
+    binary_array(&mut s, "Int64", Some("faceoffsets"), 1, &block(&face_offsets, i64::to_le_bytes));
+    s.extend_from_slice(b"</Cells>\n<CellData>\n");
     for (name, v) in int_data {
-        binary_array(&mut s, "Int64", Some(name), 1, &le(v, i64::to_le_bytes));
+        binary_array(&mut s, "Int64", Some(name), 1, &block(v, i64::to_le_bytes));
     }
     for (name, v) in float_data {
-        binary_array(&mut s, "Float64", Some(name), 1, &le(v, f64::to_le_bytes));
+        binary_array(&mut s, "Float64", Some(name), 1, &block(v, f64::to_le_bytes));
     }
-    s.push_str("</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
-    s
+    s.extend_from_slice(b"</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    String::from_utf8(s).expect("a .vtu text is ASCII")
 }
 
 /// Points and cells (outward polygons) of a polyhedral `.vtu`.
@@ -275,11 +296,19 @@ mod tests {
 
     #[test]
     fn base64_round_trip() {
-        for n in 0..10 {
+        for n in 0..40usize {
             let b: Vec<u8> = (0..n as u8).map(|i| i.wrapping_mul(97).wrapping_add(13)).collect();
-            assert_eq!(base64_decode(&base64_encode(&b)).unwrap(), b);
+            let text = base64_encode(&b);
+            assert_eq!(text.len(), n.div_ceil(3) * 4);
+            assert_eq!(base64_decode(&text).unwrap(), b);
         }
+        // every 6-bit value in every symbol position of a two-group step
+        let b: Vec<u8> = (0..=255u8).chain((0..=255u8).rev()).collect();
+        assert_eq!(base64_decode(&base64_encode(&b)).unwrap(), b);
+        assert_eq!(base64_encode(b"Many hands"), "TWFueSBoYW5kcw==");
         assert_eq!(base64_encode(b"Man"), "TWFu");
         assert_eq!(base64_encode(b"Ma"), "TWE=");
+        assert_eq!(base64_encode(b"M"), "TQ==");
+        assert_eq!(base64_encode(b""), "");
     }
 }

@@ -34,7 +34,7 @@ mod vtu_stream;
 
 pub use atomic::{remove_pending_temps, write_atomic, write_atomic_with};
 pub use cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
-pub use cut_out::{cut_cells_obj, cut_cells_vtu};
+pub use cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_cells_vtu_of};
 pub use cut_vtu::{read_polyhedra, Polyhedra};
 pub use functions::{read_tet_mesh_json, MeshData, RefError};
 pub use mesh::{read_mesh, IndexedMesh, ReadError};
