@@ -1,4 +1,4 @@
-//! Stable radix sorts of (key, value) entries for the exact checks' grids
+//! Stable radix sorts of (key, value) entries for the exact checks'
 //! candidate-pair grid: a least significant digit pass per up to 16 bits of
 //! the keys that vary, instead of comparison sorts of hundreds of thousands
 //! of entries.

@@ -51,8 +51,18 @@ fn random_flat_and_nearly_flat_tetrahedra() {
                 })
                 .collect();
             if i % 3 == 2 {
-                let z = x[3][2];
-                x[3][2] = f64::from_bits(if r() > 0.0 { z.to_bits() + 1 } else { z.to_bits() - 1 });
+                let (z, up) = (x[3][2], r() > 0.0);
+                // one step of the bits; z = 0 (a + b = 0) has no step below
+                // its bits: the smallest subnormal of either sign instead
+                x[3][2] = if z == 0.0 {
+                    if up {
+                        f64::from_bits(1)
+                    } else {
+                        -f64::from_bits(1)
+                    }
+                } else {
+                    f64::from_bits(if up { z.to_bits() + 1 } else { z.to_bits() - 1 })
+                };
             }
         }
         if check(&x, &TET) {
