@@ -78,6 +78,8 @@ mod tri_pair;
 // The sidedness filter against exact rationals (internal, so a unit test).
 #[cfg(test)]
 mod side_filter_tests;
+#[cfg(test)]
+mod test_rng;
 mod triangulate;
 mod validate;
 mod verify;

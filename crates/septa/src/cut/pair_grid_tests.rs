@@ -3,13 +3,7 @@
 
 use super::*;
 
-fn lcg(seed: u64) -> impl FnMut() -> u64 {
-    let mut s = seed;
-    move || {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        s >> 11
-    }
-}
+use crate::cut::test_rng::lcg;
 
 #[test]
 fn groups_are_in_sweep_order_and_hold_every_overlap() {

@@ -22,13 +22,7 @@ mod filters {
     fn prepared_plane_filter_never_contradicts_exact_orientation() {
         // random triangles and query points on, one ulp off, and far from
         // their planes; the filter may give up but never be wrong
-        let mut s = 0x9e3779b97f4a7c15u64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = crate::cut::test_rng::xorshift_unit(0x9e3779b97f4a7c15u64);
         let (mut decided, mut undecided) = (0, 0);
         for i in 0..4000 {
             let mut x: Vec<[f64; 3]> = (0..3).map(|_| [rnd(), rnd(), rnd()]).collect();
@@ -64,13 +58,7 @@ mod filters {
         // and exactly coplanar points at every scale: `proven_sign` relies on
         // |det| <= perm in floating point instead of testing for non-finite
         // values, so neither filter may claim a sign the exact one denies
-        let mut s = 0x2545f4914f6cdd1du64;
-        let mut rnd = || {
-            s ^= s << 13;
-            s ^= s >> 7;
-            s ^= s << 17;
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = crate::cut::test_rng::xorshift_unit(0x2545f4914f6cdd1du64);
         let (mut decided, mut undecided) = (0, 0);
         for i in 0..3000 {
             let scale =

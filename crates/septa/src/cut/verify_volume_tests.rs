@@ -22,12 +22,10 @@ fn check(x: &[[f64; 3]], tris: &[[u32; 3]]) -> bool {
     }
 }
 
+/// Doubles in `[-1, 1)` from the shared test generator.
 fn lcg(seed: u64) -> impl FnMut() -> f64 {
-    let mut s = seed;
-    move || {
-        s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    }
+    let mut g = crate::cut::test_rng::lcg(seed);
+    move || g() as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
 }
 
 /// The four outward triangles of the tetrahedron `0 1 2 3` (outward when
