@@ -553,7 +553,9 @@ fn cut_impl(
         )
         .collect();
     if !opts.skip_certify {
-        stats.embedding = Some(repair::repair(&mut out));
+        // the input check passed: its triangles need no second test among themselves
+        let clean = (!opts.skip_self_intersection_check).then_some((vertices, triangles));
+        stats.embedding = Some(repair::repair(&mut out, clean));
     }
     lap("certify", &mut stats);
     stats.exact_fallbacks = septa_exact::fallback_count() - fb0;

@@ -103,6 +103,27 @@ impl super::CutCellMesh {
         super::verify::verify_cells(&self.vertices, &self.cell_polygons())
     }
 
+    /// The input triangles written unchanged, as a report of the input's
+    /// exact self-intersection check (which found none meeting): each
+    /// triangle of `triangles` (into `vertices`, the cut's input) whose three
+    /// corners are cut-vertices at exactly their input coordinates, in
+    /// cut-vertex ids ([`super::verify::proven_disjoint`]). Only valid when
+    /// that check ran and passed on this input.
+    pub(crate) fn unchanged_input(&self, vertices: &[[f64; 3]], triangles: &[[u32; 3]]) -> super::verify::VerifyReport {
+        let mut of_input = vec![u32::MAX; vertices.len()];
+        for (i, d) in self.vertex_defs.iter().enumerate() {
+            if let super::Def::V(v) = *d {
+                let same = (0..3).all(|k| self.vertices[i][k].to_bits() == vertices[v as usize][k].to_bits());
+                if same {
+                    of_input[v as usize] = i as u32;
+                }
+            }
+        }
+        super::verify::proven_disjoint(
+            triangles.iter().map(|t| t.map(|v| of_input[v as usize])).filter(|t| !t.contains(&u32::MAX)),
+        )
+    }
+
     /// [`Self::verify`] after re-writing faces of the mesh that `prev`
     /// checked, no vertex moved ([`super::verify::verify_cells_since`]).
     pub fn verify_since(&self, prev: &super::verify::VerifyReport) -> super::verify::VerifyReport {

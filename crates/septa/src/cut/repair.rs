@@ -48,6 +48,11 @@ pub struct RepairStats {
     pub rounds: usize,
     /// The exact check of the result (what `cells.vtu` holds).
     pub report: VerifyReport,
+    /// Written triangles that are input triangles, unchanged, whose pairs
+    /// the input's self-intersection check had proven disjoint (not tested
+    /// again; 0 when that check was skipped).
+    #[serde(skip)]
+    pub proven_input_triangles: usize,
 }
 
 fn sorted(p: &[u32]) -> Vec<u32> {
@@ -75,11 +80,30 @@ fn offending_faces(out: &CutCellMesh, r: &VerifyReport) -> Vec<u32> {
     faces
 }
 
+/// The input mesh of a cut whose exact self-intersection check passed:
+/// its vertices and triangles.
+pub type CleanInput<'a> = Option<(&'a [[f64; 3]], &'a [[u32; 3]])>;
+
+/// The exact check of `out`, sparing the pairs of unchanged input triangles
+/// when the input is known clean ([`CutCellMesh::unchanged_input`]): the
+/// same report as [`CutCellMesh::verify`].
+fn check(out: &CutCellMesh, input: CleanInput) -> VerifyReport {
+    match input {
+        Some((v, t)) => out.verify_since(&out.unchanged_input(v, t)),
+        None => out.verify(),
+    }
+}
+
 /// Re-writes offending faces (shaped triangulations, then fans) until the
 /// exact check is clean or stops improving (at most 8 rounds).
-pub fn repair(out: &mut CutCellMesh) -> RepairStats {
+pub fn repair(out: &mut CutCellMesh, input: CleanInput) -> RepairStats {
     let mut st = RepairStats::default();
-    let mut r = out.verify();
+    let known = input.map(|(v, t)| out.unchanged_input(v, t));
+    st.proven_input_triangles = known.as_ref().and_then(|k| k.memo.as_ref()).map_or(0, |m| m.triangles.len());
+    let mut r = match &known {
+        Some(k) => out.verify_since(k),
+        None => out.verify(),
+    };
     st.violations_before = r.violations();
     let mut fanned = vec![false; out.faces.len()];
     let mut shaped = vec![false; out.faces.len()];
@@ -130,7 +154,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
             .filter(|&f| out.faces[f as usize].loops.len() == 1 && !fanned[f as usize])
             .collect();
         if faces.is_empty() {
-            if !nudge_round(out, &mut r, &offending, &mut st) {
+            if !nudge_round(out, input, &mut r, &offending, &mut st) {
                 break;
             }
             continue;
@@ -162,7 +186,7 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
                 out.face_split[f as usize] = s;
                 out.face_triangles[f as usize] = t;
             }
-            if !nudge_round(out, &mut r, &offending, &mut st) {
+            if !nudge_round(out, input, &mut r, &offending, &mut st) {
                 break;
             }
         }
@@ -173,14 +197,20 @@ pub fn repair(out: &mut CutCellMesh) -> RepairStats {
 
 /// 3. certified vertex moves ([`nudge`]) on the offending faces; kept only
 /// if the exact check of the whole result improves.
-fn nudge_round(out: &mut CutCellMesh, r: &mut VerifyReport, offending: &[u32], st: &mut RepairStats) -> bool {
+fn nudge_round(
+    out: &mut CutCellMesh,
+    input: CleanInput,
+    r: &mut VerifyReport,
+    offending: &[u32],
+    st: &mut RepairStats,
+) -> bool {
     let saved = (out.vertices.clone(), out.face_split.clone(), out.face_triangles.clone());
     let moved = nudge(out, offending);
     if moved == 0 {
         (out.vertices, out.face_split, out.face_triangles) = saved;
         return false;
     }
-    let r2 = out.verify();
+    let r2 = check(out, input);
     if r2.violations() < r.violations() {
         st.vertices_nudged += moved;
         st.rounds += 1;

@@ -76,7 +76,7 @@ pub struct VerifyReport {
 /// as its sorted vertex ids) and its intersecting pairs.
 #[derive(Debug, Default)]
 pub(crate) struct PairMemo {
-    triangles: rustc_hash::FxHashSet<[u32; 3]>,
+    pub(crate) triangles: rustc_hash::FxHashSet<[u32; 3]>,
     pairs: Vec<([u32; 3], [u32; 3])>,
 }
 
@@ -176,6 +176,19 @@ pub(super) fn volume_sum<R: Ring>(x: &[[f64; 3]], o: [f64; 3], tris: &[[u32; 3]]
         s = s.add(&d);
     }
     s
+}
+
+/// A report standing for an earlier exact check that found no two of
+/// `triangles` (vertex ids into the mesh about to be checked) meeting: passed
+/// as `prev` to [`verify_cells_since`], it spares the pairs of two of them.
+/// The cut's input check ([`super::selfx::check_self_intersections`]) proves
+/// this of the input triangles, and an input triangle no plane crosses is
+/// written unchanged (its corners are never moved): on a large mesh most of
+/// the written triangles, whose pairs the check would otherwise test twice.
+pub(crate) fn proven_disjoint(triangles: impl IntoIterator<Item = [u32; 3]>) -> VerifyReport {
+    let triangles = triangles.into_iter().map(|t| tri_key(&t)).collect();
+    let memo = PairMemo { triangles, pairs: Vec::new() };
+    VerifyReport { memo: Some(std::sync::Arc::new(memo)), ..Default::default() }
 }
 
 /// Checks `cells` (each a list of polygons of vertex ids into `x`, oriented
