@@ -98,9 +98,85 @@ impl super::CutCellMesh {
         }
     }
 
+    /// [`Self::cell_polygons`] in flat form (the same polygons in the same
+    /// order; no vector per polygon).
+    pub(crate) fn cell_polygons_flat(&self) -> super::verify::FlatCells {
+        // each face's polygons once (oriented for `cells[0]`), then copied
+        // into its cells: reversed for `cells[1]`, listed first, as in
+        // `cell_polygons`
+        let (mut fp_start, mut fp_verts): (Vec<u32>, Vec<u32>) = (vec![0], Vec::new());
+        let mut face_first: Vec<u32> = Vec::with_capacity(self.faces.len() + 1);
+        for (i, f) in self.faces.iter().enumerate() {
+            face_first.push(fp_start.len() as u32 - 1);
+            let split = self.face_split.get(i).copied().unwrap_or(f.loops.len() > 1);
+            match self.face_triangles.get(i).filter(|t| split && !t.is_empty()) {
+                Some(t) => {
+                    for t in t {
+                        fp_verts.extend_from_slice(t);
+                        fp_start.push(fp_verts.len() as u32);
+                    }
+                }
+                None if !split => {
+                    fp_verts.extend_from_slice(&f.loops[0]);
+                    fp_start.push(fp_verts.len() as u32);
+                }
+                None => {
+                    for p in self.face_polygons(i) {
+                        fp_verts.extend_from_slice(&p);
+                        fp_start.push(fp_verts.len() as u32);
+                    }
+                }
+            }
+        }
+        face_first.push(fp_start.len() as u32 - 1);
+        let polys_of = |i: usize| face_first[i] as usize..face_first[i + 1] as usize;
+        let (mut npoly, mut nvert) = (vec![0u32; self.num_cells + 1], vec![0u32; self.num_cells + 1]);
+        for (i, f) in self.faces.iter().enumerate() {
+            let k = polys_of(i);
+            let nv = fp_start[k.end] - fp_start[k.start];
+            for &c in f.cells.iter().filter(|&&c| c != u32::MAX) {
+                npoly[c as usize + 1] += k.len() as u32;
+                nvert[c as usize + 1] += nv;
+            }
+        }
+        for c in 0..self.num_cells {
+            npoly[c + 1] += npoly[c];
+            nvert[c + 1] += nvert[c];
+        }
+        let total = *npoly.last().unwrap_or(&0) as usize;
+        let mut poly_len = vec![0u32; total];
+        let mut verts = vec![0u32; *nvert.last().unwrap_or(&0) as usize];
+        let (mut next_poly, mut next_vert) = (npoly.clone(), nvert.clone());
+        for (i, f) in self.faces.iter().enumerate() {
+            for (c, reversed) in [(f.cells[1], true), (f.cells[0], false)] {
+                if c == u32::MAX {
+                    continue;
+                }
+                for p in polys_of(i) {
+                    let src = &fp_verts[fp_start[p] as usize..fp_start[p + 1] as usize];
+                    let at = next_vert[c as usize] as usize;
+                    let dst = &mut verts[at..at + src.len()];
+                    dst.copy_from_slice(src);
+                    if reversed {
+                        dst.reverse();
+                    }
+                    poly_len[next_poly[c as usize] as usize] = src.len() as u32;
+                    next_poly[c as usize] += 1;
+                    next_vert[c as usize] += src.len() as u32;
+                }
+            }
+        }
+        let mut poly_start = Vec::with_capacity(total + 1);
+        poly_start.push(0u32);
+        for l in poly_len {
+            poly_start.push(poly_start.last().unwrap() + l);
+        }
+        super::verify::FlatCells { cell_start: npoly, poly_start, verts }
+    }
+
     /// The exact check of [`super::verify`] on the polygons as written.
     pub fn verify(&self) -> super::verify::VerifyReport {
-        super::verify::verify_cells(&self.vertices, &self.cell_polygons())
+        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), None)
     }
 
     /// The input triangles written unchanged, as a report of the input's
@@ -127,6 +203,6 @@ impl super::CutCellMesh {
     /// [`Self::verify`] after re-writing faces of the mesh that `prev`
     /// checked, no vertex moved ([`super::verify::verify_cells_since`]).
     pub fn verify_since(&self, prev: &super::verify::VerifyReport) -> super::verify::VerifyReport {
-        super::verify::verify_cells_since(&self.vertices, &self.cell_polygons(), Some(prev))
+        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), Some(prev))
     }
 }

@@ -191,6 +191,43 @@ pub(crate) fn proven_disjoint(triangles: impl IntoIterator<Item = [u32; 3]>) -> 
     VerifyReport { memo: Some(std::sync::Arc::new(memo)), ..Default::default() }
 }
 
+/// Cells as flat lists of polygons (what [`verify_cells`] takes, without a
+/// vector per polygon): polygon `p` is `verts[poly_start[p]..poly_start[p +
+/// 1]]`, and cell `c` holds polygons `cell_start[c]..cell_start[c + 1]`.
+/// The check runs once or twice on every cut; its nested form cost an
+/// allocation per polygon to build and to drop.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FlatCells {
+    pub(crate) cell_start: Vec<u32>,
+    pub(crate) poly_start: Vec<u32>,
+    pub(crate) verts: Vec<u32>,
+}
+
+impl FlatCells {
+    /// The same cells from their nested form.
+    pub(crate) fn from_nested(cells: &[Vec<Vec<u32>>]) -> FlatCells {
+        let mut f = FlatCells { cell_start: vec![0], poly_start: vec![0], verts: Vec::new() };
+        for cell in cells {
+            for poly in cell {
+                f.verts.extend_from_slice(poly);
+                f.poly_start.push(f.verts.len() as u32);
+            }
+            f.cell_start.push(f.poly_start.len() as u32 - 1);
+        }
+        f
+    }
+
+    pub(crate) fn num_cells(&self) -> usize {
+        self.cell_start.len() - 1
+    }
+
+    /// The polygons of cell `c`, in order.
+    pub(crate) fn cell(&self, c: usize) -> impl Iterator<Item = &[u32]> + '_ {
+        (self.cell_start[c] as usize..self.cell_start[c + 1] as usize)
+            .map(move |p| &self.verts[self.poly_start[p] as usize..self.poly_start[p + 1] as usize])
+    }
+}
+
 /// Checks `cells` (each a list of polygons of vertex ids into `x`, oriented
 /// outwards) exactly on the doubles `x`; see the module doc for what.
 pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
@@ -205,85 +242,174 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
 /// meet depends only on their corners' coordinates). The repair re-writes a
 /// few faces and re-checks: this re-check used to test every pair again.
 pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<&VerifyReport>) -> VerifyReport {
-    let mut r = VerifyReport { cells: cells.len(), ..Default::default() };
+    verify_flat(x, &FlatCells::from_nested(cells), prev)
+}
+
+fn key_hash(k: &[u32]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    k.hash(&mut h);
+    h.finish()
+}
+
+/// The distinct faces met so far, each by its key ([`face_key`]) in one
+/// arena, found by the key's hash (keys of equal hash beyond the first kept
+/// in `collided`): no vector per face.
+#[derive(Default)]
+struct FaceIndex {
+    by_hash: FxHashMap<u64, u32>,
+    collided: FxHashMap<Vec<u32>, u32>,
+    key_start: Vec<u32>,
+    keys: Vec<u32>,
+}
+
+impl FaceIndex {
+    fn key(&self, f: u32) -> &[u32] {
+        &self.keys[self.key_start[f as usize] as usize..self.key_start[f as usize + 1] as usize]
+    }
+
+    fn get(&self, key: &[u32], h: u64) -> Option<u32> {
+        match self.by_hash.get(&h) {
+            Some(&f) if self.key(f) == key => Some(f),
+            Some(_) => self.collided.get(key).copied(),
+            None => None,
+        }
+    }
+
+    /// Records `key` as face `f` (the next id).
+    fn insert(&mut self, key: &[u32], h: u64, f: u32) {
+        if self.key_start.is_empty() {
+            self.key_start.push(0);
+        }
+        self.keys.extend_from_slice(key);
+        self.key_start.push(self.keys.len() as u32);
+        if self.by_hash.contains_key(&h) {
+            self.collided.insert(key.to_vec(), f);
+        } else {
+            self.by_hash.insert(h, f);
+        }
+    }
+}
+
+/// Counts the undirected edges of one cell used unequally in the two
+/// directions, calling `bad(a, b)` for each in increasing order: `fwd` and
+/// `bwd` hold the cell's edges `(min << 32) | max` as used from the smaller
+/// vertex and from the larger (sorted here). Equal multisets: balanced.
+fn unbalanced(fwd: &mut [u64], bwd: &mut [u64], mut bad: impl FnMut(u32, u32)) -> usize {
+    fwd.sort_unstable();
+    bwd.sort_unstable();
+    let (mut i, mut j, mut n) = (0, 0, 0);
+    while i < fwd.len() || j < bwd.len() {
+        let k = match (fwd.get(i), bwd.get(j)) {
+            (Some(&a), Some(&b)) => a.min(b),
+            (Some(&a), None) => a,
+            (None, Some(&b)) => b,
+            (None, None) => unreachable!(),
+        };
+        let (mut bal, i0, j0) = (0i64, i, j);
+        while fwd.get(i) == Some(&k) {
+            i += 1;
+        }
+        while bwd.get(j) == Some(&k) {
+            j += 1;
+        }
+        bal += (i - i0) as i64 - (j - j0) as i64;
+        if bal != 0 {
+            n += 1;
+            bad((k >> 32) as u32, k as u32);
+        }
+    }
+    n
+}
+
+/// [`verify_cells_since`] on cells in their flat form.
+pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &FlatCells, prev: Option<&VerifyReport>) -> VerifyReport {
+    let nc = cells.num_cells();
+    let mut r = VerifyReport { cells: nc, ..Default::default() };
     // distinct faces, triangulated once; each cell refers to them with a direction
-    let mut face_of: FxHashMap<Vec<u32>, u32> = FxHashMap::default();
-    let mut face_tris: Vec<Vec<[u32; 3]>> = Vec::new();
-    let mut face_keys: Vec<Vec<u32>> = Vec::new();
+    let mut index = FaceIndex::default();
+    let mut tri_start: Vec<u32> = vec![0];
+    let mut face_tris: Vec<[u32; 3]> = Vec::new();
     let mut bad_faces: Vec<u32> = Vec::new();
-    let mut cell_faces: Vec<Vec<(u32, bool)>> = Vec::with_capacity(cells.len());
+    let mut ref_start: Vec<u32> = Vec::with_capacity(nc + 1);
+    ref_start.push(0);
+    let mut refs: Vec<(u32, bool)> = Vec::with_capacity(cells.poly_start.len());
     let (mut key, mut distinct) = (Vec::new(), Vec::new());
-    for (ci, cell) in cells.iter().enumerate() {
-        let mut refs = Vec::with_capacity(cell.len());
-        for (fi, poly) in cell.iter().enumerate() {
+    let (mut fwd, mut bwd): (Vec<u64>, Vec<u64>) = (Vec::new(), Vec::new());
+    for ci in 0..nc {
+        for (fi, poly) in cells.cell(ci).enumerate() {
             let rev = face_key(poly, &mut key);
-            let id = match face_of.get(key.as_slice()) {
-                Some(&id) => id,
+            let h = key_hash(&key);
+            let id = match index.get(&key, h) {
+                Some(id) => id,
                 None => {
-                    let id = face_tris.len() as u32;
+                    let id = tri_start.len() as u32 - 1;
                     distinct.clear();
                     distinct.extend_from_slice(poly);
                     distinct.sort_unstable();
                     distinct.dedup();
-                    let tris = match polygon_planar(x, &key) {
+                    let planar = match polygon_planar(x, &key) {
                         _ if distinct.len() != key.len() => None,
-                        None => None,
+                        p => p,
+                    };
+                    match planar {
                         Some(planar) => {
                             if !planar {
                                 bad_faces.push(id);
                                 r.nonplanar_faces += 1;
                                 r.note(|| format!("face {fi} of cell {ci} is not planar"));
                             }
-                            Some(if key.len() == 3 {
-                                vec![[key[0], key[1], key[2]]]
+                            if key.len() == 3 {
+                                face_tris.push([key[0], key[1], key[2]]);
                             } else {
-                                triangulate(x, std::slice::from_ref(&key), newell(x, &key))
-                            })
+                                face_tris.extend(triangulate(x, std::slice::from_ref(&key), newell(x, &key)));
+                            }
                         }
-                    };
-                    let tris = tris.unwrap_or_else(|| {
-                        bad_faces.push(id);
-                        r.degenerate_faces += 1;
-                        r.note(|| format!("face {fi} of cell {ci} is degenerate ({} vertices)", poly.len()));
-                        Vec::new()
-                    });
-                    face_keys.push(key.clone());
-                    face_of.insert(key.clone(), id);
-                    face_tris.push(tris);
+                        None => {
+                            bad_faces.push(id);
+                            r.degenerate_faces += 1;
+                            r.note(|| format!("face {fi} of cell {ci} is degenerate ({} vertices)", poly.len()));
+                        }
+                    }
+                    tri_start.push(face_tris.len() as u32);
+                    index.insert(&key, h, id);
                     id
                 }
             };
             refs.push((id, rev));
         }
+        ref_start.push(refs.len() as u32);
         // closed and consistently oriented: each undirected edge as often both ways
-        let mut edges: Vec<(u32, u32, i32)> = Vec::new();
-        for poly in cell {
+        fwd.clear();
+        bwd.clear();
+        for poly in cells.cell(ci) {
             for i in 0..poly.len() {
                 let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-                edges.push((a.min(b), a.max(b), if a < b { 1 } else { -1 }));
+                let k = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+                if a < b {
+                    fwd.push(k);
+                } else {
+                    bwd.push(k);
+                }
             }
         }
-        edges.sort_unstable();
-        let mut i = 0;
-        while i < edges.len() {
-            let mut j = i;
-            let mut bal = 0;
-            while j < edges.len() && edges[j].0 == edges[i].0 && edges[j].1 == edges[i].1 {
-                bal += edges[j].2;
-                j += 1;
+        // the first few named, as `note` would keep them
+        let room = 10usize.saturating_sub(r.examples.len());
+        let mut bad = Vec::new();
+        r.unbalanced_edges += unbalanced(&mut fwd, &mut bwd, |a, b| {
+            if bad.len() < room {
+                bad.push((a, b));
             }
-            if bal != 0 {
-                r.unbalanced_edges += 1;
-                let (a, b) = (edges[i].0, edges[i].1);
-                r.note(|| format!("cell {ci} is not closed or not consistently oriented at edge {a}-{b}"));
-            }
-            i = j;
+        });
+        for (a, b) in bad {
+            r.note(|| format!("cell {ci} is not closed or not consistently oriented at edge {a}-{b}"));
         }
-        cell_faces.push(refs);
     }
-    r.faces = face_tris.len();
+    let nf = tri_start.len() - 1;
+    let tris_of = |f: usize| &face_tris[tri_start[f] as usize..tri_start[f + 1] as usize];
+    r.faces = nf;
     // coincident points among the vertices in use
-    let mut used: Vec<u32> = face_tris.iter().flatten().flatten().copied().collect();
+    let mut used: Vec<u32> = face_tris.iter().flatten().copied().collect();
     used.sort_unstable();
     used.dedup();
     let mut by_pos: Vec<(u64, u64, u64, u32)> = used
@@ -295,6 +421,7 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
             (b(p[0]), b(p[1]), b(p[2]), v)
         })
         .collect();
+    drop(used);
     by_pos.sort_unstable();
     for w in by_pos.windows(2) {
         if w[0].0 == w[1].0 && w[0].1 == w[1].1 && w[0].2 == w[1].2 {
@@ -303,11 +430,12 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
             r.note(|| format!("vertices {a} and {b} are at the same point"));
         }
     }
+    drop(by_pos);
     // every triangle once; degenerate ones reported and kept out of the pair test
-    let mut all: Vec<[u32; 3]> = Vec::new();
-    let mut tri_face: Vec<u32> = Vec::new();
-    for (f, tris) in face_tris.iter().enumerate() {
-        for t in tris {
+    let mut all: Vec<[u32; 3]> = Vec::with_capacity(face_tris.len());
+    let mut tri_face: Vec<u32> = Vec::with_capacity(face_tris.len());
+    for f in 0..nf {
+        for t in tris_of(f) {
             if collinear(x, t[0], t[1], t[2]) {
                 bad_faces.push(f as u32);
                 r.degenerate_triangles += 1;
@@ -327,10 +455,11 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
         r.note(|| format!("triangles {ta:?} and {tb:?} intersect"));
     }
     // exact volume sign per cell
-    for (ci, refs) in cell_faces.iter().enumerate() {
-        let mut tris: Vec<[u32; 3]> = Vec::new();
-        for &(f, rev) in refs {
-            for t in &face_tris[f as usize] {
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    for ci in 0..nc {
+        tris.clear();
+        for &(f, rev) in &refs[ref_start[ci] as usize..ref_start[ci + 1] as usize] {
+            for t in tris_of(f as usize) {
                 tris.push(if rev { [t[0], t[2], t[1]] } else { *t });
             }
         }
@@ -341,7 +470,7 @@ pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<
     }
     bad_faces.sort_unstable();
     bad_faces.dedup();
-    r.offending_polygons = bad_faces.iter().map(|&f| face_keys[f as usize].clone()).collect();
+    r.offending_polygons = bad_faces.iter().map(|&f| index.key(f).to_vec()).collect();
     r
 }
 
@@ -373,3 +502,7 @@ fn triangle_pairs(x: &[[f64; 3]], all: &[[u32; 3]], prev: Option<&PairMemo>, r: 
     r.memo = Some(std::sync::Arc::new(PairMemo { triangles: index.into_keys().collect(), pairs: memo_pairs }));
     pairs
 }
+
+#[cfg(test)]
+#[path = "verify_tests.rs"]
+mod tests;

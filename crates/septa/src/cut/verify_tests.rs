@@ -1,0 +1,101 @@
+//! The flat cells of the exact check against their nested form, and the
+//! edge balance against a plain count per undirected edge.
+
+use super::{unbalanced, verify_cells, verify_flat, FlatCells};
+use crate::cut::test_rng::{lcg, xorshift_unit};
+use crate::cut::{cut_mesh, CutOptions};
+
+/// The balance of a cell's edges counted the plain way: per undirected
+/// edge, uses from the smaller vertex minus uses from the larger.
+fn unbalanced_by_count(edges: &[(u32, u32)]) -> Vec<(u32, u32)> {
+    let mut bal: std::collections::BTreeMap<(u32, u32), i64> = Default::default();
+    for &(a, b) in edges {
+        *bal.entry((a.min(b), a.max(b))).or_default() += if a < b { 1 } else { -1 };
+    }
+    bal.into_iter().filter(|&(_, v)| v != 0).map(|(k, _)| k).collect()
+}
+
+#[test]
+fn edge_balance_equals_a_plain_count() {
+    let mut r = lcg(11);
+    for case in 0..2000 {
+        // few vertices, so that edges repeat in both directions
+        let nv = 2 + (r() % 6) as u32;
+        let edges: Vec<(u32, u32)> = (0..r() % 24)
+            .map(|_| {
+                let a = (r() % nv as u64) as u32;
+                let b = (a + 1 + (r() % (nv as u64 - 1)) as u32) % nv;
+                (a, b)
+            })
+            .collect();
+        let key = |a: u32, b: u32| (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
+        let mut fwd: Vec<u64> = edges.iter().filter(|e| e.0 < e.1).map(|&(a, b)| key(a, b)).collect();
+        let mut bwd: Vec<u64> = edges.iter().filter(|e| e.0 > e.1).map(|&(a, b)| key(a, b)).collect();
+        let mut found = Vec::new();
+        let n = unbalanced(&mut fwd, &mut bwd, |a, b| found.push((a, b)));
+        let want = unbalanced_by_count(&edges);
+        assert_eq!(n, want.len(), "case {case}: {edges:?}");
+        assert_eq!(found, want, "case {case}: {edges:?}");
+    }
+}
+
+/// A unit cube of 12 triangles.
+fn cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let v: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64]).collect();
+    let t = vec![
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    (v, t)
+}
+
+#[test]
+fn flat_cells_equal_the_nested_polygons() {
+    let (v, t) = cube();
+    let mut split_cases = 0;
+    for seed in 1..=12u64 {
+        // random planes through the cube: rounded cut-vertices leave some
+        // faces not exactly planar, written as their triangles
+        let mut r = xorshift_unit(seed);
+        let planes: Vec<[f64; 4]> = (0..3 + seed as usize % 5)
+            .map(|_| {
+                let n = [r(), r(), r()];
+                let p = [0.5 + 0.4 * r(), 0.5 + 0.4 * r(), 0.5 + 0.4 * r()];
+                [n[0], n[1], n[2], -(n[0] * p[0] + n[1] * p[1] + n[2] * p[2])]
+            })
+            .collect();
+        let out = cut_mesh(&v, &t, &planes, &CutOptions::default()).unwrap();
+        split_cases += out.face_split.iter().any(|&s| s) as usize;
+        let nested = out.cell_polygons();
+        let flat = out.cell_polygons_flat();
+        let want = FlatCells::from_nested(&nested);
+        assert_eq!(flat.cell_start, want.cell_start, "seed {seed}");
+        assert_eq!(flat.poly_start, want.poly_start, "seed {seed}");
+        assert_eq!(flat.verts, want.verts, "seed {seed}");
+        let (a, b) = (verify_flat(&out.vertices, &flat, None), verify_cells(&out.vertices, &nested));
+        assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&b).unwrap());
+        assert_eq!(a.violations(), 0, "seed {seed}: {:?}", a.examples);
+        assert_eq!(a.cells, out.num_cells);
+    }
+    assert!(split_cases > 0, "no case wrote a face as triangles");
+}
+
+#[test]
+fn flat_cells_keep_the_order_of_a_cell_listed_on_both_sides() {
+    // a face whose two cells are one cell is copied reversed first
+    let nested = vec![vec![vec![0, 1, 2], vec![2, 1, 0, 3]], vec![], vec![vec![4, 5, 6]]];
+    let f = FlatCells::from_nested(&nested);
+    assert_eq!(f.num_cells(), 3);
+    let back: Vec<Vec<Vec<u32>>> = (0..3).map(|c| f.cell(c).map(|p| p.to_vec()).collect()).collect();
+    assert_eq!(back, nested);
+}
