@@ -194,7 +194,8 @@ pub fn run(a: Args) -> CliResult {
     let mut dir = septa::io::OutputDir::create(&out_dir, "cut")?;
     let wants = |f: MeshFormat| !a.no_mesh_output && a.format.0.contains(&f);
     // the cells' polygons formed once for both files
-    let polys = if wants(MeshFormat::Vtu) || wants(MeshFormat::Obj) { out.cell_polygons() } else { Vec::new() };
+    let polys =
+        if wants(MeshFormat::Vtu) || wants(MeshFormat::Obj) { out.cell_polygons_flat() } else { Default::default() };
     if wants(MeshFormat::Vtu) {
         dir.write("cells.vtu", cut_cells_vtu_of(&out, &polys).as_bytes())?;
     }

@@ -94,7 +94,7 @@ pub use geom::Def;
 pub use rational::{exact_coordinates, fraction_string};
 pub use repair::RepairStats;
 pub use validate::Validation;
-pub use verify::{polygon_planar, verify_cells, verify_cells_since, VerifyReport};
+pub use verify::{polygon_planar, verify_cells, verify_cells_since, CellPolygons, VerifyReport};
 
 use cells::FaceLoop;
 use clip::EdgeLine;

@@ -99,8 +99,9 @@ impl super::CutCellMesh {
     }
 
     /// [`Self::cell_polygons`] in flat form (the same polygons in the same
-    /// order; no vector per polygon).
-    pub(crate) fn cell_polygons_flat(&self) -> super::verify::FlatCells {
+    /// order; no vector per polygon): what the exact check and the writers
+    /// read.
+    pub fn cell_polygons_flat(&self) -> super::verify::CellPolygons {
         // each face's polygons once (oriented for `cells[0]`), then copied
         // into its cells: reversed for `cells[1]`, listed first, as in
         // `cell_polygons`
@@ -171,7 +172,7 @@ impl super::CutCellMesh {
         for l in poly_len {
             poly_start.push(poly_start.last().unwrap() + l);
         }
-        super::verify::FlatCells { cell_start: npoly, poly_start, verts }
+        super::verify::CellPolygons { cell_start: npoly, poly_start, verts }
     }
 
     /// The exact check of [`super::verify`] on the polygons as written.

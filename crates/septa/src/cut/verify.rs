@@ -191,22 +191,31 @@ pub(crate) fn proven_disjoint(triangles: impl IntoIterator<Item = [u32; 3]>) -> 
     VerifyReport { memo: Some(std::sync::Arc::new(memo)), ..Default::default() }
 }
 
-/// Cells as flat lists of polygons (what [`verify_cells`] takes, without a
-/// vector per polygon): polygon `p` is `verts[poly_start[p]..poly_start[p +
-/// 1]]`, and cell `c` holds polygons `cell_start[c]..cell_start[c + 1]`.
-/// The check runs once or twice on every cut; its nested form cost an
-/// allocation per polygon to build and to drop.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct FlatCells {
+/// Cells as flat lists of polygons (what [`verify_cells`] and the writers
+/// take, without a vector per polygon): polygon `p` is
+/// `verts[poly_start[p]..poly_start[p + 1]]`, and cell `c` holds polygons
+/// `cell_start[c]..cell_start[c + 1]`. The check runs once or twice on
+/// every cut and the writers once; the nested form cost an allocation per
+/// polygon to build and to drop.
+///
+/// ```
+/// use septa::cut::CellPolygons;
+/// let cells = CellPolygons::from_nested(&[vec![vec![0, 1, 2], vec![0, 2, 3]], vec![vec![4, 5, 6]]]);
+/// assert_eq!(cells.num_cells(), 2);
+/// assert_eq!(cells.cell(0).collect::<Vec<_>>(), [&[0, 1, 2][..], &[0, 2, 3][..]]);
+/// ```
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct CellPolygons {
     pub(crate) cell_start: Vec<u32>,
     pub(crate) poly_start: Vec<u32>,
     pub(crate) verts: Vec<u32>,
 }
 
-impl FlatCells {
-    /// The same cells from their nested form.
-    pub(crate) fn from_nested(cells: &[Vec<Vec<u32>>]) -> FlatCells {
-        let mut f = FlatCells { cell_start: vec![0], poly_start: vec![0], verts: Vec::new() };
+impl CellPolygons {
+    /// The same cells from their nested form (each cell a list of
+    /// polygons, each polygon a list of vertex ids).
+    pub fn from_nested(cells: &[Vec<Vec<u32>>]) -> CellPolygons {
+        let mut f = CellPolygons { cell_start: vec![0], poly_start: vec![0], verts: Vec::new() };
         for cell in cells {
             for poly in cell {
                 f.verts.extend_from_slice(poly);
@@ -217,12 +226,13 @@ impl FlatCells {
         f
     }
 
-    pub(crate) fn num_cells(&self) -> usize {
+    /// Number of cells.
+    pub fn num_cells(&self) -> usize {
         self.cell_start.len() - 1
     }
 
     /// The polygons of cell `c`, in order.
-    pub(crate) fn cell(&self, c: usize) -> impl Iterator<Item = &[u32]> + '_ {
+    pub fn cell(&self, c: usize) -> impl Iterator<Item = &[u32]> + '_ {
         (self.cell_start[c] as usize..self.cell_start[c + 1] as usize)
             .map(move |p| &self.verts[self.poly_start[p] as usize..self.poly_start[p + 1] as usize])
     }
@@ -242,7 +252,7 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
 /// meet depends only on their corners' coordinates). The repair re-writes a
 /// few faces and re-checks: this re-check used to test every pair again.
 pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<&VerifyReport>) -> VerifyReport {
-    verify_flat(x, &FlatCells::from_nested(cells), prev)
+    verify_flat(x, &CellPolygons::from_nested(cells), prev)
 }
 
 fn key_hash(k: &[u32]) -> u64 {
@@ -323,7 +333,7 @@ fn unbalanced(fwd: &mut [u64], bwd: &mut [u64], mut bad: impl FnMut(u32, u32)) -
 }
 
 /// [`verify_cells_since`] on cells in their flat form.
-pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &FlatCells, prev: Option<&VerifyReport>) -> VerifyReport {
+pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&VerifyReport>) -> VerifyReport {
     let nc = cells.num_cells();
     let mut r = VerifyReport { cells: nc, ..Default::default() };
     // distinct faces, triangulated once; each cell refers to them with a direction

@@ -1,7 +1,7 @@
 //! The flat cells of the exact check against their nested form, and the
 //! edge balance against a plain count per undirected edge.
 
-use super::{unbalanced, verify_cells, verify_flat, FlatCells};
+use super::{unbalanced, verify_cells, verify_flat, CellPolygons};
 use crate::cut::test_rng::{lcg, xorshift_unit};
 use crate::cut::{cut_mesh, CutOptions};
 
@@ -78,7 +78,7 @@ fn flat_cells_equal_the_nested_polygons() {
         split_cases += out.face_split.iter().any(|&s| s) as usize;
         let nested = out.cell_polygons();
         let flat = out.cell_polygons_flat();
-        let want = FlatCells::from_nested(&nested);
+        let want = CellPolygons::from_nested(&nested);
         assert_eq!(flat.cell_start, want.cell_start, "seed {seed}");
         assert_eq!(flat.poly_start, want.poly_start, "seed {seed}");
         assert_eq!(flat.verts, want.verts, "seed {seed}");
@@ -94,7 +94,7 @@ fn flat_cells_equal_the_nested_polygons() {
 fn flat_cells_keep_the_order_of_a_cell_listed_on_both_sides() {
     // a face whose two cells are one cell is copied reversed first
     let nested = vec![vec![vec![0, 1, 2], vec![2, 1, 0, 3]], vec![], vec![vec![4, 5, 6]]];
-    let f = FlatCells::from_nested(&nested);
+    let f = CellPolygons::from_nested(&nested);
     assert_eq!(f.num_cells(), 3);
     let back: Vec<Vec<Vec<u32>>> = (0..3).map(|c| f.cell(c).map(|p| p.to_vec()).collect()).collect();
     assert_eq!(back, nested);

@@ -4,7 +4,7 @@
 //! the same folder and renamed, so a reader never sees half a file.
 
 use super::cut_float::FloatText;
-use crate::cut::CutCellMesh;
+use crate::cut::{CellPolygons, CutCellMesh};
 
 /// `cells.vtu`: one `VTK_POLYHEDRON` (type 42) per cut-cell, binary
 /// (inline base64), with cell data `cell_id` (the cut-cell each row is) and
@@ -14,19 +14,20 @@ use crate::cut::CutCellMesh;
 /// cell data by ascending count, so any other order gives it misaligned
 /// (or refused) cell data. The blocks are then those of `CutCells.to_meshio`.
 pub fn cut_cells_vtu(m: &CutCellMesh) -> String {
-    cut_cells_vtu_of(m, &m.cell_polygons())
+    cut_cells_vtu_of(m, &m.cell_polygons_flat())
 }
 
 /// [`cut_cells_vtu`] of the cells' polygons already formed
-/// (`CutCellMesh::cell_polygons`; once for both files when both are written).
-pub fn cut_cells_vtu_of(m: &CutCellMesh, polys: &[Vec<Vec<u32>>]) -> String {
+/// (`CutCellMesh::cell_polygons_flat`; once for both files when both are
+/// written).
+pub fn cut_cells_vtu_of(m: &CutCellMesh, polys: &CellPolygons) -> String {
     let mut points = cell_points(polys, m.vertices.len());
-    let mut order: Vec<usize> = (0..polys.len()).collect();
+    let mut order: Vec<usize> = (0..polys.num_cells()).collect();
     // stable: id order among cells with as many points
     order.sort_by_key(|&c| points[c].len());
     let ids: Vec<i64> = order.iter().map(|&c| c as i64).collect();
     let volumes: Vec<f64> = order.iter().map(|&c| m.cell_volumes[c]).collect();
-    let cells: Vec<&[Vec<u32>]> = order.iter().map(|&c| polys[c].as_slice()).collect();
+    let cells: Vec<Vec<&[u32]>> = order.iter().map(|&c| polys.cell(c).collect()).collect();
     let points: Vec<Vec<u32>> = order.iter().map(|&c| std::mem::take(&mut points[c])).collect();
     super::cut_vtu::polyhedra_vtu(&m.vertices, &cells, &points, &[("volume", &volumes)], &[("cell_id", &ids)])
 }
@@ -35,14 +36,12 @@ pub fn cut_cells_vtu_of(m: &CutCellMesh, polys: &[Vec<Vec<u32>>]) -> String {
 /// its polygons' corners gives): a stamp per mesh vertex keeps each point's
 /// first corner, so only the distinct ids, about a third of the corners,
 /// are sorted.
-fn cell_points(cells: &[Vec<Vec<u32>>], vertices: usize) -> Vec<Vec<u32>> {
+fn cell_points(cells: &CellPolygons, vertices: usize) -> Vec<Vec<u32>> {
     let mut stamp = vec![usize::MAX; vertices];
-    cells
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
+    (0..cells.num_cells())
+        .map(|i| {
             let mut used = Vec::new();
-            for &v in c.iter().flatten() {
+            for &v in cells.cell(i).flatten() {
                 if stamp[v as usize] != i {
                     stamp[v as usize] = i;
                     used.push(v);
@@ -58,14 +57,14 @@ fn cell_points(cells: &[Vec<Vec<u32>>], vertices: usize) -> Vec<Vec<u32>> {
 /// outwards; with `explode > 0` each cell is moved away from the mesh centre
 /// by that fraction of its centroid offset (exploded view).
 pub fn cut_cells_obj(m: &CutCellMesh, explode: f64) -> String {
-    cut_cells_obj_of(m, &m.cell_polygons(), explode)
+    cut_cells_obj_of(m, &m.cell_polygons_flat(), explode)
 }
 
 /// [`cut_cells_obj`] of the cells' polygons already formed: the boundary
 /// polygons of each cell, oriented outwards, each written as a face of one
-/// loop (`CutCellMesh::cell_polygons`: faces with holes or with rounded
-/// vertices off their plane come as their triangles).
-pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &[Vec<Vec<u32>>], explode: f64) -> String {
+/// loop (`CutCellMesh::cell_polygons_flat`: faces with holes or with
+/// rounded vertices off their plane come as their triangles).
+pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &CellPolygons, explode: f64) -> String {
     let mut s = String::from("# septa cut-cell mesh\n");
     let centre = {
         let n = m.vertices.len().max(1) as f64;
@@ -83,7 +82,7 @@ pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &[Vec<Vec<u32>>], explode: f64) 
     let points = cell_points(cells, m.vertices.len());
     // the file's number of each point of the cell being written
     let mut local = vec![0usize; m.vertices.len()];
-    for (i, (c, used)) in cells.iter().zip(&points).enumerate() {
+    for (i, used) in points.iter().enumerate() {
         let mut cen = [0.0; 3];
         for &v in used {
             for k in 0..3 {
@@ -104,7 +103,7 @@ pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &[Vec<Vec<u32>>], explode: f64) 
             }
             s.push('\n');
         }
-        for l in c {
+        for l in cells.cell(i) {
             s.push('f');
             for &v in l {
                 s.push(' ');

@@ -100,7 +100,7 @@ fn block<T: Copy, const N: usize>(v: &[T], f: impl Fn(T) -> [u8; N]) -> Vec<u8> 
 /// and `Float64` / `Int64` cell data arrays.
 pub fn polyhedra_vtu(
     points: &[[f64; 3]],
-    cells: &[&[Vec<u32>]],
+    cells: &[Vec<&[u32]>],
     cell_points: &[Vec<u32>],
     float_data: &[(&str, &[f64])],
     int_data: &[(&str, &[i64])],
