@@ -19,14 +19,21 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             return Err(CutError::NonFiniteVertex { vertex: i });
         }
     }
-    let mut order: Vec<u32> = (0..verts.len() as u32).collect();
     let key = |i: u32| verts[i as usize].map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
-    order.sort_unstable_by_key(|&i| (key(i), i));
-    for w in order.windows(2) {
-        if key(w[0]) == key(w[1]) {
-            return Err(CutError::DuplicateVertex { first: w[0] as usize, second: w[1] as usize });
+    // nearly always no two at one point: a set of positions proves it; the
+    // sort names the first pair in a fixed order when there is one
+    let mut seen: rustc_hash::FxHashSet<[u64; 3]> = Default::default();
+    seen.reserve(verts.len());
+    if !(0..verts.len() as u32).all(|i| seen.insert(key(i))) {
+        let mut order: Vec<u32> = (0..verts.len() as u32).collect();
+        order.sort_unstable_by_key(|&i| (key(i), i));
+        for w in order.windows(2) {
+            if key(w[0]) == key(w[1]) {
+                return Err(CutError::DuplicateVertex { first: w[0] as usize, second: w[1] as usize });
+            }
         }
     }
+    drop(seen);
     let nv = verts.len() as u32;
     for (t, tri) in tris.iter().enumerate() {
         if tri.iter().any(|&v| v >= nv) {
@@ -59,7 +66,27 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             sides.push((a.min(b), a.max(b), a < b, t as u32, k as u8));
         }
     }
-    sides.sort_unstable();
+    // sorted: a counting sort by the smaller vertex, then each short
+    // bucket (the entries are distinct: the same order as sorting all)
+    let sides = {
+        let mut start = vec![0u32; verts.len() + 1];
+        for e in &sides {
+            start[e.0 as usize + 1] += 1;
+        }
+        for b in 0..verts.len() {
+            start[b + 1] += start[b];
+        }
+        let mut fill = start.clone();
+        let mut out = sides.clone();
+        for e in &sides {
+            out[fill[e.0 as usize] as usize] = *e;
+            fill[e.0 as usize] += 1;
+        }
+        for b in 0..verts.len() {
+            out[start[b] as usize..start[b + 1] as usize].sort_unstable();
+        }
+        out
+    };
     let mut edges = Vec::with_capacity(sides.len() / 2);
     let mut edge_tris = Vec::with_capacity(sides.len() / 2);
     let mut tri_edges = vec![[0u32; 3]; tris.len()];
@@ -70,9 +97,10 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             j += 1;
         }
         let (u, v, _, t, _) = sides[i];
-        let (fw, bw): (Vec<&(u32, u32, bool, u32, u8)>, Vec<_>) = sides[i..j].iter().partition(|s| s.2);
+        // the sides run v -> u (`false`) sort before those u -> v
+        let (bw, fw) = sides[i..j].split_at(sides[i..j].iter().take_while(|s| !s.2).count());
         if fw.len() > 1 || bw.len() > 1 {
-            let two = if fw.len() > 1 { &fw } else { &bw };
+            let two = if fw.len() > 1 { fw } else { bw };
             let (a, b) = if two[0].2 { (u, v) } else { (v, u) };
             return Err(CutError::NonManifoldOrFlipped { triangle: two[1].3 as usize, other: two[0].3 as usize, a, b });
         }

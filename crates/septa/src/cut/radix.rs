@@ -28,6 +28,24 @@ pub(super) fn radix_sort_keys(v: &mut Vec<(u64, u32)>) {
 /// scatter per digit (digits of at most 16 bits; a digit every key shares
 /// is skipped). Stable, so entries with one key keep their order.
 pub(super) fn radix_sort_stable(v: &mut Vec<(u64, u32)>, bits: u32) {
+    radix_sort_by(v, bits, |e| e.0)
+}
+
+/// Sorts plain `u64` keys: [`radix_sort_by`] on the bits where they differ
+/// for long lists, a comparison sort for short ones (same result: equal
+/// keys are indistinguishable).
+pub(super) fn sort_u64(v: &mut Vec<u64>) {
+    if v.len() < 512 {
+        v.sort_unstable();
+        return;
+    }
+    let first = v[0];
+    let spread = v.iter().fold(0u64, |m, &e| m | (e ^ first));
+    radix_sort_by(v, 64 - spread.leading_zeros(), |&e| e);
+}
+
+/// [`radix_sort_stable`] of any entries by `key(entry)`.
+pub(super) fn radix_sort_by<T: Copy>(v: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
     if v.len() < 2 || bits == 0 {
         return;
     }
@@ -41,7 +59,7 @@ pub(super) fn radix_sort_stable(v: &mut Vec<(u64, u32)>, bits: u32) {
     let mut counts = vec![0u32; width * passes];
     for e in v.iter() {
         for p in 0..passes {
-            counts[p * width + ((e.0 >> (p as u32 * d)) & mask) as usize] += 1;
+            counts[p * width + ((key(e) >> (p as u32 * d)) & mask) as usize] += 1;
         }
     }
     let mut tmp = v.clone();
@@ -60,7 +78,7 @@ pub(super) fn radix_sort_stable(v: &mut Vec<(u64, u32)>, bits: u32) {
         }
         let shift = p as u32 * d;
         for e in src.iter() {
-            let b = ((e.0 >> shift) & mask) as usize;
+            let b = ((key(e) >> shift) & mask) as usize;
             dst[c[b] as usize] = *e;
             c[b] += 1;
         }

@@ -62,3 +62,25 @@ fn total_order_keys_sort_like_total_cmp() {
     radix_sort_stable(&mut near, 64 - spread.leading_zeros());
     assert_eq!(near, want);
 }
+
+#[test]
+fn sort_u64_sorts_short_and_long_lists() {
+    let mut r = lcg(5);
+    for len in [0usize, 1, 3, 511, 512, 513, 4000] {
+        for shape in 0..3 {
+            // edge keys (two vertex ids), few distinct keys, any bits
+            let v: Vec<u64> = (0..len)
+                .map(|_| match shape {
+                    0 => ((r() % 5000) << 32) | (r() % 5000),
+                    1 => r() % 9,
+                    _ => r() << 11 | r() & 0x7ff,
+                })
+                .collect();
+            let mut want = v.clone();
+            want.sort_unstable();
+            let mut got = v;
+            sort_u64(&mut got);
+            assert_eq!(got, want, "len {len} shape {shape}");
+        }
+    }
+}

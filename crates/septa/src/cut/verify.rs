@@ -27,6 +27,7 @@
 //! a poor triangulation of a valid polygon can only add reported
 //! intersections, never hide one, so a zero report is a proof.
 
+use super::radix::sort_u64;
 use super::selfx::{intersecting_pairs, intersecting_pairs_touching};
 use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
@@ -305,9 +306,9 @@ impl FaceIndex {
 /// directions, calling `bad(a, b)` for each in increasing order: `fwd` and
 /// `bwd` hold the cell's edges `(min << 32) | max` as used from the smaller
 /// vertex and from the larger (sorted here). Equal multisets: balanced.
-fn unbalanced(fwd: &mut [u64], bwd: &mut [u64], mut bad: impl FnMut(u32, u32)) -> usize {
-    fwd.sort_unstable();
-    bwd.sort_unstable();
+fn unbalanced(fwd: &mut Vec<u64>, bwd: &mut Vec<u64>, mut bad: impl FnMut(u32, u32)) -> usize {
+    sort_u64(fwd);
+    sort_u64(bwd);
     let (mut i, mut j, mut n) = (0, 0, 0);
     while i < fwd.len() || j < bwd.len() {
         let k = match (fwd.get(i), bwd.get(j)) {
@@ -418,29 +419,31 @@ pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&Ve
     let nf = tri_start.len() - 1;
     let tris_of = |f: usize| &face_tris[tri_start[f] as usize..tri_start[f + 1] as usize];
     r.faces = nf;
-    // coincident points among the vertices in use
-    let mut used: Vec<u32> = face_tris.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    let mut by_pos: Vec<(u64, u64, u64, u32)> = used
-        .iter()
-        .map(|&v| {
-            let p = x[v as usize];
-            // +0.0 and -0.0 are the same point
-            let b = |c: f64| (c + 0.0).to_bits();
-            (b(p[0]), b(p[1]), b(p[2]), v)
-        })
-        .collect();
-    drop(used);
-    by_pos.sort_unstable();
-    for w in by_pos.windows(2) {
-        if w[0].0 == w[1].0 && w[0].1 == w[1].1 && w[0].2 == w[1].2 {
-            r.coincident_points += 1;
-            let (a, b) = (w[0].3, w[1].3);
-            r.note(|| format!("vertices {a} and {b} are at the same point"));
+    // coincident points among the vertices in use (ascending ids from a
+    // mark per vertex, no sort)
+    let mut in_use = vec![false; x.len()];
+    for &v in face_tris.iter().flatten() {
+        in_use[v as usize] = true;
+    }
+    let used = (0..x.len() as u32).filter(|&v| in_use[v as usize]);
+    // +0.0 and -0.0 are the same point
+    let bits = |v: u32| x[v as usize].map(|c| (c + 0.0).to_bits());
+    // nearly always none: a set of positions proves it without sorting
+    // them; the sort below names the pairs in a fixed order when some exist
+    let mut seen: rustc_hash::FxHashSet<[u64; 3]> = Default::default();
+    seen.reserve(used.clone().count());
+    if !used.clone().all(|v| seen.insert(bits(v))) {
+        let mut by_pos: Vec<([u64; 3], u32)> = used.map(|v| (bits(v), v)).collect();
+        by_pos.sort_unstable();
+        for w in by_pos.windows(2) {
+            if w[0].0 == w[1].0 {
+                r.coincident_points += 1;
+                let (a, b) = (w[0].1, w[1].1);
+                r.note(|| format!("vertices {a} and {b} are at the same point"));
+            }
         }
     }
-    drop(by_pos);
+    drop((seen, in_use));
     // every triangle once; degenerate ones reported and kept out of the pair test
     let mut all: Vec<[u32; 3]> = Vec::with_capacity(face_tris.len());
     let mut tri_face: Vec<u32> = Vec::with_capacity(face_tris.len());
