@@ -24,10 +24,11 @@ pub struct FaceLoop {
     /// Supporting triangle or plane.
     pub support: Support,
     /// Corners (compact cut-vertex ids), counter-clockwise about the
-    /// support normal for an outer boundary.
-    pub verts: Vec<u32>,
+    /// support normal for an outer boundary. Inline up to 8 (the pieces of
+    /// the input's triangles, a million on the large meshes, have a few).
+    pub verts: smallvec::SmallVec<[u32; 8]>,
     /// Line of edge `i -> i+1`, and whether it runs along `+dir`.
-    pub dirs: Vec<(LineDir, bool)>,
+    pub dirs: smallvec::SmallVec<[(LineDir, bool); 8]>,
     /// The cut-face this loop bounds (several loops for a face with holes).
     pub face: u32,
 }

@@ -341,8 +341,15 @@ fn cut_impl(
         let n = nodes.get(*d);
         lines::register(&mut line_pts, &crosses, np, n, z);
     }
-    let piece_nodes: Vec<Vec<u32>> =
-        clipped.pieces.iter().map(|p| p.nodes.iter().map(|&d| nodes.get(d)).collect()).collect();
+    // every piece's corners as nodes, in one list (numbered here, in this
+    // order: the node ids do not depend on what follows)
+    let mut piece_start: Vec<u32> = Vec::with_capacity(clipped.pieces.len() + 1);
+    piece_start.push(0);
+    let mut piece_nodes: Vec<u32> = Vec::new();
+    for p in &clipped.pieces {
+        piece_nodes.extend(p.nodes.iter().map(|&d| nodes.get(d)));
+        piece_start.push(piece_nodes.len() as u32);
+    }
     lap("triangles", &mut stats);
     let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
     lap("plane_lines", &mut stats);
@@ -373,11 +380,12 @@ fn cut_impl(
         }
     }
     let mut faces: Vec<FaceLoop> = Vec::with_capacity(clipped.pieces.len());
-    for (piece, pn) in clipped.pieces.iter().zip(&piece_nodes) {
+    for (k, piece) in clipped.pieces.iter().enumerate() {
+        let pn = &piece_nodes[piece_start[k] as usize..piece_start[k + 1] as usize];
         let t = piece.tri;
         let n = pn.len();
         let mut fl =
-            FaceLoop { support: Support::Tri(t), verts: Vec::with_capacity(n), dirs: Vec::with_capacity(n), face: 0 };
+            FaceLoop { support: Support::Tri(t), verts: Default::default(), dirs: Default::default(), face: 0 };
         for i in 0..n {
             let (na, nb) = (pn[i], pn[(i + 1) % n]);
             let (a, b) = (cid(na), cid(nb));
@@ -438,7 +446,12 @@ fn cut_impl(
         }
         for l in loops {
             let face = id[l.outer as usize];
-            faces.push(FaceLoop { support: Support::Plane(l.plane), verts: l.verts, dirs: l.dirs, face });
+            faces.push(FaceLoop {
+                support: Support::Plane(l.plane),
+                verts: smallvec::SmallVec::from_vec(l.verts),
+                dirs: smallvec::SmallVec::from_vec(l.dirs),
+                face,
+            });
         }
     }
     stats.holes = nholes;
