@@ -11,7 +11,7 @@ pub fn parse_obj(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
     let mut poly: Vec<u32> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;
-        let mut it = raw.split_whitespace();
+        let mut it = raw.split_ascii_whitespace();
         match it.next() {
             Some("v") => {
                 let x = parse_f64(path, line, it.next(), "x")?;
