@@ -455,6 +455,9 @@ fn sides(o: &mut PairOrients, u: &[u32; 3], t: &[u32; 3]) -> [Sign; 3] {
 ///   the triangles meet exactly in the shared edge;
 /// - one triangle's free corners strictly on one side of the other's plane:
 ///   it meets that plane only in the shared vertices (or nowhere);
+/// - no shared corner, one corner of a triangle exactly on the other's
+///   plane and its other two strictly on one side: the pair meets iff that
+///   corner lies in the other triangle ([`lone_contact`]);
 /// - one shared vertex `v`, `t1 = (v, a, b)`, `t2 = (v, c, d)`, each
 ///   triangle reaching both sides of the other's plane or lying on it along
 ///   an edge, `d` off `t1`'s plane (renamed so), and `a` off `t2`'s unless
@@ -495,6 +498,11 @@ fn general_position(o: &mut PairOrients, t1: &[u32; 3], t2: &[u32; 3]) -> Option
     if ns == 2 {
         return Some(false);
     }
+    if ns == 0 {
+        if let Some(k) = lone_contact(&s2) {
+            return Some(in_tri2(o.x, proj_axis(o.x, t1), t2[k], t1));
+        }
+    }
     let s1 = sides(o, t2, t1);
     let one_side = |t: &[u32; 3], u: &[u32; 3], s: &[Sign; 3]| {
         let mut free = (0..3).filter(|&k| !u.contains(&t[k])).map(|k| s[k]);
@@ -503,6 +511,11 @@ fn general_position(o: &mut PairOrients, t1: &[u32; 3], t2: &[u32; 3]) -> Option
     };
     if one_side(t1, t2, &s1) || one_side(t2, t1, &s2) {
         return Some(false);
+    }
+    if ns == 0 {
+        if let Some(k) = lone_contact(&s1) {
+            return Some(in_tri2(o.x, proj_axis(o.x, t2), t1[k], t2));
+        }
     }
     if ns == 1 {
         let k1 = (0..3).find(|&k| t2.contains(&t1[k]))?;
@@ -541,6 +554,21 @@ fn general_position(o: &mut PairOrients, t1: &[u32; 3], t2: &[u32; 3]) -> Option
         std::mem::swap(&mut q1, &mut r1);
     }
     Some(o.orient(p1, q1, p2, q2) != Sign::Positive && o.orient(p1, r1, r2, p2) != Sign::Positive)
+}
+
+/// The corner of a triangle sharing no corner with the other that lies
+/// exactly on the other's plane while its two other corners lie strictly on
+/// one side (`s`: the sides of its corners): the triangle then meets that
+/// plane in this corner alone (any other point of it mixes in a corner off
+/// the plane with a positive weight), so the pair meets iff the corner lies
+/// in the other (closed) triangle, a 2D question in its plane. Cut-cell
+/// meshes of axis-aligned planes are full of such touching pairs (a
+/// surface piece's corner on the plane of a cut-face next to its own); the
+/// rules below would ask for five more orientations each.
+fn lone_contact(s: &[Sign; 3]) -> Option<usize> {
+    let k = (0..3).find(|&k| s[k] == Sign::Zero)?;
+    let (a, b) = (s[(k + 1) % 3], s[(k + 2) % 3]);
+    (a != Sign::Zero && a == b).then_some(k)
 }
 
 /// The pair decided edge by edge: each edge of one triangle against the

@@ -232,6 +232,36 @@ mod general_position {
     }
 
     #[test]
+    fn lone_contacts_agree_with_edge_tests() {
+        // pairs without shared corners where one corner of a triangle lies
+        // exactly on the other's plane, its other corners on one side: the
+        // corner-in-triangle rule against the edge tests, meeting and apart
+        let (mut meet, mut apart) = (0, 0);
+        for seed in 0..40 {
+            let mut r = lcg(500 + seed);
+            let x: Vec<[f64; 3]> = (0..12).map(|_| [0, 1, 2].map(|_| (r() % 5) as f64 - 2.0)).collect();
+            let t = triangles(&x, 40, &mut r);
+            for t1 in &t {
+                for t2 in &t {
+                    if t1.iter().any(|v| t2.contains(v)) {
+                        continue;
+                    }
+                    let s2 = t2.map(|w| orient(&x, t1[0], t1[1], t1[2], w));
+                    let Some(k) = lone_contact(&s2) else { continue };
+                    let got = in_tri2(&x, proj_axis(&x, t1), t2[k], t1);
+                    assert_eq!(got, by_edges(&x, t1, t2), "{t1:?} {t2:?} {x:?}");
+                    if got {
+                        meet += 1;
+                    } else {
+                        apart += 1;
+                    }
+                }
+            }
+        }
+        assert!(meet > 20 && apart > 20, "{meet} {apart}");
+    }
+
+    #[test]
     fn agrees_with_edge_tests_on_nearly_coplanar_points() {
         // points of one plane rounded to doubles and moved by a few ulps:
         // the static filters give up and every sign is exact
