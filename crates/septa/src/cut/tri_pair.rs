@@ -344,30 +344,67 @@ fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
 
 /// Sufficient test that two triangles meet at most in shared vertices:
 /// their projections along a coordinate axis are separated by an edge line
-/// of one of them (all other corners strictly outside; shared corners on
-/// the line). Exact (2D orientations of input coordinates), and cheap where
-/// the 3D predicates are nearly degenerate (flat fans of nearly coplanar
+/// of one of them (all other corners outside, shared corners on the line).
+/// Exact (2D orientations of input coordinates), and cheap where the 3D
+/// predicates are nearly degenerate (flat fans of nearly coplanar
 /// triangles).
+///
+/// Corners of the other triangle may lie on the line itself (grids of
+/// axis-aligned cut-faces are full of such collinear corners): both
+/// projections then meet the line in segments, the edge and the hull of
+/// the corners on it, and the projections share at most a shared vertex
+/// when these segments are apart or meet in a shared vertex only (compared
+/// along a coordinate in which the line is not constant, where collinear
+/// points keep their order). The projection of the first triangle is not
+/// degenerate, so only its own points project onto its projection: a
+/// common point of the triangles projects into both, hence is a shared
+/// vertex.
 fn projections_separated(x: &[[f64; 3]], t1: &[u32; 3], n: &[f64; 3], t2: &[u32; 3]) -> bool {
     // `n`: t1's floating-point normal; it only picks the projection axis
     let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs())).unwrap();
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
     for (ta, tb) in [(t1, t2), (t2, t1)] {
         let inner = orient2(x, k, ta[0], ta[1], ta[2]);
         if inner == Sign::Zero {
             return false;
         }
-        for e in 0..3 {
+        'edge: for e in 0..3 {
             let (a, b) = (ta[e], ta[(e + 1) % 3]);
-            let sep = tb.iter().all(|&w| {
-                if w == a || w == b {
-                    return true;
+            // the free corners of tb on the line, if any
+            let mut on_line = [false; 3];
+            for (q, &w) in tb.iter().enumerate() {
+                if w != a && w != b {
+                    if ta.contains(&w) {
+                        continue 'edge;
+                    }
+                    match orient2(x, k, a, b, w) {
+                        s if s == inner.flip() => {}
+                        Sign::Zero => on_line[q] = true,
+                        _ => continue 'edge,
+                    }
                 }
-                if ta.contains(&w) {
-                    return false;
+            }
+            if on_line == [false; 3] {
+                return true;
+            }
+            // the hull of tb's points on the line (its free corners there and
+            // the shared ends of the edge) along `c`
+            let c = if x[a as usize][i] != x[b as usize][i] { i } else { j };
+            let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+            for (q, &w) in tb.iter().enumerate() {
+                if on_line[q] || w == a || w == b {
+                    let v = x[w as usize][c];
+                    (lo, hi) = (lo.min(v), hi.max(v));
                 }
-                orient2(x, k, a, b, w) == inner.flip()
-            });
-            if sep {
+            }
+            let (va, vb) = (x[a as usize][c], x[b as usize][c]);
+            let (from, to) = (lo.max(va.min(vb)), hi.min(va.max(vb)));
+            if from > to {
+                return true;
+            }
+            // one common point, at a shared end of the edge
+            let shared_end = |v: u32| tb.contains(&v) && x[v as usize][c] == from;
+            if from == to && (shared_end(a) || shared_end(b)) {
                 return true;
             }
         }

@@ -232,6 +232,42 @@ mod general_position {
     }
 
     #[test]
+    fn grid_triangles_separated_in_projection() {
+        // the faces of a cut by axis-aligned planes: squares of a grid in
+        // the plane x = 0, each split by a diagonal (alternating), whose
+        // neighbours' corners lie on one another's edge lines; no two
+        // triangles meet beyond shared corners and edges, and the
+        // projections prove it for nearly every pair
+        let m = 5;
+        let x: Vec<[f64; 3]> =
+            (0..(m + 1) * (m + 1)).map(|v| [0.0, (v % (m + 1)) as f64 / 9.0, (v / (m + 1)) as f64 / 9.0]).collect();
+        let id = |i: usize, j: usize| (j * (m + 1) + i) as u32;
+        let mut t = Vec::new();
+        for j in 0..m {
+            for i in 0..m {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                if (i + j) % 2 == 0 {
+                    t.extend([[a, b, c], [a, c, d]]);
+                } else {
+                    t.extend([[a, b, d], [b, c, d]]);
+                }
+            }
+        }
+        let (mut pairs, mut by_projection) = (0, 0);
+        for (u, t1) in t.iter().enumerate() {
+            for t2 in &t[u + 1..] {
+                assert!(!pair_intersects(&x, t1, t2), "{t1:?} {t2:?}");
+                assert!(!by_edges(&x, t1, t2), "{t1:?} {t2:?}");
+                if t1.iter().filter(|v| t2.contains(v)).count() < 2 {
+                    pairs += 1;
+                    by_projection += projections_separated(&x, t1, &TriPlane::new(&x, t1).n, t2) as usize;
+                }
+            }
+        }
+        assert_eq!(by_projection, pairs);
+    }
+
+    #[test]
     fn lone_contacts_agree_with_edge_tests() {
         // pairs without shared corners where one corner of a triangle lies
         // exactly on the other's plane, its other corners on one side: the
