@@ -124,10 +124,38 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
         *w = ([a.min(b), a.max(b)], side(w.1), side(w.2));
     });
     // Same order as before for equal edges: keep the wedges sorted by edge
-    // and side so the cyclic walk starts the same way every time (the
-    // parallel sort gives the same order: the entries are distinct or equal
-    // as a whole).
-    m.wedges.par_sort_unstable();
+    // and side so the cyclic walk starts the same way every time. A counting
+    // sort by the edge's smaller vertex, then each vertex's few wedges
+    // sorted whole: the same order as one comparison sort (entries are
+    // distinct or equal as a whole), in linear time.
+    m.wedges = sort_wedges(std::mem::take(&mut m.wedges));
+}
+
+/// `wedges` in ascending order.
+fn sort_wedges(wedges: Vec<([u32; 2], u32, u32)>) -> Vec<([u32; 2], u32, u32)> {
+    let nv = wedges.iter().map(|w| w.0[0] as usize + 1).max().unwrap_or(0);
+    let mut start = vec![0u32; nv + 1];
+    for w in &wedges {
+        start[w.0[0] as usize + 1] += 1;
+    }
+    for v in 0..nv {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut out = vec![([0u32; 2], 0u32, 0u32); wedges.len()];
+    for w in wedges {
+        let f = &mut fill[w.0[0] as usize];
+        out[*f as usize] = w;
+        *f += 1;
+    }
+    drop(fill);
+    for_each_bucket(&mut out, &start, |_, r| {
+        if r.len() > 1 {
+            r.sort_unstable();
+        }
+        0
+    });
+    out
 }
 
 /// Renumbers cells by their smallest shell (a cell without shells, the
