@@ -225,3 +225,53 @@ fn multiblock_pieces_are_part_of_the_set() {
     assert!(!out.join("network/chains.vtu").exists() && !out.join("network/corners.vtu").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `--fsync` / `SEPTA_FSYNC=1` (flush each file to the disk before its
+/// rename) write the same set as the default, and the default issues no
+/// flush: checked through `strace` where it is installed (the flush is not
+/// visible to the files themselves).
+#[test]
+fn fsync_writes_the_same_set() {
+    let dir = scratch("fsync");
+    let f = spheres(&dir, 3);
+    let run = |name: &str, flag: Option<&str>, env: bool| -> PathBuf {
+        let out = dir.join(name);
+        let mut args = vec!["ia", f.to_str().unwrap(), "--grid", "8", "-o", out.to_str().unwrap()];
+        if let Some(flag) = flag {
+            args.insert(0, flag);
+        }
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_septa"));
+        cmd.args(&args);
+        if env {
+            cmd.env("SEPTA_FSYNC", "1");
+        } else {
+            cmd.env_remove("SEPTA_FSYNC");
+        }
+        let r = cmd.output().unwrap();
+        assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+        assert_one_set(&out);
+        out
+    };
+    let plain = run("plain", None, false);
+    for other in [run("flag", Some("--fsync"), false), run("env", None, true)] {
+        for file in ["network.ply", "network.obj"] {
+            assert_eq!(std::fs::read(plain.join(file)).unwrap(), std::fs::read(other.join(file)).unwrap(), "{file}");
+        }
+    }
+    let fsyncs = |flag: Option<&str>| -> Option<usize> {
+        let out = dir.join("traced");
+        let mut args = vec!["-f", "-e", "trace=fsync", env!("CARGO_BIN_EXE_septa")];
+        args.extend(flag);
+        args.extend(["ia", f.to_str().unwrap(), "--grid", "8", "-o", out.to_str().unwrap()]);
+        let r = Command::new("strace").args(&args).env_remove("SEPTA_FSYNC").output().ok()?;
+        r.status.success().then(|| String::from_utf8_lossy(&r.stderr).lines().filter(|l| l.contains("fsync(")).count())
+    };
+    match (fsyncs(None), fsyncs(Some("--fsync"))) {
+        (Some(off), Some(on)) => {
+            assert_eq!(off, 0, "the default flushed files");
+            assert!(on >= 2, "--fsync flushed {on} files");
+        }
+        _ => eprintln!("strace not available: the flushes themselves were not observed"),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -209,7 +209,7 @@ impl PlyStreamSink {
         append_faces(faces, &mut main, self.faces_written, topology).map_err(|e| with_path(&self.tmp, e))?;
         main.seek(SeekFrom::Start(0))?;
         main.write_all(header(&self.comment, self.vertices, self.faces_written).as_bytes())?;
-        main.sync_all().map_err(|e| with_path(&self.tmp, e))?;
+        super::atomic::sync_if_durable(&main).map_err(|e| with_path(&self.tmp, e))?;
         drop(main);
         std::fs::rename(&self.tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         let _ = std::fs::remove_file(&self.tmp_faces);

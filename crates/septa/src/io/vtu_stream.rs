@@ -181,7 +181,7 @@ impl VtuStreamSink {
         copy(&mut w, "block")?;
         w.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
-        file.sync_all().map_err(|e| with_path(&tmp, e))?;
+        super::atomic::sync_if_durable(&file).map_err(|e| with_path(&tmp, e))?;
         drop(file);
         std::fs::rename(&tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         Ok(PlyStreamStats { vertices: self.vertices, faces: self.polygons, polygons: self.polygons })
