@@ -363,22 +363,26 @@ impl Worker {
             }
         });
         for (ci, cell) in c.cells().iter().enumerate() {
-            let mut ef: SmallVec<[(u32, u32); 32]> = SmallVec::new();
+            // (edge, face) packed as `e << 32 | f`: the numeric order is
+            // the pairs' lexicographic one, and a sort of plain integers
+            // (the small sort of every tet) compares once instead of twice
+            let mut ef: SmallVec<[u64; 32]> = SmallVec::new();
             for &fi in &cell.faces {
                 for &e in &c.faces()[fi as usize].edges {
                     if self.edge_net[e as usize] > 0 || (corner_degenerate && on_tet_edge(c, e)) {
-                        ef.push((e, fi));
+                        ef.push(u64::from(e) << 32 | u64::from(fi));
                     }
                 }
             }
             ef.sort_unstable();
+            let edge = |k: u64| (k >> 32) as u32;
             let mut j = 0;
             while j + 1 < ef.len() {
-                if ef[j].0 != ef[j + 1].0 {
+                if edge(ef[j]) != edge(ef[j + 1]) {
                     j += 1;
                     continue;
                 }
-                let (e, f1, f2) = (ef[j].0, ef[j].1, ef[j + 1].1);
+                let (e, f1, f2) = (edge(ef[j]), ef[j] as u32, ef[j + 1] as u32);
                 j += 2;
                 let [u, w] = c.edges()[e as usize].vertices;
                 let (n1, n2) = (self.fref[f1 as usize].is_some(), self.fref[f2 as usize].is_some());
