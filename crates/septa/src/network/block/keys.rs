@@ -7,7 +7,6 @@ use super::worker::State;
 use crate::complex::{Complex, Mode};
 use crate::grid::Grid;
 use crate::network::VKey;
-use smallvec::SmallVec;
 
 /// Global key of complex vertex `v` of tet `tet` built on the functions `active`.
 pub(crate) fn vertex_key(mode: Mode, c: &Complex, v: u32, tet: &[u32; 4], active: &[u16]) -> VKey {
@@ -44,11 +43,19 @@ fn on_block_boundary(ctx: &Ctx, block: Option<([usize; 3], [usize; 3])>, key: &V
     let (Grid::Box(g), Some((lo, hi))) = (ctx.grid, block) else {
         return true;
     };
-    let verts = key.grid.iter().take_while(|&&v| v != u32::MAX);
-    let ijk: SmallVec<[[usize; 3]; 4]> = match &ctx.lookup {
-        Some(l) => verts.map(|&v| l.ijk(v)).collect(),
-        None => verts.map(|&v| g.vertex_ijk(v)).collect(),
-    };
+    // the key's grid vertices (up to the first unused slot) in a fixed
+    // array: a collected SmallVec was half of this test's cost, which runs
+    // for every new vertex
+    let mut ijk = [[0usize; 3]; 4];
+    let mut n = 0;
+    for &v in key.grid.iter().take_while(|&&v| v != u32::MAX) {
+        ijk[n] = match &ctx.lookup {
+            Some(l) => l.ijk(v),
+            None => g.vertex_ijk(v),
+        };
+        n += 1;
+    }
+    let ijk = &ijk[..n];
     (0..3).any(|a| ijk.iter().all(|p| p[a] == lo[a]) || ijk.iter().all(|p| p[a] == hi[a]))
 }
 
