@@ -197,10 +197,11 @@ pub(super) fn run_box(
                             }
                         }
                         let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                        let corners = g.tet_corners(gc, lt).map(|p| {
-                            let (a, b, c) = ((p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1);
-                            vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]
-                        });
+                        let offsets = g
+                            .tet_corners(gc, lt)
+                            .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
+                        let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
+                        w.tet_hint = Some(offsets.map(|[a, b, c]| g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c])));
                         if ctx.mode == Mode::Mi && !corners.contains(&BAD) {
                             // The unique strict maximum at each corner.
                             w.winner_hint = Some(corners);

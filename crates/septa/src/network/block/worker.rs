@@ -37,6 +37,9 @@ pub(crate) struct Worker {
     pub(super) pair_hint: Option<[u16; 2]>,
     /// MI: the unique strict maximum at each corner of the next tet, if known.
     pub(super) winner_hint: Option<[u64; 4]>,
+    /// The grid vertices of the next tet, if known (`Grid::tet` without its
+    /// divisions, from the cube the caller walks).
+    pub(super) tet_hint: Option<[u32; 4]>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -170,7 +173,8 @@ impl Worker {
     /// The per-tet step (active functions, complex, extraction); look-up
     /// tables slot in at the `build` call.
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
-        let tet = ctx.grid.tet(t);
+        let tet = self.tet_hint.take().unwrap_or_else(|| ctx.grid.tet(t));
+        debug_assert_eq!(tet, ctx.grid.tet(t), "grid vertices of tet {t}");
         let row = |f: usize| tet.map(|v| ctx.val(v, f));
         match (self.pair_hint, self.active_hint) {
             (Some(pair), _) => {
