@@ -150,6 +150,8 @@ fn normalize(mut x: [f64; 4], n: usize) -> [f64; 4] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
 
     /// The edge path gives the general path's bits: IA and MI, both edge
     /// orders, values of all signs, exact zeros, -0.0, ties between the
@@ -157,21 +159,14 @@ mod tests {
     #[test]
     fn edge_path_is_bit_identical_to_the_general_path() {
         let pool = [-3.5, -1.0, -0.0, 0.0, 1e-300, 0.1, 0.3, 2.0, 7.25, -1e-17, 1e17];
-        let mut state = 0x2545f4914f6cdd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = ChaCha8Rng::seed_from_u64(0x2545f4914f6cdd1du64);
         let mut compared = 0;
         for _ in 0..20_000 {
-            let values: Vec<[f64; 4]> =
-                (0..3).map(|_| [0, 1, 2, 3].map(|_| pool[(next() % pool.len() as u64) as usize])).collect();
-            let a = (next() % 4) as u8;
-            let b = (a + 1 + (next() % 3) as u8) % 4;
+            let values = super::super::random_rows(&mut rng, &pool, 3);
+            let a = (rng.gen::<u64>() % 4) as u8;
+            let b = (a + 1 + (rng.gen::<u64>() % 3) as u8) % 4;
             let simplex = 1 << a | 1 << b;
-            let (p, q) = ((next() % 3) as u16, (next() % 3) as u16);
+            let (p, q) = ((rng.gen::<u64>() % 3) as u16, (rng.gen::<u64>() % 3) as u16);
             for (mode, funcs) in [(Some(Mode::Ia), vec![p]), (None, vec![q]), (Some(Mode::Mi), vec![p, q])] {
                 let fast = on_edge(mode, simplex, &funcs, &values).expect("an edge vertex");
                 let slow = general(mode, simplex, &funcs, &values);

@@ -58,3 +58,10 @@ mod types;
 pub use build::{BuildError, Options};
 pub use canonical::CanonicalForm;
 pub use types::{Cell, Complex, Edge, Face, Mode, Plane, Vertex, NONE};
+
+/// `n` rows of corner values drawn from `pool` (unit tests of the
+/// predicates and coordinates: small pools make zeros and ties common).
+#[cfg(test)]
+pub(crate) fn random_rows(rng: &mut impl rand::Rng, pool: &[f64], n: usize) -> Vec<[f64; 4]> {
+    (0..n).map(|_| [0, 1, 2, 3].map(|_| pool[rng.gen_range(0..pool.len())])).collect()
+}

@@ -200,6 +200,8 @@ fn naive_det(m: &[[f64; 4]; 4], n: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
 
     /// The direct IA matrices give the signs of the general rows: every
     /// simplex, every vertex function set of the right size, `orient` and
@@ -207,26 +209,19 @@ mod tests {
     #[test]
     fn direct_ia_signs_equal_the_general_rows() {
         let pool = [-2.0, -1.0, -0.5, 0.0, 0.5, 1.0, 3.0, 1e-300, -7e20];
-        let mut state = 0x9e3779b97f4a7c15u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = ChaCha8Rng::seed_from_u64(0x9e3779b97f4a7c15u64);
         let mut nonzero = 0;
         for _ in 0..3000 {
-            let values: Vec<[f64; 4]> =
-                (0..4).map(|_| [0, 1, 2, 3].map(|_| pool[(next() % pool.len() as u64) as usize])).collect();
+            let values = super::super::random_rows(&mut rng, &pool, 4);
             let p = Predicates { values: &values, mode: Mode::Ia, float: false };
             for simplex in 1..16u8 {
                 let d = simplex.count_ones() as usize - 1;
-                let funcs: Vec<u16> = (0..4u16).filter(|_| next() % 2 == 0).take(d).collect();
+                let funcs: Vec<u16> = (0..4u16).filter(|_| rng.gen::<u64>() % 2 == 0).take(d).collect();
                 if funcs.len() != d {
                     continue;
                 }
                 let v = Vertex::new(simplex, &funcs);
-                for last in [None, Some((next() % 4) as u16)] {
+                for last in [None, Some((rng.gen::<u64>() % 4) as u16)] {
                     let want = p.sign_of(p.rows(&v, last));
                     assert_eq!(p.ia_sign(&v, last), want, "{simplex:b} {funcs:?} {last:?} {values:?}");
                     nonzero += (want != 0) as usize;
