@@ -52,14 +52,7 @@ impl Predicates<'_> {
     /// `last` or ones): the two zeroed 4 x 4 arrays and their copies were
     /// most of a predicate's cost outside the determinant.
     fn ia_sign(&self, v: &Vertex, last: Option<u16>) -> i8 {
-        let mut s = [0usize; 4];
-        let mut n = 0;
-        for i in 0..4 {
-            if v.simplex() >> i & 1 == 1 {
-                s[n] = i;
-                n += 1;
-            }
-        }
+        let (s, n) = simplex_corners(v);
         let f = v.functions();
         fn fill<const N: usize>(values: &[[f64; 4]], s: &[usize; 4], f: &[u16], last: Option<u16>) -> [[f64; N]; N] {
             let mut m = [[0.0; N]; N];
@@ -87,18 +80,10 @@ impl Predicates<'_> {
 
     fn rows(&self, v: &Vertex, last: Option<u16>) -> Rows {
         let mut r = Rows { a: [[0.0; 4]; 4], b: [[0.0; 4]; 4], n: 0 };
-        // The tet corners of the vertex's simplex, without allocating.
-        let mut s = [0u8; 4];
-        let mut n = 0;
-        for i in 0..4u8 {
-            if v.simplex() >> i & 1 == 1 {
-                s[n] = i;
-                n += 1;
-            }
-        }
+        let (s, n) = simplex_corners(v);
         r.n = n;
         let f = v.functions();
-        let val = |func: u16, j: usize| self.values[func as usize][s[j] as usize];
+        let val = |func: u16, j: usize| self.values[func as usize][s[j]];
         match self.mode {
             Mode::Ia => {
                 for (k, &g) in f.iter().enumerate() {
@@ -151,6 +136,21 @@ impl Predicates<'_> {
         };
         s.as_i8()
     }
+}
+
+/// The tet corners of the vertex's simplex, ascending, and how many there
+/// are (without allocating).
+#[inline]
+fn simplex_corners(v: &Vertex) -> ([usize; 4], usize) {
+    let mut s = [0usize; 4];
+    let mut n = 0;
+    for i in 0..4 {
+        if v.simplex() >> i & 1 == 1 {
+            s[n] = i;
+            n += 1;
+        }
+    }
+    (s, n)
 }
 
 #[inline]

@@ -21,7 +21,7 @@ static DURABLE: AtomicU8 = AtomicU8::new(0);
 /// Whether finished files are flushed to the disk before they are renamed
 /// into place: as set by [`set_durable`], else `SEPTA_FSYNC` is set to a
 /// value other than `0` (default: off).
-pub fn durable() -> bool {
+fn durable() -> bool {
     match DURABLE.load(Ordering::Relaxed) {
         0 => {
             let on = std::env::var_os("SEPTA_FSYNC").is_some_and(|v| !v.is_empty() && v != "0");

@@ -32,7 +32,7 @@ mod viewer;
 mod volume;
 mod vtu_stream;
 
-pub use atomic::{durable, remove_pending_temps, set_durable, write_atomic, write_atomic_with};
+pub use atomic::{remove_pending_temps, set_durable, write_atomic, write_atomic_with};
 pub use cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
 pub use cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_cells_vtu_of};
 pub use cut_vtu::{read_polyhedra, Polyhedra};
