@@ -146,13 +146,53 @@ impl Complex {
                 }
             }
         }
-        self.init_tet(0);
-        let first = if mode == Mode::Mi { 1 } else { 0 };
+        let first = match self.decode_prefix(&preds, options) {
+            Some(inserted) => inserted,
+            None => {
+                self.init_tet(0);
+                if mode == Mode::Mi {
+                    1
+                } else {
+                    0
+                }
+            }
+        };
         for f in first..values.len() as u16 {
             self.insert(&preds, f, scratch)?;
         }
         self.rename_tied_vertices(&preds);
         Ok(())
+    }
+
+    /// For more functions than any table holds: the complex of the first
+    /// `p` functions decoded from the largest table (IA `p = 2`, MI `p = 3`),
+    /// with each vertex's orientation, and `p`, the number of functions
+    /// inserted; `None` when that prefix falls back (a zero sign).
+    ///
+    /// The incremental construction inserts functions in order and its
+    /// state after `p` of them depends on nothing else, so continuing from
+    /// the decoded prefix gives the same complex, numbering included, as
+    /// inserting every function: a table template *is* that state
+    /// (module docs of `lookup`), and a template is only found when every
+    /// sign the prefix reads is non-zero, as `degenerate = false` says.
+    /// The orientations are recomputed because templates do not hold them
+    /// (a table user never signs another function at its vertices).
+    fn decode_prefix(&mut self, preds: &Predicates, options: &Options) -> Option<u16> {
+        let p = match preds.mode {
+            Mode::Ia => 2,
+            Mode::Mi => 3,
+        };
+        if !options.lookup || preds.values.len() <= p {
+            return None;
+        }
+        let prefix = Predicates { values: &preds.values[..p], mode: preds.mode, float: preds.float };
+        let table = super::lookup::table(preds.mode, p)?;
+        let t = super::lookup::find(table, &prefix, p)?;
+        self.decode(&table.data[t as usize..]);
+        for v in 0..self.vertices.len() {
+            self.orient[v] = preds.orient(&self.vertices[v]);
+        }
+        Some(p as u16)
     }
 
     /// Resets to the bare tetrahedron (one cell; MI material `material`).

@@ -1,5 +1,7 @@
 //! The committed look-up tables equal a fresh generation, and the table
-//! path gives exactly the incremental path's complex.
+//! path gives exactly the incremental path's complex, also when a table
+//! only decodes the first functions (IA 3-4, MI 4-5) and the rest are
+//! inserted incrementally.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -32,7 +34,16 @@ fn same_complex(mode: Mode, values: &[[f64; 4]]) {
 #[test]
 fn table_path_equals_incremental_path() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
-    for (mode, k) in [(Mode::Ia, 1), (Mode::Ia, 2), (Mode::Mi, 2), (Mode::Mi, 3)] {
+    for (mode, k) in [
+        (Mode::Ia, 1),
+        (Mode::Ia, 2),
+        (Mode::Mi, 2),
+        (Mode::Mi, 3),
+        (Mode::Ia, 3),
+        (Mode::Ia, 4),
+        (Mode::Mi, 4),
+        (Mode::Mi, 5),
+    ] {
         for _ in 0..20_000 {
             let v: Vec<[f64; 4]> = (0..k).map(|_| [0; 4].map(|_| rng.gen_range(-1.0..1.0))).collect();
             same_complex(mode, &v);
