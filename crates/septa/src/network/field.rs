@@ -27,6 +27,16 @@ pub trait BoundedField: Sync {
         }
         out
     }
+    /// [`BoundedField::sample`] for IA at `points` that all lie in the box
+    /// `[min, max]`: a function that provably keeps one strict sign on the
+    /// whole box may be given as `1.0` or `-1.0` there instead of its value.
+    /// IA reads such a function only through its sign (it is active in no
+    /// tet of the box: region labels and edge tests), so the result is the
+    /// same; the sparse path samples a block this way. The default samples
+    /// every function.
+    fn sample_ia_in_box(&self, points: &[[f64; 3]], _min: [f64; 3], _max: [f64; 3]) -> Vec<f64> {
+        self.sample(points)
+    }
     /// Whether the box `[min, max]` may hold a part of the network: false
     /// only if proven empty (IA: every function keeps one strict sign on
     /// the box; MI: one function exceeds every other on it).
@@ -72,6 +82,9 @@ impl<F: BoundedField + ?Sized> BoundedField for ByRef<'_, F> {
     }
     fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
         self.0.sample(points)
+    }
+    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
+        self.0.sample_ia_in_box(points, min, max)
     }
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
         self.0.may_be_active(mode, min, max)

@@ -2,7 +2,7 @@
 //! by [`Primitive::eval`], sampling in parallel by [`sample_grid`], empty
 //! boxes proven by the primitives' conservative bounds (`sample.rs`).
 
-use super::sample::{box_may_be_active_ia, box_may_be_active_mi};
+use super::sample::{box_may_be_active_ia, box_may_be_active_mi, sample_grid_ia_in_box};
 use super::{block_may_be_active_ia, block_may_be_active_mi, sample_grid, Primitive};
 use crate::complex::Mode;
 use crate::network::{BoundedField, Field};
@@ -18,6 +18,10 @@ impl BoundedField for [Primitive] {
 
     fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
         sample_grid(self, points)
+    }
+
+    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
+        sample_grid_ia_in_box(self, points, min, max)
     }
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
@@ -46,6 +50,10 @@ impl BoundedField for Vec<Primitive> {
 
     fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
         self.as_slice().sample(points)
+    }
+
+    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
+        self.as_slice().sample_ia_in_box(points, min, max)
     }
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {

@@ -21,7 +21,25 @@ use super::vec3::V3;
 /// assert_eq!(v, vec![1.0, 0.0, -1.0, 0.0]);
 /// ```
 pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
+    sample_known(functions, points, &[])
+}
+
+/// [`sample_grid`] at points that all lie in the box `[min, max]`, with
+/// every function that provably keeps one strict sign on the box given as
+/// `1.0` or `-1.0` (`BoundedField::sample_ia_in_box`: IA reads such a
+/// function only through its sign). The bound encloses every rounded value
+/// `eval` returns in the box, so the stand-in has the sample's sign.
+pub(crate) fn sample_grid_ia_in_box(functions: &[Primitive], points: &[V3], min: V3, max: V3) -> Vec<f64> {
+    let known: Vec<Option<f64>> =
+        functions.iter().map(|f| ia_sign(f, min, max, 0).map(|p| if p { 1.0 } else { -1.0 })).collect();
+    sample_known(functions, points, &known)
+}
+
+/// [`sample_grid`] with `known[j]` (when `known` is not empty and it is
+/// `Some`) standing for every value of function `j`.
+fn sample_known(functions: &[Primitive], points: &[V3], known: &[Option<f64>]) -> Vec<f64> {
     let k = functions.len();
+    let known_at = |j: usize| known.get(j).copied().flatten();
     // Chunks of rows keep the per-task overhead small.
     const ROWS: usize = 256;
     // A block of sparse evaluation (17^3 points by default) runs on one
@@ -33,10 +51,17 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
         const RUN: usize = 64;
         let mut out = Vec::with_capacity(points.len() * k);
         let mut columns = vec![0.0; RUN * k];
+        for (j, column) in columns.chunks_exact_mut(RUN).enumerate() {
+            if let Some(x) = known_at(j) {
+                column.fill(x);
+            }
+        }
         for run in points.chunks(RUN) {
             let n = run.len();
-            for (f, column) in functions.iter().zip(columns.chunks_exact_mut(RUN)) {
-                f.eval_into(run, &mut column[..n]);
+            for (j, (f, column)) in functions.iter().zip(columns.chunks_exact_mut(RUN)).enumerate() {
+                if known_at(j).is_none() {
+                    f.eval_into(run, &mut column[..n]);
+                }
             }
             for i in 0..n {
                 out.extend((0..k).map(|f| columns[f * RUN + i]));
@@ -50,8 +75,8 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     }
     out.par_chunks_mut(ROWS * k).zip(points.par_chunks(ROWS)).for_each(|(rows, pts)| {
         for (row, p) in rows.chunks_mut(k).zip(pts) {
-            for (v, f) in row.iter_mut().zip(functions) {
-                *v = f.eval(*p);
+            for (j, (v, f)) in row.iter_mut().zip(functions).enumerate() {
+                *v = known_at(j).unwrap_or_else(|| f.eval(*p));
             }
         }
     });
@@ -202,4 +227,50 @@ pub(crate) fn box_may_be_active_mi(functions: &[Primitive], min: V3, max: V3) ->
         }
     }
     !(best > second_upper)
+}
+
+#[cfg(test)]
+mod tests {
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    use super::*;
+
+    /// The stand-ins of `sample_grid_ia_in_box` have the sign of every
+    /// sample in the box, and the other functions their exact values, for
+    /// every primitive type on boxes that straddle, touch and miss their
+    /// zero sets (both kinds must occur, or the test proves nothing).
+    #[test]
+    fn stand_ins_keep_the_sign_of_every_sample_in_the_box() {
+        let text = include_str!("../../tests/common/all_primitives.json");
+        let functions = crate::scene::load_function_list(text, "all_primitives.json", None).unwrap();
+        let k = functions.len();
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let (mut stood_in, mut sampled) = (0, 0);
+        for _ in 0..400 {
+            let lo: V3 = [0; 3].map(|_| rng.gen_range(-1.5..1.5));
+            let size = if rng.gen_bool(0.5) { rng.gen_range(0.01..0.2) } else { rng.gen_range(0.2..1.5) };
+            let hi: V3 = lo.map(|x| x + size);
+            // A 5^3 grid of the box, ends included, as a block's vertices.
+            let at = |a: usize, i: usize| if i == 4 { hi[a] } else { lo[a] + (hi[a] - lo[a]) * i as f64 / 4.0 };
+            let points: Vec<V3> = (0..125).map(|n| [at(0, n / 25), at(1, n / 5 % 5), at(2, n % 5)]).collect();
+            let exact = sample_grid(&functions, &points);
+            let given = sample_grid_ia_in_box(&functions, &points, lo, hi);
+            assert_eq!(exact.len(), given.len());
+            for j in 0..k {
+                let column = |v: &[f64]| (0..points.len()).map(|i| v[i * k + j]).collect::<Vec<_>>();
+                let (e, g) = (column(&exact), column(&given));
+                if e == g {
+                    sampled += 1;
+                    continue;
+                }
+                stood_in += 1;
+                let s = g[0];
+                assert!(s == 1.0 || s == -1.0, "function {j}: stand-in {s}");
+                assert!(g.iter().all(|&x| x == s), "function {j}: one stand-in per box");
+                assert!(e.iter().all(|&x| x * s > 0.0), "function {j} on {lo:?}..{hi:?}: a sample of the other sign");
+            }
+        }
+        assert!(stood_in > 100 && sampled > 100, "stood in {stood_in}, sampled {sampled}");
+    }
 }

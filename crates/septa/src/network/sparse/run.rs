@@ -153,7 +153,17 @@ fn sample_block(
             local += zs.len();
         }
     }
-    let data = functions.sample(&points);
+    // IA: functions of one proven sign on the block's box (its first and
+    // last coordinates per axis; every point lies in it) may come back as
+    // +-1, since no tet of the block has them active (field.rs).
+    let data = match mode {
+        Mode::Ia => {
+            let ends = |c: &[f64]| (c[0], c[c.len() - 1]);
+            let [(x0, x1), (y0, y1), (z0, z1)] = [ends(&xs), ends(&ys), ends(&zs)];
+            functions.sample_ia_in_box(&points, [x0, y0, z0], [x1, y1, z1])
+        }
+        Mode::Mi => functions.sample(&points),
+    };
     drop(points);
     // Vertices of sub-boxes proven empty are proven clean and finite by the
     // same bounds (`scene/sample.rs`), so only the samples are checked.
