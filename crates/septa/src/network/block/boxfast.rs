@@ -29,12 +29,16 @@ pub(crate) fn applies(ctx: &Ctx) -> bool {
 }
 
 fn vertex_label(ctx: &Ctx, v: u32, buf: &mut Vec<f64>) -> u64 {
-    let k = ctx.k;
     if let Some(l) = ctx.label(v) {
         // Indicators: the 1 is the unique strict maximum.
         return l as u64;
     }
-    let row = ctx.row(v, buf);
+    row_label(ctx, ctx.row(v, buf))
+}
+
+/// [`vertex_label`] of the vertex whose `k` values are `row`.
+fn row_label(ctx: &Ctx, row: &[f64]) -> u64 {
+    let k = ctx.k;
     match ctx.mode {
         Mode::Ia => {
             let mut bits = 0u64;
@@ -112,6 +116,9 @@ pub(super) fn run_box(
         Some(labels) => labels.iter().map(|&l| l as u64).collect(),
         None => vec![BAD; vn[0] * vn[1] * vn[2]],
     };
+    // This block's samples as rows, read by local index (the walk below
+    // knows every corner's), not located from grid vertex ids.
+    let rows = ctx.sparse.and_then(|s| s.block_rows()).filter(|r| r.lo == lo && r.vn == vn);
     let mut buf = Vec::with_capacity(ctx.k);
     for i in 0..if block_labels.is_some() { 0 } else { vn[0] } {
         for j in 0..vn[1] {
@@ -120,8 +127,10 @@ pub(super) fn run_box(
                 if mask.is_some_and(|m| m.row(local) == NO_ROW) {
                     continue;
                 }
-                let v = g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]);
-                vl[local] = vertex_label(ctx, v, &mut buf);
+                vl[local] = match &rows {
+                    Some(r) => row_label(ctx, &r.data[r.row_of(local) as usize * ctx.k..][..ctx.k]),
+                    None => vertex_label(ctx, g.vertex_index([lo[0] + i, lo[1] + j, lo[2] + k]), &mut buf),
+                };
             }
         }
     }
@@ -174,6 +183,21 @@ pub(super) fn run_box(
                     st.node_volume.push(cube_vol);
                     node[local(i, j, k)] = id;
                 } else {
+                    // The cube's 8 corners (bit code `a << 2 | b << 1 | c`, as
+                    // `tet_corners` names them): grid vertex, corner label and
+                    // sample row, once per cube instead of once per tet.
+                    let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
+                    let at = |p: usize| [(p >> 2) & 1, (p >> 1) & 1, p & 1];
+                    let locals: [usize; 8] = std::array::from_fn(|p| {
+                        let [a, b, c] = at(p);
+                        ((i + a) * vn[1] + j + b) * vn[2] + k + c
+                    });
+                    let cube_ids: [u32; 8] = std::array::from_fn(|p| {
+                        let [a, b, c] = at(p);
+                        g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c])
+                    });
+                    let cube_labels = locals.map(|l| vl[l]);
+                    let cube_rows = rows.map(|r| locals.map(|l| r.row_of(l)));
                     for (lt, t) in (cube * per..(cube + 1) * per).enumerate() {
                         // IA: the active functions are the sign bits that differ
                         // between the tet's corners, the label at corner 0 the
@@ -182,26 +206,22 @@ pub(super) fn run_box(
                         w.base_hint = None;
                         w.pair_hint = None;
                         w.winner_hint = None;
+                        let ps = g.tet_corners(gc, lt).map(|p| p as usize);
+                        let corners = ps.map(|p| cube_labels[p]);
                         if indicators {
-                            let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                            let offsets = g
-                                .tet_corners(gc, lt)
-                                .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
-                            let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
                             // `g.tet(t)` without its divisions.
-                            let ijk = offsets.map(|[a, b, c]| [gc[0] + a, gc[1] + b, gc[2] + c]);
-                            let tet = ijk.map(|p| g.vertex_index(p));
+                            let ijk = ps.map(|p| {
+                                let [a, b, c] = at(p);
+                                [gc[0] + a, gc[1] + b, gc[2] + c]
+                            });
+                            let tet = ps.map(|p| cube_ids[p]);
                             let geometry = CubeCorners { ijk, lo, hi, axes: &axes };
                             if super::voxels::indicator_tet(w, ctx, st, t, &tet, corners, &geometry)? {
                                 continue;
                             }
                         }
-                        let gc = [lo[0] + i, lo[1] + j, lo[2] + k];
-                        let offsets = g
-                            .tet_corners(gc, lt)
-                            .map(|p| [(p >> 2) as usize & 1, (p >> 1) as usize & 1, p as usize & 1]);
-                        let corners = offsets.map(|[a, b, c]| vl[((i + a) * vn[1] + j + b) * vn[2] + k + c]);
-                        w.tet_hint = Some(offsets.map(|[a, b, c]| g.vertex_index([gc[0] + a, gc[1] + b, gc[2] + c])));
+                        w.tet_hint = Some(ps.map(|p| cube_ids[p]));
+                        w.rows_hint = cube_rows.map(|r| ps.map(|p| r[p]));
                         if ctx.mode == Mode::Mi && !corners.contains(&BAD) {
                             // The unique strict maximum at each corner.
                             w.winner_hint = Some(corners);

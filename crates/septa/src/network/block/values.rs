@@ -35,6 +35,34 @@ pub(crate) trait Values: Sync {
     fn mask(&self) -> Option<&CubeMask> {
         None
     }
+    /// One box block's samples as rows, when held so: a caller that walks
+    /// the block's vertices by their local index reads a row without
+    /// locating grid vertex ids ([`Values::val`]'s divisions and cache).
+    fn block_rows(&self) -> Option<BlockRows<'_>> {
+        None
+    }
+}
+
+/// The samples of the box block `lo..lo + vn` (grid coordinates) as rows of
+/// `k` values: function `f` at the vertex of row `r` is `data[r * k + f]`.
+#[derive(Clone, Copy)]
+pub(crate) struct BlockRows<'a> {
+    pub data: &'a [f64],
+    pub lo: [usize; 3],
+    pub vn: [usize; 3],
+    mask: Option<&'a CubeMask>,
+}
+
+impl BlockRows<'_> {
+    /// The row of block-local vertex `local` (`(i * vn[1] + j) * vn[2] + k`),
+    /// or [`super::mask::NO_ROW`] for a vertex the mask left unsampled.
+    #[inline]
+    pub(crate) fn row_of(&self, local: usize) -> u32 {
+        match self.mask {
+            None => local as u32,
+            Some(m) => m.row(local),
+        }
+    }
 }
 
 /// Run-wide inputs.
@@ -193,6 +221,10 @@ impl Values for BlockValues {
 
     fn mask(&self) -> Option<&CubeMask> {
         self.mask.as_ref()
+    }
+
+    fn block_rows(&self) -> Option<BlockRows<'_>> {
+        Some(BlockRows { data: &self.data, lo: self.at.lo, vn: self.at.vn, mask: self.mask.as_ref() })
     }
 }
 

@@ -40,6 +40,9 @@ pub(crate) struct Worker {
     /// The grid vertices of the next tet, if known (`Grid::tet` without its
     /// divisions, from the cube the caller walks).
     pub(super) tet_hint: Option<[u32; 4]>,
+    /// The rows of the next tet's corners in the block's samples
+    /// (`Values::block_rows`), if known (from the cube the caller walks).
+    pub(super) rows_hint: Option<[u32; 4]>,
     cell_labels: Vec<Label>,
     /// IA: sign bits of every function at corner 0 of the current tet.
     base_label: Label,
@@ -175,7 +178,17 @@ impl Worker {
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
         let tet = self.tet_hint.take().unwrap_or_else(|| ctx.grid.tet(t));
         debug_assert_eq!(tet, ctx.grid.tet(t), "grid vertices of tet {t}");
-        let row = |f: usize| tet.map(|v| ctx.val(v, f));
+        let rows_hint = self.rows_hint.take();
+        let block_data = rows_hint.and(ctx.sparse).and_then(|s| s.block_rows()).map(|r| r.data);
+        let k = ctx.k;
+        let row = |f: usize| match (rows_hint, block_data) {
+            (Some(r), Some(d)) => {
+                let x = r.map(|r| d[r as usize * k + f]);
+                debug_assert_eq!(x.map(f64::to_bits), tet.map(|v| ctx.val(v, f).to_bits()), "rows of tet {t}");
+                x
+            }
+            _ => tet.map(|v| ctx.val(v, f)),
+        };
         match (self.pair_hint, self.active_hint) {
             (Some(pair), _) => {
                 self.active.clear();
