@@ -27,15 +27,27 @@ pub trait BoundedField: Sync {
         }
         out
     }
-    /// [`BoundedField::sample`] for IA at `points` that all lie in the box
-    /// `[min, max]`: a function that provably keeps one strict sign on the
-    /// whole box may be given as `1.0` or `-1.0` there instead of its value.
-    /// IA reads such a function only through its sign (it is active in no
-    /// tet of the box: region labels and edge tests), so the result is the
-    /// same; the sparse path samples a block this way. The default samples
-    /// every function.
-    fn sample_ia_in_box(&self, points: &[[f64; 3]], _min: [f64; 3], _max: [f64; 3]) -> Vec<f64> {
+    /// IA: per function, the strict sign it provably keeps on the whole box
+    /// `[min, max]` (`Some(true)`: positive at every point of the box), or
+    /// `None`. Such a function is active in no tet of the box, and IA reads
+    /// it there only through its sign (region labels, edge tests), so the
+    /// sparse path neither samples nor bounds it again inside a block. The
+    /// default proves nothing.
+    fn ia_signs_on_box(&self, _min: [f64; 3], _max: [f64; 3]) -> Vec<Option<bool>> {
+        vec![None; self.functions()]
+    }
+    /// [`BoundedField::sample`] at points of a box whose
+    /// [`BoundedField::ia_signs_on_box`] are `signs`: a function with a sign
+    /// may be given as `1.0` or `-1.0` instead of its values (IA only). The
+    /// default samples every function.
+    fn sample_ia_with_signs(&self, points: &[[f64; 3]], _signs: &[Option<bool>]) -> Vec<f64> {
         self.sample(points)
+    }
+    /// IA [`BoundedField::may_be_active_quick`] on a sub-box of a box whose
+    /// [`BoundedField::ia_signs_on_box`] are `signs` (free to skip the
+    /// functions with a sign: they keep it on the sub-box).
+    fn may_be_active_quick_ia_with_signs(&self, min: [f64; 3], max: [f64; 3], _signs: &[Option<bool>]) -> bool {
+        self.may_be_active_quick(Mode::Ia, min, max)
     }
     /// Whether the box `[min, max]` may hold a part of the network: false
     /// only if proven empty (IA: every function keeps one strict sign on
@@ -83,8 +95,14 @@ impl<F: BoundedField + ?Sized> BoundedField for ByRef<'_, F> {
     fn sample(&self, points: &[[f64; 3]]) -> Vec<f64> {
         self.0.sample(points)
     }
-    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
-        self.0.sample_ia_in_box(points, min, max)
+    fn ia_signs_on_box(&self, min: [f64; 3], max: [f64; 3]) -> Vec<Option<bool>> {
+        self.0.ia_signs_on_box(min, max)
+    }
+    fn sample_ia_with_signs(&self, points: &[[f64; 3]], signs: &[Option<bool>]) -> Vec<f64> {
+        self.0.sample_ia_with_signs(points, signs)
+    }
+    fn may_be_active_quick_ia_with_signs(&self, min: [f64; 3], max: [f64; 3], signs: &[Option<bool>]) -> bool {
+        self.0.may_be_active_quick_ia_with_signs(min, max, signs)
     }
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
         self.0.may_be_active(mode, min, max)

@@ -2,7 +2,10 @@
 //! by [`Primitive::eval`], sampling in parallel by [`sample_grid`], empty
 //! boxes proven by the primitives' conservative bounds (`sample.rs`).
 
-use super::sample::{box_may_be_active_ia, box_may_be_active_mi, sample_grid_ia_in_box};
+use super::sample::{
+    box_may_be_active_ia, box_may_be_active_ia_with_signs, box_may_be_active_mi, ia_signs_on_box,
+    sample_grid_ia_with_signs,
+};
 use super::{block_may_be_active_ia, block_may_be_active_mi, sample_grid, Primitive};
 use crate::complex::Mode;
 use crate::network::{BoundedField, Field};
@@ -20,8 +23,16 @@ impl BoundedField for [Primitive] {
         sample_grid(self, points)
     }
 
-    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
-        sample_grid_ia_in_box(self, points, min, max)
+    fn ia_signs_on_box(&self, min: [f64; 3], max: [f64; 3]) -> Vec<Option<bool>> {
+        ia_signs_on_box(self, min, max)
+    }
+
+    fn sample_ia_with_signs(&self, points: &[[f64; 3]], signs: &[Option<bool>]) -> Vec<f64> {
+        sample_grid_ia_with_signs(self, points, signs)
+    }
+
+    fn may_be_active_quick_ia_with_signs(&self, min: [f64; 3], max: [f64; 3], signs: &[Option<bool>]) -> bool {
+        box_may_be_active_ia_with_signs(self, min, max, signs)
     }
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {
@@ -52,8 +63,16 @@ impl BoundedField for Vec<Primitive> {
         self.as_slice().sample(points)
     }
 
-    fn sample_ia_in_box(&self, points: &[[f64; 3]], min: [f64; 3], max: [f64; 3]) -> Vec<f64> {
-        self.as_slice().sample_ia_in_box(points, min, max)
+    fn ia_signs_on_box(&self, min: [f64; 3], max: [f64; 3]) -> Vec<Option<bool>> {
+        self.as_slice().ia_signs_on_box(min, max)
+    }
+
+    fn sample_ia_with_signs(&self, points: &[[f64; 3]], signs: &[Option<bool>]) -> Vec<f64> {
+        self.as_slice().sample_ia_with_signs(points, signs)
+    }
+
+    fn may_be_active_quick_ia_with_signs(&self, min: [f64; 3], max: [f64; 3], signs: &[Option<bool>]) -> bool {
+        self.as_slice().may_be_active_quick_ia_with_signs(min, max, signs)
     }
 
     fn may_be_active(&self, mode: Mode, min: [f64; 3], max: [f64; 3]) -> bool {

@@ -24,14 +24,19 @@ pub fn sample_grid(functions: &[Primitive], points: &[V3]) -> Vec<f64> {
     sample_known(functions, points, &[])
 }
 
-/// [`sample_grid`] at points that all lie in the box `[min, max]`, with
-/// every function that provably keeps one strict sign on the box given as
-/// `1.0` or `-1.0` (`BoundedField::sample_ia_in_box`: IA reads such a
-/// function only through its sign). The bound encloses every rounded value
-/// `eval` returns in the box, so the stand-in has the sample's sign.
-pub(crate) fn sample_grid_ia_in_box(functions: &[Primitive], points: &[V3], min: V3, max: V3) -> Vec<f64> {
-    let known: Vec<Option<f64>> =
-        functions.iter().map(|f| ia_sign(f, min, max, 0).map(|p| if p { 1.0 } else { -1.0 })).collect();
+/// Per function, the strict sign it provably keeps on the box `[min, max]`
+/// (one bound, no splitting), or `None`: `BoundedField::ia_signs_on_box`.
+pub(crate) fn ia_signs_on_box(functions: &[Primitive], min: V3, max: V3) -> Vec<Option<bool>> {
+    functions.iter().map(|f| ia_sign(f, min, max, 0)).collect()
+}
+
+/// [`sample_grid`] at points of a box whose [`ia_signs_on_box`] are
+/// `signs`, every function with a sign given as `1.0` or `-1.0`
+/// (`BoundedField::sample_ia_with_signs`: IA reads such a function only
+/// through its sign). The bound encloses every rounded value `eval` returns
+/// in the box, so the stand-in has the sample's sign.
+pub(crate) fn sample_grid_ia_with_signs(functions: &[Primitive], points: &[V3], signs: &[Option<bool>]) -> Vec<f64> {
+    let known: Vec<Option<f64>> = signs.iter().map(|s| s.map(|p| if p { 1.0 } else { -1.0 })).collect();
     sample_known(functions, points, &known)
 }
 
@@ -200,6 +205,18 @@ pub(crate) fn box_may_be_active_ia(functions: &[Primitive], min: V3, max: V3) ->
     functions.iter().any(|f| ia_sign(f, min, max, 0).is_none())
 }
 
+/// [`box_may_be_active_ia`] on a sub-box of a box whose [`ia_signs_on_box`]
+/// are `signs`: the functions with a sign keep it on the sub-box, so only
+/// the others are bounded.
+pub(crate) fn box_may_be_active_ia_with_signs(
+    functions: &[Primitive],
+    min: V3,
+    max: V3,
+    signs: &[Option<bool>],
+) -> bool {
+    functions.iter().zip(signs).any(|(f, s)| s.is_none() && ia_sign(f, min, max, 0).is_none())
+}
+
 /// [`block_may_be_active_mi`] without splitting the box and with the
 /// functions' own bounds only: a sub-box is owned when one function's lower
 /// bound exceeds every other one's upper bound. The centred-form bounds on
@@ -236,7 +253,7 @@ mod tests {
 
     use super::*;
 
-    /// The stand-ins of `sample_grid_ia_in_box` have the sign of every
+    /// The stand-ins of `sample_grid_ia_with_signs` have the sign of every
     /// sample in the box, and the other functions their exact values, for
     /// every primitive type on boxes that straddle, touch and miss their
     /// zero sets (both kinds must occur, or the test proves nothing).
@@ -246,7 +263,7 @@ mod tests {
         let functions = crate::scene::load_function_list(text, "all_primitives.json", None).unwrap();
         let k = functions.len();
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let (mut stood_in, mut sampled) = (0, 0);
+        let (mut stood_in, mut sampled, mut empty_sub_boxes) = (0, 0, 0);
         for _ in 0..400 {
             let lo: V3 = [0; 3].map(|_| rng.gen_range(-1.5..1.5));
             let size = if rng.gen_bool(0.5) { rng.gen_range(0.01..0.2) } else { rng.gen_range(0.2..1.5) };
@@ -254,8 +271,18 @@ mod tests {
             // A 5^3 grid of the box, ends included, as a block's vertices.
             let at = |a: usize, i: usize| if i == 4 { hi[a] } else { lo[a] + (hi[a] - lo[a]) * i as f64 / 4.0 };
             let points: Vec<V3> = (0..125).map(|n| [at(0, n / 25), at(1, n / 5 % 5), at(2, n % 5)]).collect();
+            // A sub-box: the functions with a sign on the box keep it there,
+            // so skipping their bounds decides as bounding all of them.
+            let signs = ia_signs_on_box(&functions, lo, hi);
+            let mid = [0, 1, 2].map(|a| at(a, 2));
+            for j in 0..k {
+                let (f, s) = (&functions[j..j + 1], &signs[j..j + 1]);
+                let plain = box_may_be_active_ia(f, lo, mid);
+                assert_eq!(box_may_be_active_ia_with_signs(f, lo, mid, s), plain, "function {j} on {lo:?}..{mid:?}");
+                empty_sub_boxes += !plain as usize;
+            }
             let exact = sample_grid(&functions, &points);
-            let given = sample_grid_ia_in_box(&functions, &points, lo, hi);
+            let given = sample_grid_ia_with_signs(&functions, &points, &signs);
             assert_eq!(exact.len(), given.len());
             for j in 0..k {
                 let column = |v: &[f64]| (0..points.len()).map(|i| v[i * k + j]).collect::<Vec<_>>();
@@ -272,5 +299,6 @@ mod tests {
             }
         }
         assert!(stood_in > 100 && sampled > 100, "stood in {stood_in}, sampled {sampled}");
+        assert!(empty_sub_boxes > 100, "{empty_sub_boxes} sub-boxes proven empty");
     }
 }

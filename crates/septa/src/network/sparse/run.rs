@@ -131,7 +131,15 @@ fn sample_block(
     }
     let k = functions.functions();
     let vn = [hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1];
-    let mask = sub_box_mask(grid, functions, mode, lo, hi);
+    // IA: the functions of one proven sign on the block's box (its first
+    // and last grid vertex; every vertex lies in it) are neither bounded on
+    // its sub-boxes nor sampled: no tet of the block has them active, and
+    // IA reads them only through that sign (field.rs).
+    let signs = (mode == Mode::Ia).then(|| {
+        let at = |l: [usize; 3]| grid.vertex(grid.vertex_index(l));
+        functions.ia_signs_on_box(at(lo), at(hi))
+    });
+    let mask = sub_box_mask(grid, functions, mode, lo, hi, signs.as_deref());
     // One `sample` call for the whole block (rows along the last axis, in
     // the block's vertex order): one allocation and one split into parallel
     // chunks per block, not per row; the values are the same bits.
@@ -153,16 +161,9 @@ fn sample_block(
             local += zs.len();
         }
     }
-    // IA: functions of one proven sign on the block's box (its first and
-    // last coordinates per axis; every point lies in it) may come back as
-    // +-1, since no tet of the block has them active (field.rs).
-    let data = match mode {
-        Mode::Ia => {
-            let ends = |c: &[f64]| (c[0], c[c.len() - 1]);
-            let [(x0, x1), (y0, y1), (z0, z1)] = [ends(&xs), ends(&ys), ends(&zs)];
-            functions.sample_ia_in_box(&points, [x0, y0, z0], [x1, y1, z1])
-        }
-        Mode::Mi => functions.sample(&points),
+    let data = match &signs {
+        Some(signs) => functions.sample_ia_with_signs(&points, signs),
+        None => functions.sample(&points),
     };
     drop(points);
     // Vertices of sub-boxes proven empty are proven clean and finite by the
@@ -203,13 +204,17 @@ fn sub_box_mask(
     mode: Mode,
     lo: [usize; 3],
     hi: [usize; 3],
+    ia_signs: Option<&[Option<bool>]>,
 ) -> Option<CubeMask> {
     if !mask_applies(mode, functions.functions()) {
         return None;
     }
     let n = [0, 1, 2].map(|a| hi[a] - lo[a]);
     let at = |l: [usize; 3]| grid.vertex(grid.vertex_index([lo[0] + l[0], lo[1] + l[1], lo[2] + l[2]]));
-    CubeMask::build(n, |a, b| functions.may_be_active_quick(mode, at(a), at(b)))
+    CubeMask::build(n, |a, b| match ia_signs {
+        Some(signs) => functions.may_be_active_quick_ia_with_signs(at(a), at(b), signs),
+        None => functions.may_be_active_quick(mode, at(a), at(b)),
+    })
 }
 
 pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values: &'a dyn Values) -> Ctx<'a> {
