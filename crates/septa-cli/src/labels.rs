@@ -68,8 +68,10 @@ pub fn run(a: Args) -> CliResult {
 /// run each build and drop arrays of megabytes, and page faults of fresh
 /// arrays were a fifth of a 128^3 run. Allocations up to 32 MiB come from the
 /// heap (not from a fresh mapping each), and the heap is not trimmed while
-/// the process runs. Costs some resident memory (about 15% more on 128^3).
+/// the process runs, nor between the grid pipeline's stages
+/// (`septa::heap`). Costs some resident memory (about 15% more on 128^3).
 pub(crate) fn keep_freed_memory() {
+    septa::heap::set_release_free_memory(false);
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
     // SAFETY: mallopt only changes allocator parameters; no memory is touched.
     unsafe {

@@ -16,6 +16,7 @@
 //! - [`scene`]: primitives, sampling and region rules.
 //! - [`io`]: readers and writers.
 //! - [`job`]: one job model (grid, functions, mode) read from any input, for every front end.
+//! - [`heap`]: free heap memory returned to the system between the grid pipeline's stages.
 //!
 //! What is exact: every combinatorial answer (which vertices, edges, faces
 //! and cells exist and how they connect). What is floating point: vertex
@@ -28,6 +29,7 @@ mod buckets;
 pub mod complex;
 pub mod cut;
 pub mod grid;
+pub mod heap;
 pub mod io;
 pub mod job;
 pub mod network;

@@ -113,6 +113,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         }
         merge_time += t.elapsed();
     }
+    crate::heap::release_free_memory();
     let t = Instant::now();
     let mut m = merger.finish();
     merge_time += t.elapsed();

@@ -654,6 +654,7 @@ pub fn compute_sparse<F: BoundedField + ?Sized>(
     merge_time += merge_window(&mut merger, &mut stats, pending);
     // The workers' tables go before the merged network's topology.
     drop(pool);
+    crate::heap::release_free_memory();
     let t = Instant::now();
     let m = merger.finish();
     merge_time += t.elapsed();
