@@ -64,11 +64,16 @@ fn main() {
     // far, after which a stage's freed arrays stay resident in the heap next
     // to the next stage's: the peak resident memory of a grid run was 7 MB
     // (10%) above its live data on 18 spheres at 64^3 (docs/performance.md).
+    // The smaller arrays stay in the heap, which is not trimmed at every
+    // free (a block's outputs, freed once merged, would be faulted in again
+    // by the next block's): the grid pipeline gives the heap's free pages
+    // back once, after its blocks are merged (`septa::heap`).
     // `septa labels` makes the opposite trade for speed (labels.rs).
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    // SAFETY: a malloc tuning call before any thread starts.
+    // SAFETY: malloc tuning calls before any thread starts.
     unsafe {
         libc::mallopt(libc::M_MMAP_THRESHOLD, 1 << 20);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, 64 << 20);
     }
     // Ctrl-C: remove the partial files of writes in progress and say so; the
     // output folder keeps no manifest.json, so readers see it as incomplete.
