@@ -87,18 +87,19 @@ impl Lengths {
 
     fn reserve(&self, st: &mut State) {
         let o = &mut st.out;
-        o.keys.reserve(self.keys);
-        o.shared.reserve(self.keys);
-        o.points.reserve(self.keys);
-        o.poly_start.reserve(self.poly_start);
-        o.poly_verts.reserve(self.poly_verts);
-        o.poly_label.reserve(self.poly_start);
-        o.poly_cells.reserve(self.poly_start);
-        o.unions.reserve(self.unions);
-        o.wedges.reserve(self.wedges);
-        st.uf.reserve(self.nodes);
-        st.node_label.reserve(self.nodes);
-        st.node_volume.reserve(self.nodes);
+        let room = |n: usize| n + n / 2;
+        o.keys.reserve(room(self.keys));
+        o.shared.reserve(room(self.keys));
+        o.points.reserve(room(self.keys));
+        o.poly_start.reserve(room(self.poly_start));
+        o.poly_verts.reserve(room(self.poly_verts));
+        o.poly_label.reserve(room(self.poly_start));
+        o.poly_cells.reserve(room(self.poly_start));
+        o.unions.reserve(room(self.unions));
+        o.wedges.reserve(room(self.wedges));
+        st.uf.reserve(room(self.nodes));
+        st.node_label.reserve(room(self.nodes));
+        st.node_volume.reserve(room(self.nodes));
     }
 }
 

@@ -1,6 +1,8 @@
 //! Topology of the merged network (Du et al. Sec. 7): edges, patches,
 //! chains, corners, components, shells, and cells by cell grouping.
 
+use smallvec::SmallVec;
+
 use super::merge::Merged;
 use crate::buckets::for_each_bucket;
 use crate::complex::NONE;
@@ -393,10 +395,14 @@ fn cyclic_patches(
     face_cells: &[[u32; 2]],
     chain_faces: &rustc_hash::FxHashMap<[u32; 2], Vec<u32>>,
 ) -> Vec<Vec<u32>> {
-    let mut by_edge: rustc_hash::FxHashMap<[u32; 2], Vec<(u32, u32)>> = Default::default();
-    for &(e, x, y) in &m.wedges {
-        by_edge.entry(e).or_default().push((x, y));
-    }
+    // The wedges are sorted by edge (`canon::canonicalize_merged`), so an
+    // edge's wedges are one run, found by binary search: only the chains'
+    // first edges are looked up, far fewer than the wedges.
+    debug_assert!(m.wedges.windows(2).all(|w| w[0] <= w[1]), "wedges sorted by edge");
+    let wedges_at = |e: [u32; 2]| -> SmallVec<[(u32, u32); 8]> {
+        let lo = m.wedges.partition_point(|w| w.0 < e);
+        m.wedges[lo..].iter().take_while(|w| w.0 == e).map(|w| (w.1, w.2)).collect()
+    };
     let edge = |c: &[u32], k: usize| [c[k].min(c[k + 1]), c[k].max(c[k + 1])];
     chains
         .iter()
@@ -404,7 +410,11 @@ fn cyclic_patches(
             let n = c.len().saturating_sub(1);
             (0..n)
                 .find_map(|k| {
-                    by_edge.get(&edge(c, k)).and_then(|pairs| wedge_cycle(pairs, &|x| face_patch[x as usize / 2]))
+                    let pairs = wedges_at(edge(c, k));
+                    if pairs.is_empty() {
+                        return None;
+                    }
+                    wedge_cycle(&pairs, &|x| face_patch[x as usize / 2])
                 })
                 .or_else(|| {
                     (0..n).find_map(|k| {
