@@ -59,10 +59,11 @@ pub(crate) struct Worker {
 }
 
 /// The lengths of a block's growing output arrays. The next block of a
-/// worker (a neighbour, with about as much surface) reserves them up front,
-/// so its arrays do not grow by doubling and copying (a tenth of the block
-/// stage's instructions went to reallocations on 18 spheres); the spare
-/// room is given back when the block is finished.
+/// worker (a neighbour, with about as much surface) reserves them and half
+/// again up front, so its arrays do not grow by doubling and copying (a
+/// tenth of the block stage's instructions went to reallocations on 18
+/// spheres); the spare room is given back when the block is finished, and
+/// the heap's free pages after the merge (`crate::heap`).
 #[derive(Clone, Copy, Default)]
 struct Lengths {
     keys: usize,
