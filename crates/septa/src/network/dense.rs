@@ -84,6 +84,7 @@ pub fn compute(grid: &Grid, values: &[f64], k: usize, options: &NetworkOptions) 
         volumes: options.volumes,
         grouping: !ray,
         sparse: None,
+        block_rows: None,
         lookup: Ctx::lookup_of(grid),
     };
     let blocks = grid.blocks(options.block);

@@ -41,16 +41,18 @@ fn row_label(ctx: &Ctx, row: &[f64]) -> u64 {
     let k = ctx.k;
     match ctx.mode {
         Mode::Ia => {
-            let mut bits = 0u64;
+            // Without branches (a zero is rare): every vertex of a block
+            // goes through here, k values each.
+            let (mut bits, mut zero) = (0u64, false);
             for (f, &x) in row.iter().enumerate() {
-                if x == 0.0 {
-                    return BAD;
-                }
-                if x > 0.0 {
-                    bits |= 1 << f;
-                }
+                bits |= ((x > 0.0) as u64) << f;
+                zero |= x == 0.0;
             }
-            bits
+            if zero {
+                BAD
+            } else {
+                bits
+            }
         }
         Mode::Mi => {
             let mut best = 0;
@@ -118,7 +120,7 @@ pub(super) fn run_box(
     };
     // This block's samples as rows, read by local index (the walk below
     // knows every corner's), not located from grid vertex ids.
-    let rows = ctx.sparse.and_then(|s| s.block_rows()).filter(|r| r.lo == lo && r.vn == vn);
+    let rows = ctx.block_rows.filter(|r| r.lo == lo && r.vn == vn);
     let mut buf = Vec::with_capacity(ctx.k);
     for i in 0..if block_labels.is_some() { 0 } else { vn[0] } {
         for j in 0..vn[1] {

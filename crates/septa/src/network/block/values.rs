@@ -78,6 +78,9 @@ pub(crate) struct Ctx<'a> {
     pub grouping: bool,
     /// Sparse evaluation (docs/sparse.md): values come from here, not `values`.
     pub sparse: Option<&'a dyn Values>,
+    /// `sparse`'s [`Values::block_rows`], asked once per block instead of
+    /// once per tet.
+    pub block_rows: Option<BlockRows<'a>>,
     /// MI: also drop functions below the average of the corner winners
     /// ([`crate::network::NetworkOptions::mi_average_domination`]).
     pub average_domination: bool,

@@ -181,7 +181,7 @@ impl Worker {
         let tet = self.tet_hint.take().unwrap_or_else(|| ctx.grid.tet(t));
         debug_assert_eq!(tet, ctx.grid.tet(t), "grid vertices of tet {t}");
         let rows_hint = self.rows_hint.take();
-        let block_data = rows_hint.and(ctx.sparse).and_then(|s| s.block_rows()).map(|r| r.data);
+        let block_data = rows_hint.and(ctx.block_rows).map(|r| r.data);
         let k = ctx.k;
         let row = |f: usize| match (rows_hint, block_data) {
             (Some(r), Some(d)) => {

@@ -232,6 +232,7 @@ pub(crate) fn ctx<'a>(grid: &'a Grid, k: usize, options: &NetworkOptions, values
         volumes: false,
         grouping: false,
         sparse: Some(values),
+        block_rows: values.block_rows(),
         lookup: Ctx::lookup_of(grid),
     }
 }
