@@ -467,3 +467,31 @@ fn cyclic_order_of_patches_around_chains() {
         }
     }
 }
+
+#[test]
+fn raytrace_equals_grouping_on_many_components() {
+    // 27 separate spheres: more network components than ray shooting
+    // answers by scanning the faces (`raytrace::SCANS`), so its
+    // vertex-to-face index is built and used too.
+    let grid = Grid::Box(BoxGrid::new([24; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap());
+    let at = [-0.62, 0.03, 0.64];
+    let mut f: Vec<Primitive> = Vec::new();
+    for x in at {
+        for y in at {
+            for z in at {
+                f.push(sphere([x, y, z], 0.17));
+            }
+        }
+    }
+    let values = sample(&f, &grid.vertices());
+    let grouping = run(&grid, &values, f.len(), Mode::Ia, 2);
+    let mut o = NetworkOptions::new(Mode::Ia);
+    o.block = 4;
+    let ray = compute(&grid, &values, f.len(), &o).unwrap();
+    assert_eq!(ray.cells_method, "raytrace");
+    assert_eq!(grouping.cells_method, "grouping");
+    let c = counts(&ray);
+    assert!(c["components"] > 20, "{c:?}");
+    assert_eq!(c["cells"], 28, "{c:?}");
+    assert_eq!(common::cell_partition(&ray), common::cell_partition(&grouping));
+}

@@ -121,19 +121,48 @@ pub(crate) fn ray_start(k: &VKey) -> Option<(u32, u32)> {
     }
 }
 
-/// [`RayIndex`] over the merged network: a vertex-to-face index built once.
+/// [`RayIndex`] over the merged network. Rays ask for a shell about once per
+/// network component, so the faces at a vertex are first found by a scan
+/// of the face loops; past [`SCANS`] questions a vertex-to-face index is
+/// built (on one component, the index cost more than the whole ray stage).
 pub(crate) struct MergedIndex<'a> {
     inp: &'a RayInput<'a>,
     vmap: KeyIndex<'a>,
-    /// Faces at vertex `v`: `vf[start[v]..start[v + 1]]`.
-    start: Vec<u32>,
-    vf: Vec<u32>,
+    /// Faces at vertex `v`: `vf[start[v]..start[v + 1]]`, once built.
+    index: Option<(Vec<u32>, Vec<u32>)>,
+    scans: usize,
 }
+
+/// Shell questions answered by scanning before the index is built.
+const SCANS: usize = 16;
 
 impl<'a> MergedIndex<'a> {
     pub(crate) fn new(inp: &'a RayInput<'a>) -> MergedIndex<'a> {
-        let (start, vf) = faces_at_vertices(inp.keys.len(), inp.face_start, inp.face_verts);
-        MergedIndex { inp, vmap: KeyIndex::new(inp.keys), start, vf }
+        MergedIndex { inp, vmap: KeyIndex::new(inp.keys), index: None, scans: 0 }
+    }
+
+    /// The faces at vertex `v`, ascending (the same list either way).
+    fn faces_at(&mut self, v: u32) -> SmallVec<[u32; 16]> {
+        let inp = self.inp;
+        if self.index.is_none() && self.scans == SCANS {
+            self.index = Some(faces_at_vertices(inp.keys.len(), inp.face_start, inp.face_verts));
+        }
+        match &self.index {
+            Some((start, vf)) => vf[start[v as usize] as usize..start[v as usize + 1] as usize].into(),
+            None => {
+                self.scans += 1;
+                // The face holding loop position `j`: the last one starting at or before it.
+                let face_of = |j: usize| inp.face_start.partition_point(|&s| s as usize <= j) as u32 - 1;
+                let mut out: SmallVec<[u32; 16]> = SmallVec::new();
+                for (j, _) in inp.face_verts.iter().enumerate().filter(|&(_, &u)| u == v) {
+                    let f = face_of(j);
+                    if out.last() != Some(&f) {
+                        out.push(f);
+                    }
+                }
+                out
+            }
+        }
     }
 }
 
@@ -172,8 +201,7 @@ impl RayIndex for MergedIndex<'_> {
         }
         ids.sort_unstable();
         let inp = self.inp;
-        let at = ids[0] as usize;
-        for &gf in &self.vf[self.start[at] as usize..self.start[at + 1] as usize] {
+        for gf in self.faces_at(ids[0]) {
             let mut vs: SmallVec<[u32; 8]> =
                 inp.face_verts[inp.face_start[gf as usize] as usize..inp.face_start[gf as usize + 1] as usize].into();
             vs.sort_unstable();
