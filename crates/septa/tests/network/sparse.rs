@@ -8,7 +8,7 @@ use std::path::Path;
 use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split};
 use septa::network::{compute, Network, NetworkOptions};
-use septa::network::{compute_sparse, SparseStats};
+use septa::network::{compute_sparse, BoundedField, SparseStats};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{sample_grid, Primitive, Scene};
 
@@ -188,4 +188,46 @@ fn builtin_scenes_ia_and_mi_at_several_resolutions() {
     // through grid vertices, whose rays run along the network).
     eprintln!("built-in scenes: {sparse_runs} sparse runs, {fallbacks} dense fallbacks");
     assert!(sparse_runs >= 3 * fallbacks && sparse_runs >= 30, "{sparse_runs} sparse, {fallbacks} fallbacks");
+}
+
+/// Two functions, the second not finite at one grid vertex: the sparse
+/// path names the same vertex and function as the dense path, in both modes.
+struct NanAt {
+    at: [f64; 3],
+}
+
+impl BoundedField for NanAt {
+    fn functions(&self) -> usize {
+        2
+    }
+    fn value(&self, f: usize, p: [f64; 3]) -> f64 {
+        match f {
+            0 => p[0] - 0.1,
+            _ if p == self.at => f64::NAN,
+            _ => p[1] - 0.1,
+        }
+    }
+    fn may_be_active(&self, _mode: Mode, _min: [f64; 3], _max: [f64; 3]) -> bool {
+        true
+    }
+}
+
+#[test]
+fn a_non_finite_sample_is_named_like_the_dense_path() {
+    let grid = BoxGrid::new([8; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap();
+    let g = Grid::Box(grid.clone());
+    let v = grid.vertex_index([5, 2, 6]);
+    let field = NanAt { at: g.vertex(v) };
+    for mode in [Mode::Ia, Mode::Mi] {
+        let mut o = NetworkOptions::new(mode);
+        o.block = 4;
+        let values: Vec<f64> = g.vertices().iter().flat_map(|&p| [field.value(0, p), field.value(1, p)]).collect();
+        let dense = compute(&g, &values, 2, &o).unwrap_err();
+        let sparse = compute_sparse(&grid, &field, &o).unwrap_err();
+        assert_eq!(format!("{dense}"), format!("{sparse}"), "{mode:?}");
+        assert!(
+            matches!(sparse, septa::network::NetworkError::NonFinite { vertex, function: 1, .. } if vertex == v as usize),
+            "{mode:?}: {sparse}"
+        );
+    }
 }
