@@ -32,16 +32,20 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     // Edges: (a << 32 | b, face) sorted; a run of equal keys is one edge.
     // A counting sort by the smaller vertex `a`, then each short bucket
     // sorted: linear time instead of a global sort of every polygon side.
-    let side = |vs: &[u32], j: usize| {
-        let (a, b) = (vs[j], vs[if j + 1 == vs.len() { 0 } else { j + 1 }]);
-        (a.min(b), a.max(b))
-    };
+    // A polygon's sides as (smaller, larger) end, the closing side first
+    // (the order within a bucket does not matter: buckets are sorted whole).
+    fn for_each_side(vs: &[u32], mut side: impl FnMut(u32, u32)) {
+        let Some(&last) = vs.last() else { return };
+        let mut prev = last;
+        for &v in vs {
+            side(prev.min(v), prev.max(v));
+            prev = v;
+        }
+    }
     let mut start = vec![0u32; nv + 1];
     for f in 0..nf {
         let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
-        for j in 0..vs.len() {
-            start[side(vs, j).0 as usize + 1] += 1;
-        }
+        for_each_side(vs, |a, _| start[a as usize + 1] += 1);
     }
     for v in 0..nv {
         start[v + 1] += start[v];
@@ -56,11 +60,10 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     let face = |x: u64| x as u32;
     for f in 0..nf {
         let vs = &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
-        for j in 0..vs.len() {
-            let (a, b) = side(vs, j);
+        for_each_side(vs, |a, b| {
             ef[fill[a as usize] as usize] = u64::from(b) << 32 | f as u64;
             fill[a as usize] += 1;
-        }
+        });
     }
     drop(fill);
     // Sort the buckets and count the edges first: the edge list is sized
