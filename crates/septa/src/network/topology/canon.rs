@@ -59,21 +59,25 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
     m.points = order.par_iter().map(|&o| m.points[o as usize]).collect();
     m.face_verts.par_iter_mut().for_each(|v| *v = vnew[*v as usize]);
     // Faces: by sorted vertex ids, then (degenerate duplicates only) label.
-    // Sort inline keys of the two smallest vertices, then the short runs of
-    // faces sharing them by all their vertices.
+    // Bucket by the smallest vertex, sort each bucket by the second and
+    // third smallest packed in one word (faces sharing two are common:
+    // neighbours across an edge), then the rare runs of faces sharing all
+    // three by all their vertices.
     let face = |f: usize| &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
-    let mut two: Vec<[u32; 2]> = (0..nf)
+    let mut second_third: Vec<u64> = (0..nf)
         .into_par_iter()
         .map(|f| {
-            let (mut a, mut b) = (u32::MAX, u32::MAX);
+            let (mut a, mut b, mut c) = (u32::MAX, u32::MAX, u32::MAX);
             for &v in face(f) {
                 if v < a {
-                    (a, b) = (v, a);
+                    (a, b, c) = (v, a, b);
                 } else if v < b {
-                    b = v;
+                    (b, c) = (v, b);
+                } else if v < c {
+                    c = v;
                 }
             }
-            [a, b]
+            u64::from(b) << 32 | u64::from(c)
         })
         .collect();
     let sorted = |f: u32| {
@@ -84,16 +88,16 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
     let forder = bucket_sort(
         nf,
         nv,
-        |f| two[f][0],
+        |f| face(f).iter().copied().min().unwrap_or(u32::MAX),
         |&a, &b| {
-            two[a as usize][1]
-                .cmp(&two[b as usize][1])
+            second_third[a as usize]
+                .cmp(&second_third[b as usize])
                 .then_with(|| sorted(a).cmp(&sorted(b)))
                 .then_with(|| m.face_label[a as usize].cmp(&m.face_label[b as usize]))
         },
     );
-    two = Vec::new();
-    drop(two);
+    second_third = Vec::new();
+    drop(second_third);
     let mut fnew = vec![0u32; nf];
     let mut start = Vec::with_capacity(nf + 1);
     start.push(0u32);
