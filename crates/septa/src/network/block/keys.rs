@@ -91,17 +91,25 @@ fn packed(key: &VKey) -> Option<u64> {
     if g1 == u32::MAX || g2 != u32::MAX {
         return None;
     }
-    let d = (g1 - g0) as u64;
-    let [f0, f1, f2, _] = key.funcs.map(|f| f as u64);
-    if f0 == u16::MAX as u64 || f2 != u16::MAX as u64 {
+    let [f0, f1, f2, _] = key.funcs;
+    if f0 == u16::MAX || f2 != u16::MAX {
         return None;
     }
+    packed_edge(g0, g1, f0, f1)
+}
+
+/// [`packed`] of the vertex on grid edge `g0 < g1` defined by function `f0`
+/// (`f1 == u16::MAX`) or by the pair `f0 < f1`.
+#[inline]
+fn packed_edge(g0: u32, g1: u32, f0: u16, f1: u16) -> Option<u64> {
+    let d = (g1 - g0) as u64;
+    let (g0, f0, f1) = (g0 as u64, f0 as u64, f1 as u64);
     if f1 == u16::MAX as u64 {
         // Tag bit 63 clear: 22 bits of difference, 9 of function.
-        (d < 1 << 22 && f0 < 1 << 9).then(|| g0 as u64 | d << 32 | f0 << 54)
+        (d < 1 << 22 && f0 < 1 << 9).then(|| g0 | d << 32 | f0 << 54)
     } else {
         // Tag bit 63 set: 17 bits of difference, 7 bits per function.
-        (d < 1 << 17 && f1 < 1 << 7).then(|| g0 as u64 | d << 32 | f0 << 49 | f1 << 56 | 1 << 63)
+        (d < 1 << 17 && f1 < 1 << 7).then(|| g0 | d << 32 | f0 << 49 | f1 << 56 | 1 << 63)
     }
 }
 
@@ -110,6 +118,34 @@ fn packed(key: &VKey) -> Option<u64> {
 pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: impl FnOnce() -> [f64; 3]) -> u32 {
     let block = st.block_box;
     vertex_id_with(st, key, || on_block_boundary(ctx, block, &key), position)
+}
+
+/// [`vertex_id_by_key`] for the vertex on grid edge `g0 < g1` defined by
+/// function `f0` (`f1 == u16::MAX`) or by the pair `f0 < f1` (global ids):
+/// the packed key is made from these directly, and the full key only for
+/// a vertex new to the block (most look-ups find one a neighbour made).
+pub(crate) fn edge_vertex_id(
+    ctx: &Ctx,
+    st: &mut State,
+    [g0, g1]: [u32; 2],
+    [f0, f1]: [u16; 2],
+    position: impl FnOnce() -> [f64; 3],
+) -> u32 {
+    let key = || VKey { grid: [g0, g1, u32::MAX, u32::MAX], funcs: [f0, f1, u16::MAX, u16::MAX] };
+    let Some(p) = packed_edge(g0, g1, f0, f1) else {
+        return vertex_id_by_key(ctx, st, key(), position);
+    };
+    let next = st.out.keys.len() as u32;
+    let id = *st.emap.entry(p).or_insert(next);
+    if id == next {
+        let key = key();
+        debug_assert_eq!(packed(&key), Some(p));
+        let block = st.block_box;
+        st.out.shared.push(on_block_boundary(ctx, block, &key));
+        st.out.keys.push(key);
+        st.out.points.push(position());
+    }
+    id
 }
 
 /// [`vertex_id_by_key`] with the block-boundary test supplied by a caller

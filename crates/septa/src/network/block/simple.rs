@@ -20,7 +20,7 @@ use std::sync::OnceLock;
 
 use smallvec::SmallVec;
 
-use super::keys::{position_on, vertex_id_by_key, vertex_id_with};
+use super::keys::{edge_vertex_id, position_on, vertex_id_with};
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::State;
@@ -154,16 +154,20 @@ pub(crate) fn simple_tet(
         st.out.poly_start.push(0);
     }
     for tv in &t.verts {
-        let mut key = VKey { grid: [u32::MAX; 4], funcs: [u16::MAX; 4] };
+        // Every vertex of a one-polygon template is on a tet edge (Sec. 5.1
+        // key: the edge's grid vertices, the sorted global functions).
+        debug_assert_eq!(tv.simplex.count_ones(), 2, "template vertices lie on tet edges");
         let (a, b) = (tv.simplex.trailing_zeros() as usize, 31 - (tv.simplex as u32).leading_zeros() as usize);
-        key.grid[0] = tet[a].min(tet[b]);
-        key.grid[1] = tet[a].max(tet[b]);
+        let edge = [tet[a].min(tet[b]), tet[a].max(tet[b])];
+        let mut f = [u16::MAX; 2];
         for j in 0..tv.len as usize {
-            key.funcs[j] = active[tv.funcs[j] as usize];
+            f[j] = active[tv.funcs[j] as usize];
         }
-        key.funcs[..tv.len as usize].sort_unstable();
+        if f[1] < f[0] {
+            f.swap(0, 1);
+        }
         let funcs = &tv.funcs[..tv.len as usize];
-        let id = vertex_id_by_key(ctx, st, key, || position_on(ctx, tet, tv.simplex, funcs, vals));
+        let id = edge_vertex_id(ctx, st, edge, f, || position_on(ctx, tet, tv.simplex, funcs, vals));
         st.out.poly_verts.push(id);
     }
     st.out.poly_start.push(st.out.poly_verts.len() as u32);
