@@ -19,7 +19,7 @@ use std::sync::{Arc, OnceLock, RwLock};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::keys::{key_of, position_on, vertex_id_by_key};
+use super::keys::{edge_vertex_id, key_of, position_on, vertex_id_by_key};
 use super::types::{copy_label, BlockOut, Label, SRef};
 use super::values::Ctx;
 use super::worker::State;
@@ -201,8 +201,23 @@ pub(crate) fn run(
     let mut ids: SmallVec<[u32; 32]> = SmallVec::new();
     for v in &program.verts {
         let funcs = &v.funcs[..v.len as usize];
-        let key = key_of(ctx.mode, v.simplex, funcs, tet, active);
-        ids.push(vertex_id_by_key(ctx, st, key, || position_on(ctx, tet, v.simplex, funcs, vals)));
+        let position = || position_on(ctx, tet, v.simplex, funcs, vals);
+        let id = if v.simplex.count_ones() == 2 && (1..=2).contains(&funcs.len()) {
+            // On a tet edge: the packed key straight from the edge and the
+            // global functions (the same key as `key_of`, made only when new).
+            let (a, b) = (v.simplex.trailing_zeros() as usize, 31 - (v.simplex as u32).leading_zeros() as usize);
+            let mut f = [u16::MAX; 2];
+            for (j, &l) in funcs.iter().enumerate() {
+                f[j] = active[l as usize];
+            }
+            if f[1] < f[0] {
+                f.swap(0, 1);
+            }
+            edge_vertex_id(ctx, st, [tet[a].min(tet[b]), tet[a].max(tet[b])], f, position)
+        } else {
+            vertex_id_by_key(ctx, st, key_of(ctx.mode, v.simplex, funcs, tet, active), position)
+        };
+        ids.push(id);
     }
     let poly_base = st.out.poly_label.len() as u32;
     if st.out.poly_start.is_empty() {
