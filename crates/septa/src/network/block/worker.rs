@@ -290,7 +290,7 @@ impl Worker {
         }
         self.base_label = base_label;
         if ctx.volumes {
-            let corners = tet.map(|v| ctx.grid.vertex(v));
+            let corners = tet.map(|v| ctx.vertex(v));
             for (ci, cell) in c.cells().iter().enumerate() {
                 st.node_volume[base as usize + ci] = cell_volume(c, cell, &corners, &self.vals);
             }
@@ -518,7 +518,7 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
     }
     let key = vertex_key(ctx.mode, c, v, tet, &w.active);
     let id = vertex_id_by_key(ctx, st, key, || {
-        let corners = tet.map(|g| ctx.grid.vertex(g));
+        let corners = tet.map(|g| ctx.vertex(g));
         c.vertex_position(v as usize, &corners, &w.vals)
     });
     w.vid[v as usize] = id;
