@@ -120,6 +120,24 @@ pub(crate) fn vertex_id_by_key(ctx: &Ctx, st: &mut State, key: VKey, position: i
     vertex_id_with(st, key, || on_block_boundary(ctx, block, &key), position)
 }
 
+/// The grid edge (`g0 < g1`) of tet element `simplex` (two corners) and the
+/// sorted global ids of the local functions `funcs` (one, then
+/// `u16::MAX`, or two): what [`edge_vertex_id`] takes, as [`key_of`] names
+/// the vertex.
+#[inline]
+pub(crate) fn edge_and_functions(simplex: u8, funcs: &[u16], tet: &[u32; 4], active: &[u16]) -> ([u32; 2], [u16; 2]) {
+    debug_assert!(simplex.count_ones() == 2 && (1..=2).contains(&funcs.len()), "an edge vertex");
+    let (a, b) = (simplex.trailing_zeros() as usize, 31 - (simplex as u32).leading_zeros() as usize);
+    let mut f = [u16::MAX; 2];
+    for (j, &l) in funcs.iter().enumerate() {
+        f[j] = active[l as usize];
+    }
+    if f[1] < f[0] {
+        f.swap(0, 1);
+    }
+    ([tet[a].min(tet[b]), tet[a].max(tet[b])], f)
+}
+
 /// [`vertex_id_by_key`] for the vertex on grid edge `g0 < g1` defined by
 /// function `f0` (`f1 == u16::MAX`) or by the pair `f0 < f1` (global ids):
 /// the packed key is made from these directly, and the full key only for

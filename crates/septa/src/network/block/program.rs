@@ -19,7 +19,7 @@ use std::sync::{Arc, OnceLock, RwLock};
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::keys::{edge_vertex_id, key_of, position_on, vertex_id_by_key};
+use super::keys::{edge_and_functions, edge_vertex_id, key_of, position_on, vertex_id_by_key};
 use super::types::{copy_label, BlockOut, Label, SRef};
 use super::values::Ctx;
 use super::worker::State;
@@ -205,15 +205,8 @@ pub(crate) fn run(
         let id = if v.simplex.count_ones() == 2 && (1..=2).contains(&funcs.len()) {
             // On a tet edge: the packed key straight from the edge and the
             // global functions (the same key as `key_of`, made only when new).
-            let (a, b) = (v.simplex.trailing_zeros() as usize, 31 - (v.simplex as u32).leading_zeros() as usize);
-            let mut f = [u16::MAX; 2];
-            for (j, &l) in funcs.iter().enumerate() {
-                f[j] = active[l as usize];
-            }
-            if f[1] < f[0] {
-                f.swap(0, 1);
-            }
-            edge_vertex_id(ctx, st, [tet[a].min(tet[b]), tet[a].max(tet[b])], f, position)
+            let (edge, f) = edge_and_functions(v.simplex, funcs, tet, active);
+            edge_vertex_id(ctx, st, edge, f, position)
         } else {
             vertex_id_by_key(ctx, st, key_of(ctx.mode, v.simplex, funcs, tet, active), position)
         };

@@ -20,7 +20,7 @@ use std::sync::OnceLock;
 
 use smallvec::SmallVec;
 
-use super::keys::{edge_vertex_id, position_on, vertex_id_with};
+use super::keys::{edge_and_functions, edge_vertex_id, position_on, vertex_id_with};
 use super::types::Label;
 use super::values::Ctx;
 use super::worker::State;
@@ -156,17 +156,8 @@ pub(crate) fn simple_tet(
     for tv in &t.verts {
         // Every vertex of a one-polygon template is on a tet edge (Sec. 5.1
         // key: the edge's grid vertices, the sorted global functions).
-        debug_assert_eq!(tv.simplex.count_ones(), 2, "template vertices lie on tet edges");
-        let (a, b) = (tv.simplex.trailing_zeros() as usize, 31 - (tv.simplex as u32).leading_zeros() as usize);
-        let edge = [tet[a].min(tet[b]), tet[a].max(tet[b])];
-        let mut f = [u16::MAX; 2];
-        for j in 0..tv.len as usize {
-            f[j] = active[tv.funcs[j] as usize];
-        }
-        if f[1] < f[0] {
-            f.swap(0, 1);
-        }
         let funcs = &tv.funcs[..tv.len as usize];
+        let (edge, f) = edge_and_functions(tv.simplex, funcs, tet, active);
         let id = edge_vertex_id(ctx, st, edge, f, || position_on(ctx, tet, tv.simplex, funcs, vals));
         st.out.poly_verts.push(id);
     }
