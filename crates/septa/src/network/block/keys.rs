@@ -159,11 +159,18 @@ pub(crate) fn edge_vertex_id(
         let key = key();
         debug_assert_eq!(packed(&key), Some(p));
         let block = st.block_box;
-        st.out.shared.push(on_block_boundary(ctx, block, &key));
-        st.out.keys.push(key);
-        st.out.points.push(position());
+        push_vertex(st, key, on_block_boundary(ctx, block, &key), position());
     }
     id
+}
+
+/// Appends a vertex new to the block: its key, whether another block may
+/// share it, and its position.
+#[inline]
+fn push_vertex(st: &mut State, key: VKey, shared: bool, position: [f64; 3]) {
+    st.out.keys.push(key);
+    st.out.shared.push(shared);
+    st.out.points.push(position);
 }
 
 /// [`vertex_id_by_key`] with the block-boundary test supplied by a caller
@@ -182,9 +189,7 @@ pub(crate) fn vertex_id_with(
         None => *st.vmap.entry(key).or_insert(next),
     };
     if id == next {
-        st.out.keys.push(key);
-        st.out.shared.push(shared());
-        st.out.points.push(position());
+        push_vertex(st, key, shared(), position());
     }
     id
 }

@@ -62,7 +62,9 @@ pub(crate) fn canonicalize_merged(m: &mut Merged) {
     // Bucket by the smallest vertex, sort each bucket by the second and
     // third smallest packed in one word (faces sharing two are common:
     // neighbours across an edge), then the rare runs of faces sharing all
-    // three by all their vertices.
+    // three by all their vertices. The smallest is found again for the
+    // bucket keys rather than kept: that array is the canonical order's
+    // largest at the time, and the extra pass is one `min` per face.
     let face = |f: usize| &m.face_verts[m.face_start[f] as usize..m.face_start[f + 1] as usize];
     let mut second_third: Vec<u64> = (0..nf)
         .into_par_iter()
