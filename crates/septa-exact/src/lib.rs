@@ -37,6 +37,7 @@
 
 mod barycentric;
 mod bignum;
+mod bounded;
 mod det;
 mod exact;
 mod expansion;
@@ -53,6 +54,7 @@ mod validate;
 pub use barycentric::{
     barycentric_sign_ia, barycentric_sign_ia_f64_naive, barycentric_sign_mi, barycentric_sign_mi_f64_naive,
 };
+pub use bounded::{filtered_sign_bounded, Bounded};
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
 pub use exact::Exact;
 pub use expansion_ring::{expansion_window, Expansion};

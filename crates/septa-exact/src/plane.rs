@@ -24,6 +24,12 @@
 //! 2. otherwise in [`Exact`] dyadic bignum arithmetic, which cannot err.
 //!
 //! [`fallback_count`] reports how often step 2 ran.
+//!
+//! Hot predicates put a cheaper tier in front of step 1:
+//! [`crate::filtered_sign_bounded`] first evaluates the expression on
+//! [`crate::Bounded`] (a double and a proven bound on its error, a few
+//! multiplications per operation), and only what that cannot decide goes
+//! on to the intervals and the exact tier.
 
 use crate::{Exact, Sign};
 use std::sync::atomic::{AtomicU64, Ordering};

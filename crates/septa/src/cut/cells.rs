@@ -7,7 +7,7 @@ use super::geom::{cross3, dot3, neg3, Ctx, LineDir, V3};
 use super::nodes::FxMap;
 use super::plane_graph::dir_vec;
 use crate::uf::UnionFind;
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// The input face a cut-face lies in.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -125,7 +125,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let d: (LineDir, bool) = if fwd0 { h0 } else { (h0.0, !h0.1) };
             let items: Vec<(u32, bool)> = list.iter().map(|x| (x.0, x.1)).collect();
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
-            let dv_i = dir_vec::<Interval>(c, d.0, d.1);
+            let dv_i = dir_vec::<Bounded>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
             // the filters' in-face directions n_f x (+-D): one enclosure of
             // n_f x D from the D already formed, negated for faces running
@@ -133,15 +133,15 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             // the real vector); the exact fallbacks use `wvec` itself. Only
             // the first face and those off its support are ever filtered
             // (the others are class 2 below): no product for the rest.
-            let iws: Vec<V3<Interval>> = items
+            let iws: Vec<V3<Bounded>> = items
                 .iter()
                 .enumerate()
                 .map(|(i, &(f, up))| {
                     let sup = faces[f as usize].support;
                     if i > 0 && sup == faces[items[0].0 as usize].support {
-                        return [Interval::of(0.0); 3];
+                        return [Bounded::of(0.0); 3];
                     }
-                    let w = cross3(&normal::<Interval>(c, sup), &dv_i);
+                    let w = cross3(&normal::<Bounded>(c, sup), &dv_i);
                     if up {
                         w
                     } else {
@@ -149,7 +149,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 })
                 .collect();
-            let class = |x: (Support, (LineDir, bool)), iwx: &V3<Interval>| -> u8 {
+            let class = |x: (Support, (LineDir, bool)), iwx: &V3<Bounded>| -> u8 {
                 fn b<R: Ring>(
                     c: &Ctx,
                     d: (LineDir, bool),
@@ -164,13 +164,22 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 }
                 let sb = match dot3(&dv_i, &cross3(&iws[0], iwx)).sign() {
                     Some(s) => s,
-                    None => filtered_sign(|| b::<Interval>(c, d, w0, x), || b::<Exact>(c, d, w0, x)),
+                    None => filtered_sign_bounded(
+                        || b::<Bounded>(c, d, w0, x),
+                        || b::<Interval>(c, d, w0, x),
+                        || b::<Exact>(c, d, w0, x),
+                    ),
                 };
                 match sb {
                     Sign::Positive => 1,
                     Sign::Negative => 3,
                     Sign::Zero => {
-                        if filtered_sign(|| a::<Interval>(c, w0, x), || a::<Exact>(c, w0, x)) == Sign::Positive {
+                        if filtered_sign_bounded(
+                            || a::<Bounded>(c, w0, x),
+                            || a::<Interval>(c, w0, x),
+                            || a::<Exact>(c, w0, x),
+                        ) == Sign::Positive
+                        {
                             0
                         } else {
                             2
@@ -213,9 +222,13 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
                 }
                 let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
-                match quick
-                    .unwrap_or_else(|| filtered_sign(|| f::<Interval>(c, d, wx, wy), || f::<Exact>(c, d, wx, wy)))
-                {
+                match quick.unwrap_or_else(|| {
+                    filtered_sign_bounded(
+                        || f::<Bounded>(c, d, wx, wy),
+                        || f::<Interval>(c, d, wx, wy),
+                        || f::<Exact>(c, d, wx, wy),
+                    )
+                }) {
                     Sign::Positive => std::cmp::Ordering::Less,
                     Sign::Negative => std::cmp::Ordering::Greater,
                     Sign::Zero => std::cmp::Ordering::Equal,

@@ -27,7 +27,9 @@ use super::geom::{dot3, sub3, v3, Ctx, Def, LineDir};
 use super::side_filter::{exact_box, overlap, radius, FloatPlane, GridItem, VertexGrid};
 use super::CutCellMesh;
 use rayon::prelude::*;
-use septa_exact::{det_sign_diff, filtered_sign, plane_point_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{
+    det_sign_diff, filtered_sign, filtered_sign_bounded, plane_point_sign, Bounded, Exact, Interval, Ring, Sign,
+};
 
 /// Rounds of (sidedness moves, line-order repair) on the moved vertices.
 pub const MAX_ROUNDS: usize = 8;
@@ -141,7 +143,7 @@ pub(super) fn exact_side_full(c: &Ctx, d: Def, s: Support) -> Sign {
                 // n . (h / w - a) has the sign of (n . h - (n . a) w) w
                 dot3(&n, &h).sub(&dot3(&n, &a).mul(&w)).mul(&w)
             }
-            filtered_sign(|| f::<Interval>(c, d, t), || f::<Exact>(c, d, t))
+            filtered_sign_bounded(|| f::<Bounded>(c, d, t), || f::<Interval>(c, d, t), || f::<Exact>(c, d, t))
         }
     }
 }

@@ -62,6 +62,8 @@ fn corner_sides_equal_the_sides_from_coordinates() {
         pv,
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),
+        tn_b: Vec::new(),
+        pp_b: Vec::new(),
     };
     let tn_iv: Vec<[Interval; 3]> = (0..tris.len() as u32).map(|t| c.tn_compute::<Interval>(t)).collect();
     let c = Ctx { tn_iv, ..c };

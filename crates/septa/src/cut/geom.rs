@@ -3,7 +3,7 @@
 //! predicate of the cut, each written once over [`Ring`] and evaluated by
 //! [`filtered_sign`] (interval filter, exact fallback).
 
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign, filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// A cut-vertex by the faces that define it (before merging equal points).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -52,6 +52,10 @@ pub struct Ctx<'a> {
     /// `pp_iv[p * np + q]` for `p < q` (the filter's copy of
     /// [`Ctx::line_dir`], computed once; empty: computed on each call).
     pub pp_iv: Vec<[Interval; 3]>,
+    /// [`Ctx::tn_iv`] in [`Bounded`] arithmetic (the first filter's copy).
+    pub tn_b: Vec<[Bounded; 3]>,
+    /// [`Ctx::pp_iv`] in [`Bounded`] arithmetic (the first filter's copy).
+    pub pp_b: Vec<[Bounded; 3]>,
 }
 
 /// A 3-vector over a ring.
@@ -117,6 +121,9 @@ impl Ctx<'_> {
         if let Some(v) = (&self.tn_iv[t as usize] as &dyn std::any::Any).downcast_ref::<V3<R>>() {
             return v.clone();
         }
+        if let Some(v) = self.tn_b.get(t as usize).and_then(|v| (v as &dyn std::any::Any).downcast_ref::<V3<R>>()) {
+            return v.clone();
+        }
         self.tn_compute(t)
     }
 
@@ -141,6 +148,9 @@ impl Ctx<'_> {
                 let i = p as usize * self.planes.len() + q as usize;
                 if p < q {
                     if let Some(v) = self.pp_iv.get(i).and_then(|v| (v as &dyn std::any::Any).downcast_ref::<V3<R>>()) {
+                        return v.clone();
+                    }
+                    if let Some(v) = self.pp_b.get(i).and_then(|v| (v as &dyn std::any::Any).downcast_ref::<V3<R>>()) {
                         return v.clone();
                     }
                 }
@@ -215,7 +225,7 @@ impl Ctx<'_> {
             let v = dot3(&c.pn::<R>(r), &h).add(&R::of(c.planes[r as usize][3]).mul(&w));
             v.mul(&w)
         }
-        filtered_sign(|| f::<Interval>(self, d, r), || f::<Exact>(self, d, r))
+        filtered_sign_bounded(|| f::<Bounded>(self, d, r), || f::<Interval>(self, d, r), || f::<Exact>(self, d, r))
     }
 
     /// Order of two cut-vertices along direction `dir`: sign of `(B - A) . dir`.
@@ -228,7 +238,11 @@ impl Ctx<'_> {
             let x = dot3(&hb, &dv).mul(&wa).sub(&dot3(&ha, &dv).mul(&wb));
             x.mul(&wa).mul(&wb)
         }
-        filtered_sign(|| f::<Interval>(self, a, b, dir), || f::<Exact>(self, a, b, dir))
+        filtered_sign_bounded(
+            || f::<Bounded>(self, a, b, dir),
+            || f::<Interval>(self, a, b, dir),
+            || f::<Exact>(self, a, b, dir),
+        )
     }
 
     /// Approximate coordinates of a cut-vertex (for output).
@@ -260,6 +274,10 @@ impl Ctx<'_> {
         fn f<R: Ring>(c: &Ctx, p: u32, q: u32, r: u32) -> R {
             dot3(&c.pn::<R>(p), &cross3(&c.pn(q), &c.pn(r)))
         }
-        filtered_sign(|| f::<Interval>(self, p, q, r), || f::<Exact>(self, p, q, r))
+        filtered_sign_bounded(
+            || f::<Bounded>(self, p, q, r),
+            || f::<Interval>(self, p, q, r),
+            || f::<Exact>(self, p, q, r),
+        )
     }
 }

@@ -10,7 +10,7 @@
 
 use super::geom::{Ctx, Def};
 use super::plane_graph::{Ccw, PlaneLoop};
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// Sign of `coord_k(b) - coord_k(a)`.
 fn coord_cmp(c: &Ctx, a: Def, b: Def, k: usize) -> Sign {
@@ -19,7 +19,7 @@ fn coord_cmp(c: &Ctx, a: Def, b: Def, k: usize) -> Sign {
         let (hb, wb) = c.hom::<R>(b);
         hb[k].mul(&wa).sub(&ha[k].mul(&wb)).mul(&wa).mul(&wb)
     }
-    filtered_sign(|| f::<Interval>(c, a, b, k), || f::<Exact>(c, a, b, k))
+    filtered_sign_bounded(|| f::<Bounded>(c, a, b, k), || f::<Interval>(c, a, b, k), || f::<Exact>(c, a, b, k))
 }
 
 /// Sign of `g . (b - a)` for a fixed direction `g` in general position with
@@ -34,7 +34,7 @@ fn generic_cmp(c: &Ctx, a: Def, b: Def) -> Sign {
         let gb = hb[0].mul(&g[0]).add(&hb[1].mul(&g[1])).add(&hb[2].mul(&g[2]));
         gb.mul(&wa).sub(&ga.mul(&wb)).mul(&wa).mul(&wb)
     }
-    filtered_sign(|| f::<Interval>(c, a, b), || f::<Exact>(c, a, b))
+    filtered_sign_bounded(|| f::<Bounded>(c, a, b), || f::<Interval>(c, a, b), || f::<Exact>(c, a, b))
 }
 
 /// Position of the smallest corner in the order (g.x, x_i, x_j): a vertex of
@@ -90,7 +90,11 @@ fn contains(c: &Ctx, ccw: &Ccw, rep: &[Def], l: &PlaneLoop, p: Def) -> bool {
             let dy = by.mul(&aw).sub(&ay.mul(&bw)).mul(&aw).mul(&bw);
             t1.add(&t2).mul(&pw).mul(&bw).mul(&dy)
         }
-        let s = filtered_sign(|| e::<Interval>(c, a, b, p, i, j), || e::<Exact>(c, a, b, p, i, j));
+        let s = filtered_sign_bounded(
+            || e::<Bounded>(c, a, b, p, i, j),
+            || e::<Interval>(c, a, b, p, i, j),
+            || e::<Exact>(c, a, b, p, i, j),
+        );
         if s == Sign::Negative {
             inside = !inside;
         }

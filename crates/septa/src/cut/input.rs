@@ -2,7 +2,7 @@
 //! cutting: each failure names the offending element.
 
 use super::CutError;
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign, filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// Mesh edges `(u < v)`, per-triangle side edges, and per-edge triangles
 /// `[t with u->v, t with v->u]`, after checking watertight, manifold and
@@ -52,7 +52,11 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
                 let (e2i, e2j) = (c[i].sub(&a[i]), c[j].sub(&a[j]));
                 e1i.mul(&e2j).sub(&e1j.mul(&e2i))
             }
-            filtered_sign(|| f::<Interval>(verts, tri, k), || f::<Exact>(verts, tri, k)) == Sign::Zero
+            filtered_sign_bounded(
+                || f::<Bounded>(verts, tri, k),
+                || f::<Interval>(verts, tri, k),
+                || f::<Exact>(verts, tri, k),
+            ) == Sign::Zero
         });
         if zero {
             return Err(CutError::DegenerateTriangle { triangle: t });

@@ -310,6 +310,8 @@ fn cut_impl(
         pv,
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),
+        tn_b: Vec::new(),
+        pp_b: Vec::new(),
     };
     let tn_iv: Vec<[septa_exact::Interval; 3]> =
         (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Interval>(t)).collect();
@@ -324,7 +326,19 @@ fn cut_impl(
             }
         })
         .collect();
-    let c = Ctx { tn_iv, pp_iv, ..c };
+    let tn_b: Vec<[septa_exact::Bounded; 3]> =
+        (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Bounded>(t)).collect();
+    let pp_b: Vec<[septa_exact::Bounded; 3]> = (0..(np * np) as u32)
+        .map(|i| {
+            let (p, q) = (i / np as u32, i % np as u32);
+            if p < q {
+                c.pp_compute::<septa_exact::Bounded>(p, q)
+            } else {
+                [septa_exact::Bounded { v: 0.0, e: 0.0 }; 3]
+            }
+        })
+        .collect();
+    let c = Ctx { tn_iv, pp_iv, tn_b, pp_b, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
         for q in p + 1..np {

@@ -10,7 +10,7 @@
 use super::geom::{cross3, dot3, neg3, sub3, v3, Ctx, LineDir, V3};
 use super::nodes::FxMap;
 use crate::uf::UnionFind;
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// An edge of a plane graph or a face: end points (compact ids), the line
 /// it lies on, and whether `a -> b` runs along `+dir`.
@@ -90,7 +90,11 @@ impl Ccw {
     fn half(&self, c: &Ctx, d: (LineDir, bool), iv: &V3<Interval>) -> u8 {
         let comp = |k: usize| match iv[k].sign() {
             Some(s) => s,
-            None => filtered_sign(|| dir_vec::<Interval>(c, d.0, d.1)[k], || dir_vec::<Exact>(c, d.0, d.1)[k].clone()),
+            None => filtered_sign_bounded(
+                || dir_vec::<Bounded>(c, d.0, d.1)[k],
+                || dir_vec::<Interval>(c, d.0, d.1)[k],
+                || dir_vec::<Exact>(c, d.0, d.1)[k].clone(),
+            ),
         };
         let y = comp(self.j);
         if y == Sign::Positive || (y == Sign::Zero && comp(self.i) == Sign::Positive) {
@@ -107,7 +111,11 @@ impl Ccw {
             let y = dir_vec::<R>(c, b.0, b.1);
             x[i].mul(&y[j]).sub(&x[j].mul(&y[i]))
         }
-        filtered_sign(|| f::<Interval>(c, a, b, i, j), || f::<Exact>(c, a, b, i, j))
+        filtered_sign_bounded(
+            || f::<Bounded>(c, a, b, i, j),
+            || f::<Interval>(c, a, b, i, j),
+            || f::<Exact>(c, a, b, i, j),
+        )
     }
 
     /// Sorts directions counter-clockwise about the plane normal.
@@ -153,7 +161,7 @@ fn gamma_status(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> Status {
         let w = cross3(&c.pn::<R>(p), &dir_vec::<R>(c, h.0, h.1));
         dot3(&c.tn::<R>(t), &w)
     }
-    match filtered_sign(|| f::<Interval>(c, p, t, h), || f::<Exact>(c, p, t, h)) {
+    match filtered_sign_bounded(|| f::<Bounded>(c, p, t, h), || f::<Interval>(c, p, t, h), || f::<Exact>(c, p, t, h)) {
         Sign::Negative => Status::Inside,
         Sign::Positive => Status::Outside,
         Sign::Zero => Status::Surface,
@@ -174,9 +182,21 @@ pub(crate) fn mesh_status(c: &Ctx, p: u32, e: u32, h: (LineDir, bool)) -> Status
     fn conv<R: Ring>(c: &Ctx, t1: u32, u: u32, apex: u32) -> R {
         dot3(&c.tn::<R>(t1), &sub3(&v3(&c.verts[apex as usize]), &v3(&c.verts[u as usize])))
     }
-    let s1 = filtered_sign(|| side::<Interval>(c, p, t1, h), || side::<Exact>(c, p, t1, h));
-    let s2 = filtered_sign(|| side::<Interval>(c, p, t2, h), || side::<Exact>(c, p, t2, h));
-    let cv = filtered_sign(|| conv::<Interval>(c, t1, u, apex), || conv::<Exact>(c, t1, u, apex));
+    let s1 = filtered_sign_bounded(
+        || side::<Bounded>(c, p, t1, h),
+        || side::<Interval>(c, p, t1, h),
+        || side::<Exact>(c, p, t1, h),
+    );
+    let s2 = filtered_sign_bounded(
+        || side::<Bounded>(c, p, t2, h),
+        || side::<Interval>(c, p, t2, h),
+        || side::<Exact>(c, p, t2, h),
+    );
+    let cv = filtered_sign_bounded(
+        || conv::<Bounded>(c, t1, u, apex),
+        || conv::<Interval>(c, t1, u, apex),
+        || conv::<Exact>(c, t1, u, apex),
+    );
     use Sign::*;
     match cv {
         Negative => {

@@ -59,6 +59,8 @@ pub fn exact_coordinates(
         pv: Vec::new(),
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),
+        tn_b: Vec::new(),
+        pp_b: Vec::new(),
     };
     let out = defs
         .par_iter()

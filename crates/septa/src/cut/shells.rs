@@ -17,7 +17,7 @@
 
 use super::tri_pair::orient2;
 use super::CutError;
-use septa_exact::{det_sign_diff, filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{det_sign_diff, filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// Triangles of each shell (edge-connected component), shells ordered by
 /// their smallest triangle.
@@ -65,7 +65,11 @@ fn orientation(verts: &[[f64; 3]], tris: &[[u32; 3]], shell: &[u32]) -> Sign {
         }
         sum
     }
-    filtered_sign(|| vol6::<Interval>(verts, tris, shell), || vol6::<Exact>(verts, tris, shell))
+    filtered_sign_bounded(
+        || vol6::<Bounded>(verts, tris, shell),
+        || vol6::<Interval>(verts, tris, shell),
+        || vol6::<Exact>(verts, tris, shell),
+    )
 }
 
 /// `orient2d` in the `(y, z)` plane of `a, b` and the start point `q`

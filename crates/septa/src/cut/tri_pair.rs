@@ -6,7 +6,7 @@
 //! every decision is an exact orientation sign. `selfx` finds the candidate
 //! pairs.
 
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 pub(crate) fn orient(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> Sign {
     orient_filtered(x, a, b, c, d).unwrap_or_else(|| orient_slow(x, a, b, c, d))
@@ -270,7 +270,11 @@ fn dot2(x: &[[f64; 3]], k: usize, v: u32, w: u32, o: u32) -> Sign {
         let (oi, oj) = (c(o, i).sub(&c(v, i)), c(o, j).sub(&c(v, j)));
         wi.mul(&oi).add(&wj.mul(&oj))
     }
-    filtered_sign(|| f::<Interval>(x, i, j, v, w, o), || f::<Exact>(x, i, j, v, w, o))
+    filtered_sign_bounded(
+        || f::<Bounded>(x, i, j, v, w, o),
+        || f::<Interval>(x, i, j, v, w, o),
+        || f::<Exact>(x, i, j, v, w, o),
+    )
 }
 
 /// An axis along which the plane of triangle `t` projects without collapse.
@@ -339,7 +343,8 @@ fn same_side_of_edge(x: &[[f64; 3]], a: u32, b: u32, c: u32, d: u32) -> bool {
         // (u.w)|e|^2 - (u.e)(w.e) = |e|^2 (u_perp . w_perp)
         dot(&u, &w).mul(&dot(&e, &e)).sub(&dot(&u, &e).mul(&dot(&w, &e)))
     }
-    filtered_sign(|| f::<Interval>(x, a, b, c, d), || f::<Exact>(x, a, b, c, d)) == Sign::Positive
+    filtered_sign_bounded(|| f::<Bounded>(x, a, b, c, d), || f::<Interval>(x, a, b, c, d), || f::<Exact>(x, a, b, c, d))
+        == Sign::Positive
 }
 
 /// Sufficient test that two triangles meet at most in shared vertices:

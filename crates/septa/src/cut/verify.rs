@@ -33,7 +33,7 @@ use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
 use super::verify_volume::volume_sign_static;
 use rustc_hash::FxHashMap;
-use septa_exact::{filtered_sign, Exact, Interval, Ring, Sign};
+use septa_exact::{filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// What [`verify_cells`] found; every count is exact. `examples` names the
 /// first few offending elements.
@@ -161,7 +161,11 @@ fn volume_sign(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Sign {
     if let Some(s) = volume_sign_static(x, o, tris) {
         return s;
     }
-    filtered_sign(|| volume_sum::<Interval>(x, o, tris), || volume_sum::<Exact>(x, o, tris))
+    filtered_sign_bounded(
+        || volume_sum::<Bounded>(x, o, tris),
+        || volume_sum::<Interval>(x, o, tris),
+        || volume_sum::<Exact>(x, o, tris),
+    )
 }
 
 /// `sum det(b - o, c - o, d - o)` over the triangles `(b, c, d)` in `R`.
