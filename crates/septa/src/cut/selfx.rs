@@ -55,7 +55,7 @@ pub fn intersecting_pairs_touching(
         })
         .collect();
     let grid = PairGrid::new(&boxes, fresh);
-    let (low_cell, entries) = (&grid.low_cell, &grid.entries);
+    let (low_cell, ids) = (&grid.low_cell, &grid.ids);
     let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
     // One grid cell's triangles, copied next to each other (box, start
     // bits, id) and swept along x: in order of the low x of their boxes (as
@@ -74,11 +74,10 @@ pub fn intersecting_pairs_touching(
     // triangles (slivers of the large cut-faces) enter many cells and met
     // each other in every one of them before being turned away by this rule.
     type Local = ([f64; 3], [f64; 3], u8, u32);
-    let per_group = |buf: &mut Vec<Local>, &(s, e): &(u32, u32)| -> Vec<(u32, u32)> {
-        let (s, e) = (s as usize, e as usize);
-        let here = grid.coords(entries[s].0);
+    let per_group = |buf: &mut Vec<Local>, &(key, s, e): &(u64, u32, u32)| -> Vec<(u32, u32)> {
+        let here = grid.coords(key);
         buf.clear();
-        buf.extend(entries[s..e].iter().map(|&(_, t)| {
+        buf.extend(ids[s as usize..e as usize].iter().map(|&t| {
             let (b, l) = (&boxes[t as usize], &low_cell[t as usize]);
             let starts = (l[0] == here[0]) as u8 | ((l[1] == here[1]) as u8) << 1 | ((l[2] == here[2]) as u8) << 2;
             (b.0, b.1, starts, t)
