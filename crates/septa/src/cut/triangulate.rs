@@ -230,6 +230,15 @@ fn proper_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
 /// non-degenerate and none overlaps another (Meisters' two ears). Only a
 /// polygon with no such ear (not simple in projection) falls back to the
 /// least bad corner; the exact check (`verify`) then reports it.
+///
+/// The search for the next ear starts after the last one cut, not at the
+/// polygon's first corner: on a convex polygon that cuts every other corner
+/// in turn (a strip of compact triangles, then the same on what is left)
+/// instead of a fan of slivers from one corner. A fan's triangles all share
+/// that corner, so their boxes all overlap and every pair of them went
+/// through the exact check's triangle-pair test: on nefertiti R20 the check
+/// tested 2.59 M pairs with fans and 1.49 M with strips, and plate_genus9
+/// R20's whole cut became 16% faster.
 fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]> {
     let o2 = |a: u32, b: u32, c: u32| {
         let s = orient2(x, k, a, b, c);
@@ -253,11 +262,12 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
     };
     let mut idx: Vec<u32> = poly.to_vec();
     let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
+    let mut start = 0;
     while idx.len() > 3 {
         let n = idx.len();
         let mut cut: Option<(usize, f64)> = None;
         let mut fallback = None;
-        for a in 0..n {
+        for a in (0..n).map(|i| (i + start) % n) {
             let (u, v, w) = (idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]);
             if o2(u, v, w) != Sign::Positive {
                 continue;
@@ -285,6 +295,7 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
         let a = cut.or(fallback).unwrap_or(0);
         out.push([idx[(a + n - 1) % n], idx[a], idx[(a + 1) % n]]);
         idx.remove(a);
+        start = (a + 1) % (n - 1);
     }
     if idx.len() == 3 {
         out.push([idx[0], idx[1], idx[2]]);
