@@ -42,7 +42,7 @@
 use crate::{Exact, Interval, Ring, Sign};
 
 const TWO_U: f64 = f64::EPSILON; // 2u = 2^-52
-const TINY: f64 = 4.9406564584124654e-324; // 2^-1074
+const TINY: f64 = f64::from_bits(1); // 2^-1074, the smallest subnormal
 
 /// A double `v` and a bound `e` with `|exact - v| <= e` (see the module
 /// doc for the proof).
@@ -61,7 +61,7 @@ impl Bounded {
     #[inline]
     pub fn sign(&self) -> Option<Sign> {
         let e = self.e * (1.0 + 1.0 / (1u64 << 30) as f64);
-        if !(e < f64::INFINITY) || !self.v.is_finite() {
+        if !e.is_finite() || !self.v.is_finite() {
             return None;
         }
         if self.v > e {
@@ -84,7 +84,7 @@ impl Bounded {
     pub fn div(&self, o: &Bounded) -> Option<Bounded> {
         let den = (o.v.abs() - o.e) * (1.0 - 1.0 / (1u64 << 50) as f64);
         // a subnormal difference may be rounded up by more than a relative 4u
-        if !(den >= f64::MIN_POSITIVE) {
+        if den.is_nan() || den < f64::MIN_POSITIVE {
             return None;
         }
         let v = self.v / o.v;

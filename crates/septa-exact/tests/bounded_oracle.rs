@@ -15,6 +15,7 @@
 //! Mutations these tests catch (tried by hand): the `2u |v|` term dropped
 //! from sums or products, the subnormal `2^-1074` term dropped, the
 //! division's denominator not reduced by `o.e`.
+#![allow(clippy::needless_range_loop)]
 
 mod common;
 
