@@ -40,7 +40,9 @@ def test_cells_vtu_reads_back_closed_cells_with_their_volumes(tmp_path):
     # the file itself passes the exact check, and a corrupted copy does not
     ok = subprocess.run([str(SEPTA), "cut", str(tmp_path / "cut" / "cells.vtu"), "--verify"], capture_output=True)
     assert ok.returncode == 0
-    g.points[0] = g.points[0] + 0.3 * (g.points.mean(axis=0) - g.points[0])
+    # a vertex sent to the far side of the ball: its faces then cross the ball and every
+    # cell between (moving it a little inward could leave every cell valid)
+    g.points[0] = 2.0 * g.points.mean(axis=0) - g.points[0]
     bad = tmp_path / "bad.vtu"
     pv.UnstructuredGrid(g).save(bad, binary=False)
     res = subprocess.run([str(SEPTA), "cut", str(bad), "--verify"], capture_output=True, text=True)

@@ -19,7 +19,7 @@
 
 mod common;
 
-use common::{pow2, q, sign_q, wide};
+use common::{det3, det3_case, det3_q, pow2, q, sign_q, wide};
 use num_rational::BigRational;
 use num_traits::{Signed, Zero};
 use rand::{Rng, SeedableRng};
@@ -96,41 +96,13 @@ fn every_bounded_operation_keeps_the_exact_value_within_its_bound() {
     assert!(tight > 500, "only {tight} exact products");
 }
 
-fn det3<R: Ring>(m: &[[f64; 3]; 3]) -> R {
-    let e = |i: usize, j: usize| R::of(m[i][j]);
-    let minor = |a: usize, b: usize| e(1, a).mul(&e(2, b)).sub(&e(1, b).mul(&e(2, a)));
-    e(0, 0).mul(&minor(1, 2)).sub(&e(0, 1).mul(&minor(0, 2))).add(&e(0, 2).mul(&minor(0, 1)))
-}
-
-fn det3_q(m: &[[f64; 3]; 3]) -> BigRational {
-    let e = |i: usize, j: usize| q(m[i][j]);
-    let minor = |a: usize, b: usize| e(1, a) * e(2, b) - e(1, b) * e(2, a);
-    e(0, 0) * minor(1, 2) - e(0, 1) * minor(0, 2) + e(0, 2) * minor(0, 1)
-}
-
 #[test]
 fn claimed_signs_are_exact_and_the_three_tiers_all_run() {
     let mut r = ChaCha8Rng::seed_from_u64(0x7_1e25);
     let before = fallback_count();
     let (mut by_bounded, mut by_interval, mut zeros) = (0usize, 0usize, 0usize);
     for i in 0..20_000 {
-        let mut m = [[0.0; 3]; 3];
-        for row in m.iter_mut() {
-            for x in row.iter_mut() {
-                *x = match i % 4 {
-                    0 => adversarial(&mut r),
-                    1 => r.gen_range(-8..8) as f64,
-                    _ => r.gen_range(-1.0..1.0) * pow2(r.gen_range(-3..3)),
-                };
-            }
-        }
-        if i % 2 == 1 {
-            // third row a rounded combination of the first two: zero or tiny
-            let (s, t) = (r.gen_range(-2..3) as f64 * 0.5, r.gen_range(-1.0..1.0));
-            for j in 0..3 {
-                m[2][j] = s * m[0][j] + if i % 4 == 3 { t * m[1][j] } else { m[1][j] };
-            }
-        }
+        let m = det3_case(&mut r, i, adversarial);
         let exact = det3_q(&m);
         let want = sign_q(&exact);
         let b: Bounded = det3(&m);

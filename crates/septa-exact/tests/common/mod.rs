@@ -198,3 +198,42 @@ pub fn near_dependent<const N: usize>(rng: &mut ChaCha8Rng, m: &mut [[f64; N]; N
         m[k][j] = s;
     }
 }
+
+/// A 3x3 determinant in any [`septa_exact::Ring`]: the shape of the
+/// orientation and line-order predicates of planar cutting.
+pub fn det3<R: septa_exact::Ring>(m: &[[f64; 3]; 3]) -> R {
+    let e = |i: usize, j: usize| R::of(m[i][j]);
+    let minor = |a: usize, b: usize| e(1, a).mul(&e(2, b)).sub(&e(1, b).mul(&e(2, a)));
+    e(0, 0).mul(&minor(1, 2)).sub(&e(0, 1).mul(&minor(0, 2))).add(&e(0, 2).mul(&minor(0, 1)))
+}
+
+/// [`det3`] in exact rationals.
+pub fn det3_q(m: &[[f64; 3]; 3]) -> BigRational {
+    let e = |i: usize, j: usize| q(m[i][j]);
+    let minor = |a: usize, b: usize| e(1, a) * e(2, b) - e(1, b) * e(2, a);
+    e(0, 0) * minor(1, 2) - e(0, 1) * minor(0, 2) + e(0, 2) * minor(0, 1)
+}
+
+/// The `i`-th matrix of the filtered-sign tests: entries from `adversarial`
+/// (`i % 4 == 0`), small integers (exactly degenerate often) or moderate
+/// doubles; for odd `i` the third row a rounded combination of the first
+/// two, so the determinant is zero or tiny.
+pub fn det3_case(r: &mut ChaCha8Rng, i: usize, adversarial: fn(&mut ChaCha8Rng) -> f64) -> [[f64; 3]; 3] {
+    let mut m = [[0.0; 3]; 3];
+    for row in m.iter_mut() {
+        for x in row.iter_mut() {
+            *x = match i % 4 {
+                0 => adversarial(r),
+                1 => r.gen_range(-8..8) as f64,
+                _ => r.gen_range(-1.0..1.0) * pow2(r.gen_range(-3..3)),
+            };
+        }
+    }
+    if i % 2 == 1 {
+        let (s, t) = (r.gen_range(-2..3) as f64 * 0.5, r.gen_range(-1.0..1.0));
+        for j in 0..3 {
+            m[2][j] = s * m[0][j] + if i % 4 == 3 { t * m[1][j] } else { m[1][j] };
+        }
+    }
+    m
+}

@@ -258,6 +258,28 @@ pub fn cut_mesh(
     }
 }
 
+/// The filters' copies of the triangle normals and of the plane-pair line
+/// directions in `R` (`Ctx::tn_iv`, `Ctx::pp_iv` and their [`Bounded`]
+/// twins), computed once: entries `p < q` of the pairs (`line_dir` reads no
+/// others; lines are keyed so), zero elsewhere.
+///
+/// [`Bounded`]: septa_exact::Bounded
+fn filter_copies<R: septa_exact::Ring>(c: &Ctx) -> (Vec<[R; 3]>, Vec<[R; 3]>) {
+    let np = c.planes.len() as u32;
+    let tn = (0..c.tris.len() as u32).map(|t| c.tn_compute::<R>(t)).collect();
+    let pp = (0..np * np)
+        .map(|i| {
+            let (p, q) = (i / np, i % np);
+            if p < q {
+                c.pp_compute::<R>(p, q)
+            } else {
+                std::array::from_fn(|_| R::of(0.0))
+            }
+        })
+        .collect();
+    (tn, pp)
+}
+
 fn cut_impl(
     vertices: &[[f64; 3]],
     triangles: &[[u32; 3]],
@@ -313,31 +335,8 @@ fn cut_impl(
         tn_b: Vec::new(),
         pp_b: Vec::new(),
     };
-    let tn_iv: Vec<[septa_exact::Interval; 3]> =
-        (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Interval>(t)).collect();
-    // entries p < q (`line_dir` reads no others; lines are keyed so)
-    let pp_iv: Vec<[septa_exact::Interval; 3]> = (0..(np * np) as u32)
-        .map(|i| {
-            let (p, q) = (i / np as u32, i % np as u32);
-            if p < q {
-                c.pp_compute::<septa_exact::Interval>(p, q)
-            } else {
-                [septa_exact::Interval::point(0.0); 3]
-            }
-        })
-        .collect();
-    let tn_b: Vec<[septa_exact::Bounded; 3]> =
-        (0..triangles.len() as u32).map(|t| c.tn_compute::<septa_exact::Bounded>(t)).collect();
-    let pp_b: Vec<[septa_exact::Bounded; 3]> = (0..(np * np) as u32)
-        .map(|i| {
-            let (p, q) = (i / np as u32, i % np as u32);
-            if p < q {
-                c.pp_compute::<septa_exact::Bounded>(p, q)
-            } else {
-                [septa_exact::Bounded { v: 0.0, e: 0.0 }; 3]
-            }
-        })
-        .collect();
+    let (tn_iv, pp_iv) = filter_copies::<septa_exact::Interval>(&c);
+    let (tn_b, pp_b) = filter_copies::<septa_exact::Bounded>(&c);
     let c = Ctx { tn_iv, pp_iv, tn_b, pp_b, ..c };
     let mut crosses = vec![false; np * np];
     for p in 0..np {
