@@ -12,7 +12,7 @@
 //! interval and then the exact tier: the signs are the same, only cheaper
 //! where the value is far from zero, which is nearly always.
 //!
-//! ## Proof that `|exact - v| <= e` after every operation
+//! ## Proof that `|exact - v| <= e (1 + 2^-30)` after every operation
 //!
 //! `u = 2^-53`; round-to-nearest, gradual underflow (as the crate assumes).
 //! For operands with `|x - a.v| <= a.e`, `|y - b.v| <= b.e`:
@@ -44,7 +44,8 @@ use crate::{Exact, Interval, Ring, Sign};
 const TWO_U: f64 = f64::EPSILON; // 2u = 2^-52
 const TINY: f64 = f64::from_bits(1); // 2^-1074, the smallest subnormal
 
-/// A double `v` and a bound `e` with `|exact - v| <= e` (see the module
+/// A double `v` and a bound `e` with `|exact - v| <= e (1 + 2^-30)` (the
+/// slack covers the rounding of the bound's own arithmetic; see the module
 /// doc for the proof).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bounded {
