@@ -125,15 +125,15 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             let d: (LineDir, bool) = if fwd0 { h0 } else { (h0.0, !h0.1) };
             let items: Vec<(u32, bool)> = list.iter().map(|x| (x.0, x.1)).collect();
             let hof = |up: bool| if up { d } else { (d.0, !d.1) };
-            let dv_i = dir_vec::<Bounded>(c, d.0, d.1);
+            let dv_b = dir_vec::<Bounded>(c, d.0, d.1);
             let w0 = (faces[items[0].0 as usize].support, hof(items[0].1));
-            // the filters' in-face directions n_f x (+-D): one enclosure of
+            // the filters' in-face directions n_f x (+-D): one bounded
             // n_f x D from the D already formed, negated for faces running
-            // along -D (negation is exact on intervals, so it still encloses
-            // the real vector); the exact fallbacks use `wvec` itself. Only
+            // along -D (negation is exact, so the bound still holds for the
+            // real vector); the exact fallbacks use `wvec` itself. Only
             // the first face and those off its support are ever filtered
             // (the others are class 2 below): no product for the rest.
-            let iws: Vec<V3<Bounded>> = items
+            let wbs: Vec<V3<Bounded>> = items
                 .iter()
                 .enumerate()
                 .map(|(i, &(f, up))| {
@@ -141,7 +141,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     if i > 0 && sup == faces[items[0].0 as usize].support {
                         return [Bounded::of(0.0); 3];
                     }
-                    let w = cross3(&normal::<Bounded>(c, sup), &dv_i);
+                    let w = cross3(&normal::<Bounded>(c, sup), &dv_b);
                     if up {
                         w
                     } else {
@@ -149,7 +149,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     }
                 })
                 .collect();
-            let class = |x: (Support, (LineDir, bool)), iwx: &V3<Bounded>| -> u8 {
+            let class = |x: (Support, (LineDir, bool)), wbx: &V3<Bounded>| -> u8 {
                 fn b<R: Ring>(
                     c: &Ctx,
                     d: (LineDir, bool),
@@ -162,7 +162,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                 fn a<R: Ring>(c: &Ctx, w0: (Support, (LineDir, bool)), x: (Support, (LineDir, bool))) -> R {
                     dot3(&wvec::<R>(c, w0.0, w0.1), &wvec::<R>(c, x.0, x.1))
                 }
-                let sb = match dot3(&dv_i, &cross3(&iws[0], iwx)).sign() {
+                let sb = match dot3(&dv_b, &cross3(&wbs[0], wbx)).sign() {
                     Some(s) => s,
                     None => filtered_sign_bounded(
                         || b::<Bounded>(c, d, w0, x),
@@ -198,7 +198,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                         // the other side of the edge in the same plane or triangle: opposite to w0
                         2
                     } else {
-                        class((sup, hof(up)), &iws[i])
+                        class((sup, hof(up)), &wbs[i])
                     }
                 })
                 .collect();
@@ -221,7 +221,7 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
                     let dv = dir_vec::<R>(c, d.0, d.1);
                     dot3(&dv, &cross3(&wvec::<R>(c, wx.0, wx.1), &wvec::<R>(c, wy.0, wy.1)))
                 }
-                let quick = dot3(&dv_i, &cross3(&iws[x], &iws[y])).sign();
+                let quick = dot3(&dv_b, &cross3(&wbs[x], &wbs[y])).sign();
                 match quick.unwrap_or_else(|| {
                     filtered_sign_bounded(
                         || f::<Bounded>(c, d, wx, wy),

@@ -1,7 +1,8 @@
 //! The input faces (triangles and planes), cut-vertices as face triples
 //! (TopoCut Sec. 3, eq. 2) in homogeneous coordinates, and every exact
 //! predicate of the cut, each written once over [`Ring`] and evaluated by
-//! [`filtered_sign`] (interval filter, exact fallback).
+//! [`filtered_sign_bounded`] (bounded-error filter, interval filter, exact
+//! fallback).
 
 use septa_exact::{filtered_sign, filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
