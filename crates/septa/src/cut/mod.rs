@@ -51,6 +51,7 @@
 
 #[cfg(feature = "tools")]
 pub mod bench;
+mod box_contact;
 mod cells;
 mod clip;
 mod embed;

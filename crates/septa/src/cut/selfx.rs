@@ -4,6 +4,7 @@
 //! pair is tested once, in the grid cell holding the low corner of the
 //! overlap of their boxes); every decision is an exact orientation sign.
 
+use super::box_contact::box_contact;
 use super::pair_grid::PairGrid;
 use super::tri_pair::{pair_intersects_planes, TriPlane};
 use super::CutError;
@@ -101,7 +102,11 @@ pub fn intersecting_pairs_touching(
                     continue;
                 }
                 let (u1, u2) = (t1 as usize, t2 as usize);
-                if pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]) {
+                let meets = match box_contact(x, &tris[u1], &(lo1, hi1), &tris[u2], &(lo2, hi2)) {
+                    Some(m) => m,
+                    None => pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]),
+                };
+                if meets {
                     let p = (t1.min(t2), t1.max(t2));
                     if !first_only {
                         found.push(p);
