@@ -67,6 +67,12 @@ pub(super) fn box_contact(x: &[[f64; 3]], t1: &[u32; 3], b1: &Aabb, t2: &[u32; 3
     if m1 == 0 || m2 == 0 {
         return Some(false);
     }
+    // the commonest contact, a corner against a corner: they meet iff at
+    // one point, allowed iff one vertex
+    if m1.is_power_of_two() && m2.is_power_of_two() {
+        let (v1, v2) = (t1[m1.trailing_zeros() as usize], t2[m2.trailing_zeros() as usize]);
+        return Some(v1 != v2 && x[v1 as usize] == x[v2 as usize]);
+    }
     hulls_meet(x, flat, t1, m1, t2, m2)
 }
 
@@ -142,7 +148,6 @@ fn in_axis_plane(x: &[[f64; 3]], k: usize, c1: &Corners, c2: &Corners, shared: &
     let (s1, s2) = (c1.ids(), c2.ids());
     let tri = |s: &[u32]| [s[0], s[1], s[2]];
     match (s1.len(), s2.len()) {
-        (1, 1) => Some(s1[0] != s2[0] && x[s1[0] as usize] == x[s2[0] as usize]),
         // a corner meets the other face only in itself: allowed iff shared
         (1, 2) => Some(shared.n == 0 && on_segment(x, k, s1[0], s2[0], s2[1])),
         (2, 1) => Some(shared.n == 0 && on_segment(x, k, s2[0], s1[0], s1[1])),
