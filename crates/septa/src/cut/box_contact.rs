@@ -73,6 +73,17 @@ pub(super) fn box_contact(x: &[[f64; 3]], t1: &[u32; 3], b1: &Aabb, t2: &[u32; 3
         let (v1, v2) = (t1[m1.trailing_zeros() as usize], t2[m2.trailing_zeros() as usize]);
         return Some(v1 != v2 && x[v1 as usize] == x[v2 as usize]);
     }
+    // the next commonest, an edge of both (faces of neighbouring cells
+    // along one cut-edge): they meet in it, as allowed
+    if m1.count_ones() == 2 && m2.count_ones() == 2 {
+        let edge = |t: &[u32; 3], m: u32| {
+            let (a, b) = (t[m.trailing_zeros() as usize], t[(31 - m.leading_zeros()) as usize]);
+            (a.min(b), a.max(b))
+        };
+        if edge(t1, m1) == edge(t2, m2) {
+            return Some(false);
+        }
+    }
     hulls_meet(x, flat, t1, m1, t2, m2)
 }
 
