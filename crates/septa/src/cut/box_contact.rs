@@ -5,9 +5,12 @@
 //! Cut-cell meshes of axis-aligned planes are full of them: the faces of
 //! neighbouring cells lie on perpendicular or identical axis planes and
 //! their triangles' boxes meet in a rectangle, a segment or a point. On cube
-//! A10 four pairs in ten reached the 2D projection and general-position
-//! tests this way (each asks for several orientations, most of them exactly
-//! zero and so past the floating-point filters).
+//! A10, 131k of the exact check's 134k candidate pairs are of this kind;
+//! half of all pairs used to go on to the 2D projection test and an eighth
+//! to the general-position test, each asking for several orientations that
+//! are mostly exact zeros, past the floating-point filters. Any mesh has
+//! some: two triangles sharing a corner that is the highest point of one
+//! and the lowest of the other along an axis (bunny R20: 129k of 357k).
 //!
 //! Why the boxes decide. Two closed triangles meet only inside the overlap
 //! `B` of their boxes. Call an axis `k` *flat* when `B` is a single value
@@ -25,10 +28,12 @@
 //! With two or three flat axes every point of `C1` and `C2` lies on one
 //! axis-parallel line, where hulls are intervals of the remaining
 //! coordinate: comparisons of doubles decide everything. With one flat axis
-//! the hulls lie in one axis plane; corners and edges there are decided by
-//! exact 2D orientations, and what involves a whole triangle (coplanar
-//! faces on one axis plane) is left to `tri_pair`. Every answer is exact: no
-//! arithmetic is done on the coordinates, only comparisons and `orient2`.
+//! the hulls lie in one axis plane; corners, edges and a triangle there are
+//! decided by exact 2D orientations, and two whole triangles (coplanar faces
+//! on one axis plane) are left to `tri_pair`, as is an edge that neither
+//! meets a triangle at an end nor is separated from it by a line. Every
+//! answer is exact: no arithmetic is done on the coordinates, only
+//! comparisons and `orient2`.
 
 use super::pair_grid::Aabb;
 use super::tri_pair::orient2;
