@@ -21,7 +21,9 @@
 //!    mesh meet except in shared vertices and edges (exact, `selfx`); this
 //!    covers the faces of one cell and also cells overlapping each other;
 //! 6. positive volume: the exact sign of `sum det(b - o, c - o, d - o)`
-//!    over each cell's triangles (divergence theorem).
+//!    over each cell's triangles (divergence theorem);
+//! 7. every vertex in use has finite coordinates (with an infinite or NaN
+//!    one nothing above would be a proof).
 //!
 //! Item 5 uses a floating-point ear clipping to triangulate planar polygons;
 //! a poor triangulation of a valid polygon can only add reported
@@ -60,6 +62,10 @@ pub struct VerifyReport {
     pub intersecting_pairs: usize,
     /// Cells whose exact volume is zero or negative.
     pub nonpositive_cells: usize,
+    /// Vertices in use with an infinite or NaN coordinate (nothing is
+    /// proven of a mesh that has one; written only when not zero).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub nonfinite_points: usize,
     /// The first offending elements, in words.
     pub examples: Vec<String>,
     /// The polygons (vertex loops, as written in some cell) that are
@@ -81,6 +87,10 @@ pub(crate) struct PairMemo {
     pairs: Vec<([u32; 3], [u32; 3])>,
 }
 
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
 fn tri_key(t: &[u32; 3]) -> [u32; 3] {
     let mut k = *t;
     k.sort_unstable();
@@ -97,6 +107,7 @@ impl VerifyReport {
             + self.degenerate_triangles
             + self.intersecting_pairs
             + self.nonpositive_cells
+            + self.nonfinite_points
     }
 
     fn note(&mut self, s: impl FnOnce() -> String) {
@@ -341,6 +352,18 @@ fn unbalanced(fwd: &mut Vec<u64>, bwd: &mut Vec<u64>, mut bad: impl FnMut(u32, u
 pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&VerifyReport>) -> VerifyReport {
     let nc = cells.num_cells();
     let mut r = VerifyReport { cells: nc, ..Default::default() };
+    // every decision below is an exact sign on finite doubles
+    let mut bad_point = vec![false; x.len()];
+    for &v in &cells.verts {
+        if let Some(p) = x.get(v as usize) {
+            if !bad_point[v as usize] && !p.iter().all(|c| c.is_finite()) {
+                bad_point[v as usize] = true;
+                r.nonfinite_points += 1;
+                r.note(|| format!("vertex {v} has a non-finite coordinate {p:?}"));
+            }
+        }
+    }
+    drop(bad_point);
     // distinct faces, triangulated once; each cell refers to them with a direction
     let mut index = FaceIndex::default();
     let mut tri_start: Vec<u32> = vec![0];

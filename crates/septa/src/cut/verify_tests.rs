@@ -99,3 +99,20 @@ fn flat_cells_keep_the_order_of_a_cell_listed_on_both_sides() {
     let back: Vec<Vec<Vec<u32>>> = (0..3).map(|c| f.cell(c).map(|p| p.to_vec()).collect()).collect();
     assert_eq!(back, nested);
 }
+
+/// A vertex at infinity or NaN is a violation of its own: the other
+/// checks cannot prove anything of it (an infinite apex passed all of
+/// them, the positive volume included).
+#[test]
+fn non_finite_vertices_are_violations() {
+    let cells = vec![vec![vec![0, 2, 1], vec![0, 1, 3], vec![1, 2, 3], vec![0, 3, 2]]];
+    let tet = |z: f64| vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, z], [f64::NAN; 3]];
+    let r = verify_cells(&tet(1.0), &cells);
+    assert_eq!(r.violations(), 0, "{r:?}");
+    assert_eq!(r.nonfinite_points, 0, "an unused NaN vertex is not checked");
+    for z in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+        let r = verify_cells(&tet(z), &cells);
+        assert_eq!(r.nonfinite_points, 1, "{z}: {r:?}");
+        assert!(r.violations() >= 1 && r.examples.iter().any(|e| e.contains("vertex 3 has a non-finite")), "{r:?}");
+    }
+}

@@ -219,6 +219,11 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
         return Err(err("points array length is not a multiple of 3".into()));
     }
     let points: Vec<[f64; 3]> = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    // the exact check reasons about finite doubles only: a point at
+    // infinity or NaN would be read as geometry it is not
+    if let Some((i, p)) = points.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(err(format!("point {i} has a non-finite coordinate ({}, {}, {})", p[0], p[1], p[2])));
+    }
     let named = |n: &str| -> Result<Vec<f64>, String> {
         let a = arrays
             .iter()

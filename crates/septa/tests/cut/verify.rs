@@ -212,3 +212,38 @@ fn check_sparing_input_pairs_equals_full_check() {
         assert_eq!(e.report.offending_polygons, full.offending_polygons, "{case}");
     }
 }
+
+/// A polyhedral .vtu with a point at infinity or NaN is refused by the
+/// reader, naming the point, instead of being checked (an infinite apex
+/// used to pass every check of the exact verification).
+#[test]
+fn vtu_with_non_finite_point_is_refused() {
+    let dir = std::env::temp_dir().join(format!("septa_vtu_nonfinite_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (i, val) in ["inf", "-inf", "nan", "1"].iter().enumerate() {
+        let text = format!(
+            r#"<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">
+<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="1">
+<Points><DataArray type="Float64" NumberOfComponents="3" format="ascii">0 0 0 1 0 0 0 1 0 0 0 {val}</DataArray></Points>
+<Cells>
+<DataArray type="Int64" Name="connectivity" format="ascii">0 1 2 3</DataArray>
+<DataArray type="Int64" Name="offsets" format="ascii">4</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">42</DataArray>
+<DataArray type="Int64" Name="faces" format="ascii">4 3 0 2 1 3 0 1 3 3 1 2 3 3 0 3 2</DataArray>
+<DataArray type="Int64" Name="faceoffsets" format="ascii">17</DataArray>
+</Cells></Piece></UnstructuredGrid></VTKFile>
+"#
+        );
+        let path = dir.join(format!("t{i}.vtu"));
+        std::fs::write(&path, text).unwrap();
+        match septa::io::read_polyhedra(&path) {
+            Ok((points, cells)) => {
+                assert_eq!(*val, "1", "{val} was read");
+                assert_eq!(verify_cells(&points, &cells).violations(), 0);
+            }
+            Err(e) => assert!(*val != "1" && e.contains("point 3 has a non-finite coordinate"), "{val}: {e}"),
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
