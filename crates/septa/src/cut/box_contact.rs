@@ -36,7 +36,7 @@
 //! comparisons and `orient2`.
 
 use super::pair_grid::Aabb;
-use super::tri_pair::orient2;
+use super::tri_pair::{in_tri2, orient2, seg_seg2};
 use septa_exact::Sign;
 
 /// Whether the triangles `t1` and `t2` (corners in `x`, boxes `b1` and
@@ -167,8 +167,8 @@ fn in_axis_plane(x: &[[f64; 3]], k: usize, c1: &Corners, c2: &Corners, shared: &
         // a corner meets the other face only in itself: allowed iff shared
         (1, 2) => Some(shared.n == 0 && on_segment(x, k, s1[0], s2[0], s2[1])),
         (2, 1) => Some(shared.n == 0 && on_segment(x, k, s2[0], s1[0], s1[1])),
-        (1, 3) => Some(shared.n == 0 && in_triangle(x, k, s1[0], &tri(s2))),
-        (3, 1) => Some(shared.n == 0 && in_triangle(x, k, s2[0], &tri(s1))),
+        (1, 3) => Some(shared.n == 0 && in_tri2(x, k, s1[0], &tri(s2))),
+        (3, 1) => Some(shared.n == 0 && in_tri2(x, k, s2[0], &tri(s1))),
         (2, 2) => match shared.n {
             // the same edge: they meet in it
             2 => Some(false),
@@ -180,7 +180,7 @@ fn in_axis_plane(x: &[[f64; 3]], k: usize, c1: &Corners, c2: &Corners, shared: &
                 let q = if s2[0] == v { s2[1] } else { s2[0] };
                 Some(orient2(x, k, v, p, q) == Sign::Zero && same_direction(x, k, v, p, q))
             }
-            _ => Some(segments_meet(x, k, s1[0], s1[1], s2[0], s2[1])),
+            _ => Some(seg_seg2(x, k, s1[0], s1[1], s2[0], s2[1])),
         },
         (2, 3) => edge_meets_triangle(x, k, [s1[0], s1[1]], &tri(s2), shared),
         (3, 2) => edge_meets_triangle(x, k, [s2[0], s2[1]], &tri(s1), shared),
@@ -230,16 +230,9 @@ fn edge_meets_triangle(x: &[[f64; 3]], k: usize, e: [u32; 2], t: &[u32; 3], shar
             if s0 != Sign::Zero && (1..3).all(|q| orient2(x, k, a, b, t[q]) == s0) {
                 return Some(false);
             }
-            (in_triangle(x, k, a, t) || in_triangle(x, k, b, t)).then_some(true)
+            (in_tri2(x, k, a, t) || in_tri2(x, k, b, t)).then_some(true)
         }
     }
-}
-
-/// Is `p` in the closed triangle `t` (axis plane dropping axis `k`, `t`
-/// not degenerate there)?
-fn in_triangle(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
-    let s = [orient2(x, k, t[0], t[1], p), orient2(x, k, t[1], t[2], p), orient2(x, k, t[2], t[0], p)];
-    !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
 
 /// Is `p` on the closed segment `ab` (all three in one axis plane, axis
@@ -265,20 +258,6 @@ fn same_direction(x: &[[f64; 3]], k: usize, v: u32, p: u32, q: u32) -> bool {
     let (pv, pp, pq) = (x[v as usize], x[p as usize], x[q as usize]);
     let d = if pp[i] != pv[i] { i } else { j };
     (pp[d] > pv[d]) == (pq[d] > pv[d]) && pq[d] != pv[d]
-}
-
-/// Do the closed segments `ab` and `cd` meet (axis `k` dropped)?
-fn segments_meet(x: &[[f64; 3]], k: usize, a: u32, b: u32, c: u32, d: u32) -> bool {
-    let (o1, o2) = (orient2(x, k, a, b, c), orient2(x, k, a, b, d));
-    let (o3, o4) = (orient2(x, k, c, d, a), orient2(x, k, c, d, b));
-    if o1 != Sign::Zero && o1 == o2 || o3 != Sign::Zero && o3 == o4 {
-        return false;
-    }
-    if o1 == Sign::Zero && o2 == Sign::Zero {
-        // collinear: do the intervals overlap?
-        return between(x, k, c, a, b) || between(x, k, d, a, b) || between(x, k, a, c, d);
-    }
-    true
 }
 
 #[cfg(test)]

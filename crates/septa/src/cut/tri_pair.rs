@@ -289,7 +289,7 @@ fn proj_axis(x: &[[f64; 3]], t: &[u32; 3]) -> usize {
 }
 
 /// Closed 2D segment-segment intersection (coplanar points, axis `k` dropped).
-fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
+pub(super) fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
     let (o1, o2) = (orient2(x, k, p, q, a), orient2(x, k, p, q, b));
     let (o3, o4) = (orient2(x, k, a, b, p), orient2(x, k, a, b, q));
     if o1 != Sign::Zero && o1 == o2 || o3 != Sign::Zero && o3 == o4 {
@@ -307,7 +307,7 @@ fn seg_seg2(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
 }
 
 /// Closed 2D point-in-triangle (coplanar, axis `k` dropped).
-fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
+pub(super) fn in_tri2(x: &[[f64; 3]], k: usize, p: u32, t: &[u32; 3]) -> bool {
     let s = [orient2(x, k, t[0], t[1], p), orient2(x, k, t[1], t[2], p), orient2(x, k, t[2], t[0], p)];
     !(s.contains(&Sign::Positive) && s.contains(&Sign::Negative))
 }
