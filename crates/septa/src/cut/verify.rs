@@ -23,7 +23,7 @@
 //! 6. positive volume: the exact sign of `sum det(b - o, c - o, d - o)`
 //!    over each cell's triangles (divergence theorem);
 //! 7. every vertex in use has finite coordinates (with an infinite or NaN
-//!    one nothing above would be a proof).
+//!    one nothing above would be a proof, and nothing above is checked).
 //!
 //! Item 5 uses a floating-point ear clipping to triangulate planar polygons;
 //! a poor triangulation of a valid polygon can only add reported
@@ -62,8 +62,8 @@ pub struct VerifyReport {
     pub intersecting_pairs: usize,
     /// Cells whose exact volume is zero or negative.
     pub nonpositive_cells: usize,
-    /// Vertices in use with an infinite or NaN coordinate (nothing is
-    /// proven of a mesh that has one; written only when not zero).
+    /// Vertices in use with an infinite or NaN coordinate (nothing else is
+    /// checked of a mesh that has one; written only when not zero).
     #[serde(skip_serializing_if = "is_zero")]
     pub nonfinite_points: usize,
     /// The first offending elements, in words.
@@ -362,6 +362,10 @@ pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&Ve
                 r.note(|| format!("vertex {v} has a non-finite coordinate {p:?}"));
             }
         }
+    }
+    if r.nonfinite_points > 0 {
+        // nothing else is checked: the exact signs are of finite doubles
+        return r;
     }
     drop(bad_point);
     // distinct faces, triangulated once; each cell refers to them with a direction
