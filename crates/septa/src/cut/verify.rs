@@ -352,22 +352,25 @@ fn unbalanced(fwd: &mut Vec<u64>, bwd: &mut Vec<u64>, mut bad: impl FnMut(u32, u
 pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&VerifyReport>) -> VerifyReport {
     let nc = cells.num_cells();
     let mut r = VerifyReport { cells: nc, ..Default::default() };
-    // every decision below is an exact sign on finite doubles
-    let mut bad_point = vec![false; x.len()];
-    for &v in &cells.verts {
-        if let Some(p) = x.get(v as usize) {
-            if !bad_point[v as usize] && !p.iter().all(|c| c.is_finite()) {
-                bad_point[v as usize] = true;
-                r.nonfinite_points += 1;
-                r.note(|| format!("vertex {v} has a non-finite coordinate {p:?}"));
+    // every decision below is an exact sign on finite doubles; the vertices
+    // in use are looked at only when some point is not finite
+    if !x.iter().flatten().all(|c| c.is_finite()) {
+        let mut seen = vec![false; x.len()];
+        for &v in &cells.verts {
+            match x.get(v as usize) {
+                Some(p) if !seen[v as usize] && !p.iter().all(|c| c.is_finite()) => {
+                    seen[v as usize] = true;
+                    r.nonfinite_points += 1;
+                    r.note(|| format!("vertex {v} has a non-finite coordinate {p:?}"));
+                }
+                _ => {}
             }
         }
+        if r.nonfinite_points > 0 {
+            // nothing else is checked: the exact signs are of finite doubles
+            return r;
+        }
     }
-    if r.nonfinite_points > 0 {
-        // nothing else is checked: the exact signs are of finite doubles
-        return r;
-    }
-    drop(bad_point);
     // distinct faces, triangulated once; each cell refers to them with a direction
     let mut index = FaceIndex::default();
     let mut tri_start: Vec<u32> = vec![0];
