@@ -69,6 +69,7 @@ mod nudge;
 mod output;
 mod pair_grid;
 mod plane_graph;
+mod plane_separation;
 mod radix;
 mod rational;
 mod repair;

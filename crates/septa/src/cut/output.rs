@@ -177,7 +177,7 @@ impl super::CutCellMesh {
 
     /// The exact check of [`super::verify`] on the polygons as written.
     pub fn verify(&self) -> super::verify::VerifyReport {
-        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), None)
+        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), None, &self.planes)
     }
 
     /// The input triangles written unchanged, as a report of the input's
@@ -204,6 +204,6 @@ impl super::CutCellMesh {
     /// [`Self::verify`] after re-writing faces of the mesh that `prev`
     /// checked, no vertex moved ([`super::verify::verify_cells_since`]).
     pub fn verify_since(&self, prev: &super::verify::VerifyReport) -> super::verify::VerifyReport {
-        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), Some(prev))
+        super::verify::verify_flat(&self.vertices, &self.cell_polygons_flat(), Some(prev), &self.planes)
     }
 }

@@ -6,6 +6,7 @@
 
 use super::box_contact::box_contact;
 use super::pair_grid::PairGrid;
+use super::plane_separation::PlaneSeparation;
 use super::tri_pair::{pair_intersects_planes, TriPlane};
 use super::CutError;
 use rayon::prelude::*;
@@ -23,18 +24,20 @@ pub fn check_self_intersections(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(),
 /// with `first_only` just the smallest pair (or none). Triangles must not be
 /// degenerate (collinear corners).
 pub fn intersecting_pairs(x: &[[f64; 3]], tris: &[[u32; 3]], first_only: bool) -> Vec<(u32, u32)> {
-    intersecting_pairs_touching(x, tris, None, first_only)
+    intersecting_pairs_touching(x, tris, None, None, first_only)
 }
 
 /// [`intersecting_pairs`] restricted to the pairs with at least one `fresh`
 /// triangle (all pairs with `None`): a re-check after some faces were
 /// re-written, the other pairs being known from the previous check (their
 /// coordinates unchanged). Only grid cells holding a fresh triangle are
-/// filled and swept.
-pub fn intersecting_pairs_touching(
+/// filled and swept. With `separation`, the pairs it proves apart skip the
+/// exact test (the same answer, sooner).
+pub(crate) fn intersecting_pairs_touching(
     x: &[[f64; 3]],
     tris: &[[u32; 3]],
     fresh: Option<&[bool]>,
+    separation: Option<&PlaneSeparation>,
     first_only: bool,
 ) -> Vec<(u32, u32)> {
     let n = tris.len();
@@ -102,6 +105,9 @@ pub fn intersecting_pairs_touching(
                     continue;
                 }
                 let (u1, u2) = (t1 as usize, t2 as usize);
+                if separation.is_some_and(|s| s.separated(u1, u2)) {
+                    continue;
+                }
                 let meets = match box_contact(x, &tris[u1], &(lo1, hi1), &tris[u2], &(lo2, hi2)) {
                     Some(m) => m,
                     None => pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]),

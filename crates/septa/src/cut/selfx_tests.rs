@@ -67,5 +67,5 @@ fn re_check_finds_the_pairs_with_a_fresh_triangle() {
     let fresh: Vec<bool> = (0..t.len()).map(|i| i % 7 == 3 || i + 3 >= t.len()).collect();
     let want = every_pair(&x, &t, |a, b| fresh[a] || fresh[b]);
     assert!(want.len() > 20, "{want:?}");
-    assert_eq!(intersecting_pairs_touching(&x, &t, Some(&fresh), false), want);
+    assert_eq!(intersecting_pairs_touching(&x, &t, Some(&fresh), None, false), want);
 }

@@ -29,8 +29,9 @@
 //! a poor triangulation of a valid polygon can only add reported
 //! intersections, never hide one, so a zero report is a proof.
 
+use super::plane_separation::PlaneSeparation;
 use super::radix::sort_u64;
-use super::selfx::{intersecting_pairs, intersecting_pairs_touching};
+use super::selfx::intersecting_pairs_touching;
 use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
 use super::verify_volume::volume_sign_static;
@@ -268,7 +269,7 @@ pub fn verify_cells(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>]) -> VerifyReport {
 /// meet depends only on their corners' coordinates). The repair re-writes a
 /// few faces and re-checks: this re-check used to test every pair again.
 pub fn verify_cells_since(x: &[[f64; 3]], cells: &[Vec<Vec<u32>>], prev: Option<&VerifyReport>) -> VerifyReport {
-    verify_flat(x, &CellPolygons::from_nested(cells), prev)
+    verify_flat(x, &CellPolygons::from_nested(cells), prev, &[])
 }
 
 fn key_hash(k: &[u32]) -> u64 {
@@ -348,8 +349,15 @@ fn unbalanced(fwd: &mut Vec<u64>, bwd: &mut Vec<u64>, mut bad: impl FnMut(u32, u
     n
 }
 
-/// [`verify_cells_since`] on cells in their flat form.
-pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&VerifyReport>) -> VerifyReport {
+/// [`verify_cells_since`] on cells in their flat form. `planes` (`[a, b,
+/// c, d]`, e.g. the cutting planes) only speed up the intersection test
+/// ([`PlaneSeparation`]): any planes, or none, give the same report.
+pub(crate) fn verify_flat(
+    x: &[[f64; 3]],
+    cells: &CellPolygons,
+    prev: Option<&VerifyReport>,
+    planes: &[[f64; 4]],
+) -> VerifyReport {
     let nc = cells.num_cells();
     let mut r = VerifyReport { cells: nc, ..Default::default() };
     // every decision below is an exact sign on finite doubles; the vertices
@@ -494,7 +502,8 @@ pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&Ve
         }
     }
     r.triangles = all.len() + r.degenerate_triangles;
-    let pairs = triangle_pairs(x, &all, prev.and_then(|p| p.memo.as_deref()), &mut r);
+    let separation = PlaneSeparation::new(x, &all, planes);
+    let pairs = triangle_pairs(x, &all, prev.and_then(|p| p.memo.as_deref()), separation.as_ref(), &mut r);
     r.intersecting_pairs = pairs.len();
     bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
     for &(a, b) in pairs.iter().take(3) {
@@ -523,18 +532,24 @@ pub(crate) fn verify_flat(x: &[[f64; 3]], cells: &CellPolygons, prev: Option<&Ve
 
 /// The intersecting pairs of `all` (indices, sorted), through the memo of a
 /// previous check when there is one; records this check's memo in `r`.
-fn triangle_pairs(x: &[[f64; 3]], all: &[[u32; 3]], prev: Option<&PairMemo>, r: &mut VerifyReport) -> Vec<(u32, u32)> {
+fn triangle_pairs(
+    x: &[[f64; 3]],
+    all: &[[u32; 3]],
+    prev: Option<&PairMemo>,
+    separation: Option<&PlaneSeparation>,
+    r: &mut VerifyReport,
+) -> Vec<(u32, u32)> {
     let keys: Vec<[u32; 3]> = all.iter().map(tri_key).collect();
     let index: FxHashMap<[u32; 3], u32> = keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
     if index.len() != keys.len() {
         // a triangle written twice: no memo (pairs are named by vertex ids)
-        return intersecting_pairs(x, all, false);
+        return intersecting_pairs_touching(x, all, None, separation, false);
     }
     let mut pairs = match prev {
-        None => intersecting_pairs(x, all, false),
+        None => intersecting_pairs_touching(x, all, None, separation, false),
         Some(m) => {
             let fresh: Vec<bool> = keys.iter().map(|k| !m.triangles.contains(k)).collect();
-            let mut p = intersecting_pairs_touching(x, all, Some(&fresh), false);
+            let mut p = intersecting_pairs_touching(x, all, Some(&fresh), separation, false);
             for (a, b) in &m.pairs {
                 if let (Some(&i), Some(&j)) = (index.get(a), index.get(b)) {
                     p.push((i.min(j), i.max(j)));

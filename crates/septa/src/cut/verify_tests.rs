@@ -82,8 +82,11 @@ fn flat_cells_equal_the_nested_polygons() {
         assert_eq!(flat.cell_start, want.cell_start, "seed {seed}");
         assert_eq!(flat.poly_start, want.poly_start, "seed {seed}");
         assert_eq!(flat.verts, want.verts, "seed {seed}");
-        let (a, b) = (verify_flat(&out.vertices, &flat, None), verify_cells(&out.vertices, &nested));
+        let (a, b) = (verify_flat(&out.vertices, &flat, None, &[]), verify_cells(&out.vertices, &nested));
         assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&b).unwrap());
+        // the cutting planes only speed the check up
+        let c = verify_flat(&out.vertices, &flat, None, &planes);
+        assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&c).unwrap());
         assert_eq!(a.violations(), 0, "seed {seed}: {:?}", a.examples);
         assert_eq!(a.cells, out.num_cells);
     }
@@ -115,4 +118,38 @@ fn non_finite_vertices_are_violations() {
         assert_eq!(r.nonfinite_points, 1, "{z}: {r:?}");
         assert!(r.violations() >= 1 && r.examples.iter().any(|e| e.contains("vertex 3 has a non-finite")), "{r:?}");
     }
+}
+
+/// With vertices moved so that cells cross each other and themselves, the
+/// check with the cutting planes as separators finds the same
+/// intersecting pairs as without them (the planes pass between many of
+/// the moved triangles' neighbours, never between two that meet).
+#[test]
+fn separating_planes_hide_no_intersection() {
+    let (v, t) = cube();
+    let mut found = 0;
+    for seed in 1..=8u64 {
+        let mut r = xorshift_unit(100 + seed);
+        let planes: Vec<[f64; 4]> = (0..4)
+            .map(|_| {
+                let n = [r(), r(), r()];
+                let p = [0.5 + 0.3 * r(), 0.5 + 0.3 * r(), 0.5 + 0.3 * r()];
+                [n[0], n[1], n[2], -(n[0] * p[0] + n[1] * p[1] + n[2] * p[2])]
+            })
+            .collect();
+        let mut out = cut_mesh(&v, &t, &planes, &CutOptions::default()).unwrap();
+        // push a few cut-vertices across their neighbours
+        let nv = out.vertices.len();
+        for i in 0..3 {
+            let k = (seed as usize * 7 + i * 13) % nv;
+            for c in 0..3 {
+                out.vertices[k][c] += 0.2 * r();
+            }
+        }
+        let flat = out.cell_polygons_flat();
+        let (a, b) = (verify_flat(&out.vertices, &flat, None, &[]), verify_flat(&out.vertices, &flat, None, &planes));
+        assert_eq!(serde_json::to_string(&a).unwrap(), serde_json::to_string(&b).unwrap(), "seed {seed}");
+        found += a.intersecting_pairs;
+    }
+    assert!(found > 0, "no moved vertex made an intersection");
 }
