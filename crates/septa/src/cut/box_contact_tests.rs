@@ -4,23 +4,9 @@
 //! ids.
 
 use super::*;
+use crate::cut::nudge::{meet as overlap, tri_box as aabb};
 use crate::cut::test_rng::lcg;
 use crate::cut::tri_pair::pair_intersects;
-
-fn aabb(x: &[[f64; 3]], t: &[u32; 3]) -> Aabb {
-    let mut b = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-    for &v in t {
-        for k in 0..3 {
-            b.0[k] = b.0[k].min(x[v as usize][k]);
-            b.1[k] = b.1[k].max(x[v as usize][k]);
-        }
-    }
-    b
-}
-
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
-}
 
 /// The points of a 3x3x3 lattice (a third of them with a second id at the
 /// same point, one at -0.0 instead of 0.0), and random non-degenerate

@@ -25,7 +25,8 @@ const MAX_VERTICES: usize = 4000;
 
 type Bx = ([f64; 3], [f64; 3]);
 
-fn tri_box(x: &[[f64; 3]], t: &[u32; 3]) -> Bx {
+/// The bounding box of triangle `t`.
+pub(super) fn tri_box(x: &[[f64; 3]], t: &[u32; 3]) -> Bx {
     let mut b = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for &v in t {
         for k in 0..3 {
@@ -36,7 +37,8 @@ fn tri_box(x: &[[f64; 3]], t: &[u32; 3]) -> Bx {
     b
 }
 
-fn meet(a: &Bx, b: &Bx) -> bool {
+/// Do two closed boxes overlap (touching counts)?
+pub(super) fn meet(a: &Bx, b: &Bx) -> bool {
     (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
 
