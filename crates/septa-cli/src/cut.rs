@@ -160,8 +160,14 @@ pub fn run(a: Args) -> CliResult {
     };
     let read_s = t0.elapsed().as_secs_f64();
     // With the global pool sized here, the cut runs in it (threads 0 below)
-    // instead of starting a second pool of the same size.
-    let global = a.threads > 0 && rayon::ThreadPoolBuilder::new().num_threads(a.threads).build_global().is_ok();
+    // instead of starting a second pool of the same size. This thread is one
+    // of the pool's: each parallel stage of the cut used to be handed from
+    // here to a worker and back, and between stages the idle worker spun
+    // (yields before sleeping) while this thread did the serial ones, about
+    // 1-4 ms of CPU on a 20-90 ms cut (docs/performance.md, "Thirteenth
+    // round"). With `--threads 1` there is now no other thread at all.
+    // (`num_threads(0)` is rayon's default: all cores.)
+    let global = rayon::ThreadPoolBuilder::new().num_threads(a.threads).use_current_thread().build_global().is_ok();
     let t1 = Instant::now();
     // A bar over the cut's stages (on a terminal only), moved by the library.
     let bar = crate::progress::bar(a.json || a.quiet, "cut stages");
