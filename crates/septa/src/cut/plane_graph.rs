@@ -118,33 +118,73 @@ impl Ccw {
         )
     }
 
-    /// Sorts directions counter-clockwise about the plane normal.
+    /// Sorts directions counter-clockwise about the plane normal (stable:
+    /// directions that compare equal keep their order).
     fn sort(&self, c: &Ctx, items: &mut [(u32, (LineDir, bool))]) {
-        // interval directions computed once per item; exact only on doubt
-        let iv: Vec<V3<Interval>> = items.iter().map(|x| dir_vec::<Interval>(c, x.1 .0, x.1 .1)).collect();
-        let halves: Vec<u8> = items.iter().zip(&iv).map(|(x, v)| self.half(c, x.1, v)).collect();
-        let mut idx: Vec<usize> = (0..items.len()).collect();
-        let (i, j) = (self.i, self.j);
-        idx.sort_by(|&x, &y| {
-            let (hx, hy) = (halves[x], halves[y]);
-            if hx != hy {
-                return hx.cmp(&hy);
+        // A vertex of a plane's graph has a handful of half-edges (four where
+        // two lines cross): their keys stay on the stack and an insertion
+        // sort orders them, where vectors per vertex and a merge sort were
+        // most of this function's time on the small cuts.
+        const SMALL: usize = 12;
+        if items.len() <= SMALL {
+            let mut iv = [[Interval::point(0.0); 3]; SMALL];
+            let mut halves = [0u8; SMALL];
+            for (k, x) in items.iter().enumerate() {
+                iv[k] = dir_vec::<Interval>(c, x.1 .0, x.1 .1);
+                halves[k] = self.half(c, x.1, &iv[k]);
             }
-            let cr = iv[x][i].mul(&iv[y][j]).sub(&iv[x][j].mul(&iv[y][i]));
-            let s = match cr.sign() {
-                Some(s) => s,
-                None => self.cross(c, items[x].1, items[y].1),
-            };
-            match s {
-                Sign::Positive => std::cmp::Ordering::Less,
-                Sign::Negative => std::cmp::Ordering::Greater,
-                Sign::Zero => std::cmp::Ordering::Equal,
+            let mut idx: [u8; SMALL] = std::array::from_fn(|k| k as u8);
+            let idx = &mut idx[..items.len()];
+            for a in 1..idx.len() {
+                let mut b = a;
+                while b > 0 && self.cmp(c, items, &iv, &halves, idx[b] as usize, idx[b - 1] as usize).is_lt() {
+                    idx.swap(b, b - 1);
+                    b -= 1;
+                }
             }
-        });
-        let sorted: Vec<_> = idx.iter().map(|&k| items[k]).collect();
-        items.copy_from_slice(&sorted);
+            let sorted: [(u32, (LineDir, bool)); SMALL] =
+                std::array::from_fn(|k| items[idx.get(k).map_or(0, |&i| i as usize)]);
+            items.copy_from_slice(&sorted[..items.len()]);
+        } else {
+            // interval directions computed once per item; exact only on doubt
+            let iv: Vec<V3<Interval>> = items.iter().map(|x| dir_vec::<Interval>(c, x.1 .0, x.1 .1)).collect();
+            let halves: Vec<u8> = items.iter().zip(&iv).map(|(x, v)| self.half(c, x.1, v)).collect();
+            let mut idx: Vec<usize> = (0..items.len()).collect();
+            idx.sort_by(|&x, &y| self.cmp(c, items, &iv, &halves, x, y));
+            let sorted: Vec<_> = idx.iter().map(|&k| items[k]).collect();
+            items.copy_from_slice(&sorted);
+        }
         if self.flip {
             items.reverse();
+        }
+    }
+
+    /// The counter-clockwise order of directions `x` and `y` of `items` (by
+    /// half-plane, then by the exact sign of their cross product; interval
+    /// copies `iv` first); `Equal` for parallel ones.
+    fn cmp(
+        &self,
+        c: &Ctx,
+        items: &[(u32, (LineDir, bool))],
+        iv: &[V3<Interval>],
+        halves: &[u8],
+        x: usize,
+        y: usize,
+    ) -> std::cmp::Ordering {
+        let (hx, hy) = (halves[x], halves[y]);
+        if hx != hy {
+            return hx.cmp(&hy);
+        }
+        let (i, j) = (self.i, self.j);
+        let cr = iv[x][i].mul(&iv[y][j]).sub(&iv[x][j].mul(&iv[y][i]));
+        let s = match cr.sign() {
+            Some(s) => s,
+            None => self.cross(c, items[x].1, items[y].1),
+        };
+        match s {
+            Sign::Positive => std::cmp::Ordering::Less,
+            Sign::Negative => std::cmp::Ordering::Greater,
+            Sign::Zero => std::cmp::Ordering::Equal,
         }
     }
 }
@@ -246,31 +286,36 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
         let e = &es[h / 2];
         (e.dir, if h % 2 == 0 { e.fwd } else { !e.fwd })
     };
-    let mut out_of: FxMap<u32, Vec<(u32, (LineDir, bool))>> = FxMap::default();
-    for h in 0..nh {
-        out_of.entry(tail(h)).or_default().push((h as u32, hdir(h)));
-    }
+    // the half-edges grouped by tail (in order of half-edge within a
+    // tail, as they were pushed before), each group then sorted into its
+    // tail's cyclic order: one array of rings, `(start, len)` per ring
+    let mut by_tail: Vec<(u32, u32)> = (0..nh as u32).map(|h| (tail(h as usize), h)).collect();
+    by_tail.sort_unstable();
+    let mut ring_hs: Vec<(u32, (LineDir, bool))> = by_tail.iter().map(|&(_, h)| (h, hdir(h as usize))).collect();
     let ccw = Ccw::new(&[c.planes[p as usize][0], c.planes[p as usize][1], c.planes[p as usize][2]]);
-    // position of each half-edge in its tail's cyclic order
-    let mut pos = vec![(0u32, 0u32); nh];
-    let mut rings: Vec<Vec<u32>> = Vec::with_capacity(out_of.len());
-    for (_, mut list) in out_of.into_iter() {
+    // position of each half-edge in its tail's cyclic order: its ring's
+    // start and length, its index in `ring_hs`
+    let mut pos = vec![(0u32, 0u32, 0u32); nh];
+    let mut s = 0;
+    while s < nh {
+        let mut e = s + 1;
+        while e < nh && by_tail[e].0 == by_tail[s].0 {
+            e += 1;
+        }
+        let list = &mut ring_hs[s..e];
         if list.len() > 1 {
-            ccw.sort(c, &mut list);
+            ccw.sort(c, list);
         }
-        let r = rings.len() as u32;
         for (i, x) in list.iter().enumerate() {
-            pos[x.0 as usize] = (r, i as u32);
+            pos[x.0 as usize] = (s as u32, (e - s) as u32, (s + i) as u32);
         }
-        rings.push(list.iter().map(|x| x.0).collect());
+        s = e;
     }
     // next(h) = the half-edge clockwise after twin(h) at the head of h
     let next = |h: usize| -> usize {
-        let tw = h ^ 1;
-        let (r, i) = pos[tw];
-        let ring = &rings[r as usize];
-        let j = (i as usize + ring.len() - 1) % ring.len();
-        ring[j] as usize
+        let (start, len, at) = pos[h ^ 1];
+        let j = if at == start { start + len - 1 } else { at - 1 };
+        ring_hs[j as usize].0 as usize
     };
     let mut loop_of = vec![u32::MAX; nh];
     let mut loops: Vec<Vec<usize>> = Vec::new();
@@ -295,25 +340,21 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     for h in 0..nh {
         let e = &es[h / 2];
         let k = (e.a.min(e.b), e.a.max(e.b));
-        let s = if let Some(&t) = bnd.gamma.get(&k) {
-            Some(gamma_status(c, p, t, hdir(h)))
-        } else if let Some(&me) = bnd.mesh.get(&k) {
-            Some(mesh_status(c, p, me, hdir(h)))
-        } else {
-            None
-        };
         let l = loop_of[h] as usize;
-        match s {
-            Some(s) => {
-                if status[l].is_none() {
-                    status[l] = Some(s);
-                }
+        // a loop's status is that of its first boundary half-edge: the
+        // others' are not computed
+        if let Some(&t) = bnd.gamma.get(&k) {
+            if status[l].is_none() {
+                status[l] = Some(gamma_status(c, p, t, hdir(h)));
             }
-            None => {
-                line_edge[l] = true;
-                if h % 2 == 0 {
-                    joined.union(loop_of[h], loop_of[h ^ 1]);
-                }
+        } else if let Some(&me) = bnd.mesh.get(&k) {
+            if status[l].is_none() {
+                status[l] = Some(mesh_status(c, p, me, hdir(h)));
+            }
+        } else {
+            line_edge[l] = true;
+            if h % 2 == 0 {
+                joined.union(loop_of[h], loop_of[h ^ 1]);
             }
         }
     }
