@@ -310,6 +310,10 @@ pub fn run(a: Args) -> CliResult {
             t0.elapsed().as_secs_f64()
         );
     }
+    // The process ends here: its memory goes back with it, so the cut's
+    // many small vectors (face loops, cell lists) are not freed one by one
+    // (about 1% of a small cut's time in `free`).
+    std::mem::forget((out, polys, mesh));
     check?;
     if let Some(r) = &verify {
         for e in &r.examples {
