@@ -44,8 +44,20 @@ use septa_exact::Sign;
 /// way their boxes touch decides it (see the module doc); `None`
 /// otherwise. The same answer as `tri_pair::pair_intersects` whenever it
 /// answers.
+///
+/// `e1` and `e2` are the triangles' [`extreme_corners`] (read instead of
+/// the corners' coordinates: most pairs of this kind are decided from them
+/// and the corner ids alone).
 #[inline(always)]
-pub(super) fn box_contact(x: &[[f64; 3]], t1: &[u32; 3], b1: &Aabb, t2: &[u32; 3], b2: &Aabb) -> Option<bool> {
+pub(super) fn box_contact(
+    x: &[[f64; 3]],
+    t1: &[u32; 3],
+    b1: &Aabb,
+    e1: u32,
+    t2: &[u32; 3],
+    b2: &Aabb,
+    e2: u32,
+) -> Option<bool> {
     // the flat axes and their common value (no branch per axis: most
     // pairs of a curved surface have none and leave at once)
     let (mut flat, mut c) = ([false; 3], [0.0f64; 3]);
@@ -58,17 +70,20 @@ pub(super) fn box_contact(x: &[[f64; 3]], t1: &[u32; 3], b1: &Aabb, t2: &[u32; 3
     if !(flat[0] | flat[1] | flat[2]) {
         return None;
     }
-    // the corners of each triangle on every flat plane, as bit masks
-    let on = |t: &[u32; 3]| -> u32 {
-        let mut m = 0;
-        for (q, &v) in t.iter().enumerate() {
-            let p = &x[v as usize];
-            let here = (!flat[0] | (p[0] == c[0])) & (!flat[1] | (p[1] == c[1])) & (!flat[2] | (p[2] == c[2]));
-            m |= (here as u32) << q;
+    // the corners of each triangle on every flat plane, as bit masks: on a
+    // flat axis `c_k` is the triangle's least or greatest coordinate, so its
+    // corners there are those reaching that extreme
+    let on = |b: &Aabb, e: u32| -> u32 {
+        let mut m = 7;
+        for k in 0..3 {
+            if flat[k] {
+                let shift = 6 * k + if c[k] == b.0[k] { 0 } else { 3 };
+                m &= e >> shift & 7;
+            }
         }
         m
     };
-    let (m1, m2) = (on(t1), on(t2));
+    let (m1, m2) = (on(b1, e1), on(b2, e2));
     if m1 == 0 || m2 == 0 {
         return Some(false);
     }
@@ -90,6 +105,20 @@ pub(super) fn box_contact(x: &[[f64; 3]], t1: &[u32; 3], b1: &Aabb, t2: &[u32; 3
         }
     }
     hulls_meet(x, flat, t1, m1, t2, m2)
+}
+
+/// Which corners of triangle `t` reach the ends of its box `b` on each
+/// axis: bits `6k..6k+3` the corners with the least coordinate `k`, bits
+/// `6k+3..6k+6` those with the greatest (a bit per corner, in `t`'s order).
+pub(super) fn extreme_corners(x: &[[f64; 3]], t: &[u32; 3], b: &Aabb) -> u32 {
+    let mut e = 0;
+    for k in 0..3 {
+        for (q, &v) in t.iter().enumerate() {
+            let p = x[v as usize][k];
+            e |= ((p == b.0[k]) as u32) << (6 * k + q) | ((p == b.1[k]) as u32) << (6 * k + 3 + q);
+        }
+    }
+    e
 }
 
 /// Up to three corner ids of one triangle.

@@ -55,7 +55,15 @@ fn answers_agree_with_the_full_pair_test() {
                     continue;
                 }
                 let (t1, t2) = (&tris[a], &tris[b]);
-                match box_contact(&x, t1, &boxes[a], t2, &boxes[b]) {
+                match box_contact(
+                    &x,
+                    t1,
+                    &boxes[a],
+                    extreme_corners(&x, t1, &boxes[a]),
+                    t2,
+                    &boxes[b],
+                    extreme_corners(&x, t2, &boxes[b]),
+                ) {
                     Some(m) => {
                         let want = pair_intersects(&x, t1, t2);
                         assert_eq!(
@@ -143,7 +151,15 @@ fn a_grid_of_cube_faces_has_no_intersection() {
     for a in 0..tris.len() {
         for b in a + 1..tris.len() {
             if overlap(&boxes[a], &boxes[b]) {
-                if let Some(m) = box_contact(&x, &tris[a], &boxes[a], &tris[b], &boxes[b]) {
+                if let Some(m) = box_contact(
+                    &x,
+                    &tris[a],
+                    &boxes[a],
+                    extreme_corners(&x, &tris[a], &boxes[a]),
+                    &tris[b],
+                    &boxes[b],
+                    extreme_corners(&x, &tris[b], &boxes[b]),
+                ) {
                     assert!(!m, "{:?} {:?}", tris[a], tris[b]);
                     answered += 1;
                 }

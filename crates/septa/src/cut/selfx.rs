@@ -4,7 +4,7 @@
 //! pair is tested once, in the grid cell holding the low corner of the
 //! overlap of their boxes); every decision is an exact orientation sign.
 
-use super::box_contact::box_contact;
+use super::box_contact::{box_contact, extreme_corners};
 use super::pair_grid::PairGrid;
 use super::plane_separation::PlaneSeparation;
 use super::tri_pair::{pair_intersects_planes, TriPlane};
@@ -59,6 +59,7 @@ pub(crate) fn intersecting_pairs_touching(
         })
         .collect();
     let grid = PairGrid::new(&boxes, fresh);
+    let extremes: Vec<u32> = tris.iter().zip(&boxes).map(|(t, b)| extreme_corners(x, t, b)).collect();
     let (low_cell, ids) = (&grid.low_cell, &grid.ids);
     let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
     // One grid cell's triangles, copied next to each other (box, start
@@ -108,7 +109,8 @@ pub(crate) fn intersecting_pairs_touching(
                 if separation.is_some_and(|s| s.separated(u1, u2)) {
                     continue;
                 }
-                let meets = match box_contact(x, &tris[u1], &(lo1, hi1), &tris[u2], &(lo2, hi2)) {
+                let (b1, b2) = ((lo1, hi1), (lo2, hi2));
+                let meets = match box_contact(x, &tris[u1], &b1, extremes[u1], &tris[u2], &b2, extremes[u2]) {
                     Some(m) => m,
                     None => pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]),
                 };
