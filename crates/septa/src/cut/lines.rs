@@ -6,75 +6,112 @@
 
 use super::geom::{dot3, Ctx, Def, LineDir, V3};
 use super::nodes::{FxMap, Nodes};
-use septa_exact::{Interval, Ring, Sign};
+use septa_exact::{Bounded, Interval, Ring, Sign};
 use std::cmp::Ordering;
 
-/// Interval homogeneous coordinates `(H, W)` of three-plane points, kept
-/// across the three plane-pair lines each lies on.
-pub type HomCache = FxMap<u32, (V3<Interval>, Interval)>;
+/// Homogeneous coordinates `(H, W)` of three-plane points, kept across the
+/// three plane-pair lines each lies on: as [`Bounded`] doubles, and as
+/// intervals once a comparison needed them.
+#[derive(Default)]
+pub struct HomCache {
+    bounded: FxMap<u32, (V3<Bounded>, Bounded)>,
+    interval: FxMap<u32, (V3<Interval>, Interval)>,
+}
+
+impl HomCache {
+    fn hom<R: Ring>(c: &Ctx, map: &mut FxMap<u32, (V3<R>, R)>, n: u32, d: Def) -> (V3<R>, R) {
+        if let Def::PPP(..) = d {
+            map.entry(n).or_insert_with(|| c.hom::<R>(d)).clone()
+        } else {
+            c.hom::<R>(d)
+        }
+    }
+}
 
 /// Sorts nodes along a line direction, merges equal points, and returns one
-/// node per distinct point in increasing order. `cache` keeps the interval
+/// node per distinct point in increasing order. `cache` keeps the
 /// coordinates of `PPP` nodes between calls.
 pub fn sort_line(c: &Ctx, nodes: &mut Nodes, pts: &mut Vec<u32>, dir: LineDir, cache: &mut HomCache) -> Vec<u32> {
     pts.sort_unstable();
     pts.dedup();
-    // floating-point pre-sort keys (paper Sec. 6.3, "line sorting speedup"),
-    // decided exactly whenever the intervals overlap
-    let dv = c.line_dir::<Interval>(dir);
-    let keys: Vec<(Interval, Interval)> = pts
-        .iter()
-        .map(|&n| {
-            let d = nodes.defs[n as usize];
-            let (h, w) = if let Def::PPP(..) = d {
-                cache.entry(n).or_insert_with(|| c.hom::<Interval>(d)).clone()
-            } else {
-                c.hom::<Interval>(d)
-            };
-            (dot3(&h, &dv), w)
-        })
-        .collect();
-    // First tier: enclosures of the exact line parameters `H.d / W`; two
-    // disjoint ones order their points (the comparison below is the sign
-    // of the same difference), overlapping ones go on to the products.
-    let params: Vec<Option<Interval>> = keys.iter().map(|(h, w)| h.div(w)).collect();
-    let mut idx: Vec<usize> = (0..pts.len()).collect();
     let defs = &nodes.defs;
+    // floating-point pre-sort keys (paper Sec. 6.3, "line sorting speedup"),
+    // decided exactly whenever they cannot tell. First tier: the line
+    // parameters `H.d / W` as doubles with proven error bounds (a few
+    // multiplications each, where the tight intervals below cost dozens);
+    // the sign of a difference of two decides their order.
+    let params: Vec<Option<Bounded>> = {
+        let dv = c.line_dir::<Bounded>(dir);
+        pts.iter()
+            .map(|&n| {
+                let (h, w) = HomCache::hom(c, &mut cache.bounded, n, defs[n as usize]);
+                dot3(&h, &dv).div(&w)
+            })
+            .collect()
+    };
+    // Second tier, for the pairs the first leaves open (nearly or exactly
+    // equal points, `W` near zero): the same comparison in tight intervals,
+    // which also see the exact zeros of coincident points; formed on first
+    // use. Third: the exact order.
+    type Key = (Interval, Interval, Option<Interval>);
+    let intervals: std::cell::RefCell<(Vec<Option<Key>>, &mut FxMap<u32, (V3<Interval>, Interval)>)> =
+        std::cell::RefCell::new((vec![None; pts.len()], &mut cache.interval));
+    let dv_iv = c.line_dir::<Interval>(dir);
+    // `(H.d, W)` and the enclosure of their quotient
+    let key = |i: usize| -> Key {
+        let mut iv = intervals.borrow_mut();
+        if let Some(k) = iv.0[i] {
+            return k;
+        }
+        let (h, w) = HomCache::hom(c, iv.1, pts[i], defs[pts[i] as usize]);
+        let hd = dot3(&h, &dv_iv);
+        let k = (hd, w, hd.div(&w));
+        iv.0[i] = Some(k);
+        k
+    };
+    let mut idx: Vec<usize> = (0..pts.len()).collect();
     let memo: std::cell::RefCell<FxMap<(usize, usize), Sign>> = Default::default();
     let cmp = |&i: &usize, &j: &usize| -> Ordering {
         if i == j {
             return Ordering::Equal;
         }
-        if let (Some(a), Some(b)) = (params[i], params[j]) {
-            if a.hi < b.lo {
-                return Ordering::Less;
-            }
-            if a.lo > b.hi {
-                return Ordering::Greater;
-            }
-        }
-        let (ha, wa) = keys[i];
-        let (hb, wb) = keys[j];
-        let x = hb.mul(&wa).sub(&ha.mul(&wb)).mul(&wa).mul(&wb);
-        let s = match x.sign() {
+        let first = match (params[i], params[j]) {
+            (Some(a), Some(b)) => b.sub(&a).sign(),
+            _ => None,
+        };
+        let s = match first {
             Some(s) => s,
             None => {
-                // exact results memoised: a pair of equal points is met again
-                // when merging
-                let key = (i.min(j), i.max(j));
-                let cached = memo.borrow().get(&key).copied();
-                let s = match cached {
+                let ((ha, wa, pa), (hb, wb, pb)) = (key(i), key(j));
+                // disjoint enclosures of the parameters, then the sign of
+                // their difference's numerator
+                let disjoint = match (pa, pb) {
+                    (Some(a), Some(b)) if a.hi < b.lo => Some(Sign::Positive),
+                    (Some(a), Some(b)) if a.lo > b.hi => Some(Sign::Negative),
+                    _ => None,
+                };
+                let numerator = || hb.mul(&wa).sub(&ha.mul(&wb)).mul(&wa).mul(&wb).sign();
+                match disjoint.or_else(numerator) {
                     Some(s) => s,
                     None => {
-                        let s = c.order(defs[pts[key.0] as usize], defs[pts[key.1] as usize], dir);
-                        memo.borrow_mut().insert(key, s);
-                        s
+                        // exact results memoised: a pair of equal points is
+                        // met again when merging
+                        let key = (i.min(j), i.max(j));
+                        let cached = memo.borrow().get(&key).copied();
+                        let s = match cached {
+                            Some(s) => s,
+                            None => {
+                                let s = c.order(defs[pts[key.0] as usize], defs[pts[key.1] as usize], dir);
+                                memo.borrow_mut().insert(key, s);
+                                s
+                            }
+                        };
+                        if i < j {
+                            s
+                        } else {
+                            s.flip()
+                        }
                     }
-                };
-                if i < j {
-                    s
-                } else {
-                    s.flip()
                 }
             }
         };
