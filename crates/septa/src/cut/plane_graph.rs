@@ -404,3 +404,7 @@ pub fn plane_faces(c: &Ctx, p: u32, edges: &[GEdge], bnd: &Boundary, unclassifie
     }
     faces
 }
+
+#[cfg(test)]
+#[path = "plane_graph_tests.rs"]
+mod tests;
