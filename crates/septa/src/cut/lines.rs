@@ -247,3 +247,7 @@ pub fn plane_lines(
     }
     out
 }
+
+#[cfg(test)]
+#[path = "lines_tests.rs"]
+mod tests;
