@@ -4,15 +4,12 @@
 //! point, the equal ones merged.
 
 use super::*;
-use crate::cut::input::check_mesh;
+use crate::cut::test_rng::tet_ctx;
 use rand::{Rng, SeedableRng};
 
 #[test]
 fn line_points_sorted_and_merged_exactly() {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x11e5);
-    let verts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let tris = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-    let (edges, tri_edges, edge_tris) = check_mesh(&verts, &tris).expect("closed mesh");
     let mut merged_total = 0;
     for round in 0..30 {
         // the line of planes 0 (z = 0) and 1 (y = 0), along x; the other
@@ -31,19 +28,7 @@ fn line_points_sorted_and_merged_exactly() {
             let (b, c) = (rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0));
             planes.push([a, b, c, -a * at]);
         }
-        let c = Ctx {
-            verts: &verts,
-            tris: &tris,
-            planes: &planes,
-            edges: edges.clone(),
-            tri_edges: tri_edges.clone(),
-            edge_tris: edge_tris.clone(),
-            pv: vec![0; planes.len() * verts.len()],
-            tn_iv: Vec::new(),
-            pp_iv: Vec::new(),
-            tn_b: Vec::new(),
-            pp_b: Vec::new(),
-        };
+        let c = tet_ctx(&planes);
         let dir = LineDir::PlanePlane(0, 1);
         let mut nodes = Nodes::default();
         let mut pts: Vec<u32> = (2..planes.len() as u32).map(|r| nodes.get(Def::PPP(0, 1, r))).collect();

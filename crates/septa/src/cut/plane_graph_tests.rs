@@ -3,7 +3,7 @@
 //! vector path (more than `SMALL`) against an exact reference.
 
 use super::*;
-use crate::cut::input::check_mesh;
+use crate::cut::test_rng::tet_ctx;
 use rand::{Rng, SeedableRng};
 use std::cmp::Ordering;
 
@@ -32,10 +32,6 @@ fn exact_cmp(c: &Ctx, ccw: &Ccw, a: (LineDir, bool), b: (LineDir, bool)) -> Orde
 #[test]
 fn directions_sort_counter_clockwise_and_stably() {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(0x0cc3);
-    // a closed tetrahedron: the order needs planes only
-    let verts = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-    let tris = vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
-    let (edges, tri_edges, edge_tris) = check_mesh(&verts, &tris).expect("closed mesh");
     for round in 0..40 {
         // plane 0 carries the directions `n_0 x n_q`; every third plane is
         // a multiple of an earlier one (the same direction, compared equal)
@@ -51,19 +47,7 @@ fn directions_sort_counter_clockwise_and_stably() {
             };
             planes.push(p);
         }
-        let c = Ctx {
-            verts: &verts,
-            tris: &tris,
-            planes: &planes,
-            edges: edges.clone(),
-            tri_edges: tri_edges.clone(),
-            edge_tris: edge_tris.clone(),
-            pv: vec![0; planes.len() * verts.len()],
-            tn_iv: Vec::new(),
-            pp_iv: Vec::new(),
-            tn_b: Vec::new(),
-            pp_b: Vec::new(),
-        };
+        let c = tet_ctx(&planes);
         let ccw = Ccw::new(&n0);
         // sizes on both sides of the stack path's limit
         let n = [2, 3, 4, 7, 12, 13, 20, 46][round % 8];

@@ -1,5 +1,6 @@
-//! Small deterministic generators for the cut's unit tests: the same
-//! sequences on every machine, without a dependency.
+//! Small deterministic generators for the cut's unit tests (the same
+//! sequences on every machine, without a dependency), and a tetrahedron's
+//! context for tests of the plane-only predicates.
 
 /// Knuth's MMIX linear congruential generator, its top 53 bits.
 pub(super) fn lcg(seed: u64) -> impl FnMut() -> u64 {
@@ -18,5 +19,30 @@ pub(super) fn xorshift_unit(seed: u64) -> impl FnMut() -> f64 {
         s ^= s >> 7;
         s ^= s << 17;
         (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
+/// A closed unit tetrahedron (outward), for tests that need a [`Ctx`] for
+/// its planes only.
+static TET_VERTS: [[f64; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+static TET_TRIS: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+
+/// The cut context of the tetrahedron above and `planes` (plane-vertex
+/// signs left zero, no filter copies): what the plane-only predicates
+/// (line directions, three-plane points, orders) read.
+pub(super) fn tet_ctx(planes: &[[f64; 4]]) -> super::geom::Ctx<'_> {
+    let (edges, tri_edges, edge_tris) = super::input::check_mesh(&TET_VERTS, &TET_TRIS).expect("closed mesh");
+    super::geom::Ctx {
+        verts: &TET_VERTS,
+        tris: &TET_TRIS,
+        planes,
+        edges,
+        tri_edges,
+        edge_tris,
+        pv: vec![0; planes.len() * TET_VERTS.len()],
+        tn_iv: Vec::new(),
+        pp_iv: Vec::new(),
+        tn_b: Vec::new(),
+        pp_b: Vec::new(),
     }
 }
