@@ -39,6 +39,7 @@ mod barycentric;
 mod bignum;
 mod bounded;
 mod det;
+mod double_word;
 mod exact;
 mod expansion;
 mod expansion_det;
@@ -56,6 +57,7 @@ pub use barycentric::{
 };
 pub use bounded::{filtered_sign_bounded, Bounded};
 pub use det::{det_sign, det_sign_diff, det_sign_diff_f64_naive, det_sign_f64_naive};
+pub use double_word::DoubleWord;
 pub use exact::Exact;
 pub use expansion_ring::{expansion_window, Expansion};
 pub use orient3d::orient3d_exact_diffs;

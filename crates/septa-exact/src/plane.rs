@@ -31,6 +31,7 @@
 //! multiplications per operation), and only what that cannot decide goes
 //! on to the intervals and the exact tier.
 
+use crate::expansion::{two_product, two_sum};
 use crate::{Exact, Sign};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -106,33 +107,6 @@ fn next_down(x: f64) -> f64 {
     -next_up(-x)
 }
 
-/// `a + b = s + e` exactly (Knuth's TwoSum), for finite non-overflowing sums.
-#[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
-    let s = a + b;
-    let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
-    (s, e)
-}
-
-#[inline]
-fn split(a: f64) -> (f64, f64) {
-    let c = 134_217_729.0 * a; // 2^27 + 1
-    let hi = c - (c - a);
-    (hi, a - hi)
-}
-
-/// `a * b = p + e` exactly (Dekker's TwoProduct) when no underflow or
-/// overflow occurs; callers guard the range.
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    let (ah, al) = split(a);
-    let (bh, bl) = split(b);
-    let e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    (p, e)
-}
-
 // Dekker's product is exact when |a|,|b| < 2^996 and the product's error
 // term does not underflow; stay well inside (|p| in [2^-900, 2^900] or p == 0).
 const SAFE_HI: f64 = 1e270;
@@ -190,7 +164,7 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
     if bits <= 53 {
         return p;
     }
-    let (_, e) = two_prod(a, b);
+    let (_, e) = two_product(a, b);
     if up {
         if e > 0.0 {
             next_up(p)
@@ -227,7 +201,7 @@ fn mul_round_both(a: f64, b: f64) -> (f64, f64) {
     if bits <= 53 {
         return (p, p);
     }
-    let (_, e) = two_prod(a, b);
+    let (_, e) = two_product(a, b);
     (if e < 0.0 { next_down(p) } else { p }, if e > 0.0 { next_up(p) } else { p })
 }
 
