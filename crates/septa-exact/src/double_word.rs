@@ -21,12 +21,15 @@
 //! 2017, Algorithms 6 and 10). Each operation here charges `16u^2` of its
 //! result, and the propagated bound (`|a| e_b + |b| e_a + e_a e_b` for a
 //! product, `e_a + e_b` for a sum) is formed in doubles and enlarged by a
-//! relative `2^-40` to cover its own rounding. Dekker's product (or the fused multiply-add) is exact
-//! only away from overflow and underflow: every value is kept in
-//! `[2^-400, 2^400]` in magnitude (or zero), else the bound becomes
-//! infinite and nothing is claimed. The bound itself may underflow when
-//! its terms are tiny; every nonzero propagated bound is raised by `2^-1000`
-//! to cover that, far above the few `2^-1075` it can lose.
+//! relative `2^-40` to cover its own rounding. Dekker's product (or the
+//! fused multiply-add) is exact only away from overflow and underflow:
+//! every value is kept in `[2^-400, 2^400]` in magnitude (or zero), else
+//! the bound becomes infinite (or NaN, as `0 * inf`) and nothing is
+//! claimed. The bound itself may underflow when its terms are tiny; every
+//! nonzero propagated bound is raised by `2^-1000` to cover that, far
+//! above the few `2^-1075` it can lose. A bound of exactly zero means an
+//! exact value: every nonzero result is charged, and a zero result of
+//! exact operands is exactly zero (the relative bounds above).
 
 use crate::expansion::{two_product, two_sum};
 use crate::plane::Ring;
@@ -112,10 +115,10 @@ impl Ring for DoubleWord {
     }
 }
 
-/// `Exact::to_f64_approx` of the real `a + b` (two doubles, `|b| <=
-/// ulp(a)`): floored to the grid of 60 significant bits of its binade, then
-/// rounded to the nearest double (ties to even). `None` outside the safe
-/// range.
+/// `Exact::to_f64_approx` of the real `a + b` (any two finite doubles,
+/// first made non-overlapping by TwoSum): floored to the grid of 60
+/// significant bits of its binade, then rounded to the nearest double (ties
+/// to even). `None` outside the safe range.
 pub(crate) fn sum_to_f64_approx(a: f64, b: f64) -> Option<f64> {
     let (a, b) = two_sum(a, b);
     if a == 0.0 {

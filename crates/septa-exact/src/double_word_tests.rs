@@ -92,3 +92,20 @@ fn the_bound_encloses_the_exact_value() {
         }
     }
 }
+
+/// Non-finite inputs, values out of the safe range and the `0 * inf` of a
+/// product with such a value are never claimed.
+#[test]
+fn out_of_range_is_not_claimed() {
+    for x in [f64::NAN, f64::INFINITY, -f64::INFINITY, 1e300, 1e-300, f64::MIN_POSITIVE / 4.0] {
+        let d = DoubleWord::of(x);
+        assert_eq!(d.to_f64_approx(), None, "{x:e}");
+        assert_eq!(DoubleWord::of(0.0).mul(&d).to_f64_approx(), None, "0 * {x:e}");
+        assert_eq!(DoubleWord::of(1.0).add(&d).to_f64_approx(), None, "1 + {x:e}");
+    }
+    // products leaving the range on either side
+    let big = DoubleWord::of(2f64.powi(300));
+    assert_eq!(big.mul(&big).to_f64_approx(), None);
+    let small = DoubleWord::of(2f64.powi(-300));
+    assert_eq!(small.mul(&small).to_f64_approx(), None);
+}
