@@ -90,23 +90,6 @@ pub struct Interval {
     pub hi: f64,
 }
 
-#[inline]
-fn next_up(x: f64) -> f64 {
-    if x.is_nan() || x == f64::INFINITY {
-        return x;
-    }
-    if x == 0.0 {
-        return f64::from_bits(1);
-    }
-    let b = x.to_bits();
-    f64::from_bits(if x > 0.0 { b + 1 } else { b - 1 })
-}
-
-#[inline]
-fn next_down(x: f64) -> f64 {
-    -next_up(-x)
-}
-
 // Dekker's product is exact when |a|,|b| < 2^996 and the product's error
 // term does not underflow; stay well inside (|p| in [2^-900, 2^900] or p == 0).
 const SAFE_HI: f64 = 1e270;
@@ -116,10 +99,10 @@ const SAFE_LO: f64 = 1e-270;
 fn add_down(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() { f64::NEG_INFINITY } else { next_down(s) };
+        return if s.is_nan() { f64::NEG_INFINITY } else { s.next_down() };
     }
     if e < 0.0 {
-        next_down(s)
+        s.next_down()
     } else {
         s
     }
@@ -129,10 +112,10 @@ fn add_down(a: f64, b: f64) -> f64 {
 fn add_up(a: f64, b: f64) -> f64 {
     let (s, e) = two_sum(a, b);
     if !s.is_finite() {
-        return if s.is_nan() { f64::INFINITY } else { next_up(s) };
+        return if s.is_nan() { f64::INFINITY } else { s.next_up() };
     }
     if e > 0.0 {
-        next_up(s)
+        s.next_up()
     } else {
         s
     }
@@ -151,7 +134,7 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
         if p.is_nan() {
             return if up { f64::INFINITY } else { f64::NEG_INFINITY };
         }
-        return if up { next_up(p) } else { next_down(p) };
+        return if up { p.next_up() } else { p.next_down() };
     }
     // Significant bits of the factors (odd mantissas of m and n bits have a
     // product of m + n - 1 or m + n bits): above 54 the product is surely
@@ -159,7 +142,7 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
     let sig = |x: f64| 53 - ((x.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
     let bits = sig(a) + sig(b);
     if bits > 54 {
-        return if up { next_up(p) } else { next_down(p) };
+        return if up { p.next_up() } else { p.next_down() };
     }
     if bits <= 53 {
         return p;
@@ -167,12 +150,12 @@ fn mul_round(a: f64, b: f64, up: bool) -> f64 {
     let (_, e) = two_product(a, b);
     if up {
         if e > 0.0 {
-            next_up(p)
+            p.next_up()
         } else {
             p
         }
     } else if e < 0.0 {
-        next_down(p)
+        p.next_down()
     } else {
         p
     }
@@ -191,18 +174,18 @@ fn mul_round_both(a: f64, b: f64) -> (f64, f64) {
         if p.is_nan() {
             return (f64::NEG_INFINITY, f64::INFINITY);
         }
-        return (next_down(p), next_up(p));
+        return (p.next_down(), p.next_up());
     }
     let sig = |x: f64| 53 - ((x.to_bits() & ((1u64 << 52) - 1)) | (1u64 << 52)).trailing_zeros();
     let bits = sig(a) + sig(b);
     if bits > 54 {
-        return (next_down(p), next_up(p));
+        return (p.next_down(), p.next_up());
     }
     if bits <= 53 {
         return (p, p);
     }
     let (_, e) = two_product(a, b);
-    (if e < 0.0 { next_down(p) } else { p }, if e > 0.0 { next_up(p) } else { p })
+    (if e < 0.0 { p.next_down() } else { p }, if e > 0.0 { p.next_up() } else { p })
 }
 
 impl Interval {
@@ -238,7 +221,7 @@ impl Interval {
         if !lo.is_finite() || !hi.is_finite() {
             return None;
         }
-        Some(Interval { lo: next_down(lo), hi: next_up(hi) })
+        Some(Interval { lo: lo.next_down(), hi: hi.next_up() })
     }
 
     /// Midpoint (an approximation of the value, for embeddings and pre-sorts).
