@@ -76,6 +76,7 @@ mod repair;
 mod selfx;
 mod shells;
 mod side_filter;
+mod sweep_frame;
 mod tri_pair;
 // The sidedness filter against exact rationals (internal, so a unit test).
 #[cfg(test)]

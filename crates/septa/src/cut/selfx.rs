@@ -7,6 +7,7 @@
 use super::box_contact::{box_contact, extreme_corners};
 use super::pair_grid::PairGrid;
 use super::plane_separation::PlaneSeparation;
+use super::sweep_frame::sweep_boxes;
 use super::tri_pair::{pair_intersects_planes, TriPlane};
 use super::CutError;
 use rayon::prelude::*;
@@ -58,10 +59,17 @@ pub(crate) fn intersecting_pairs_touching(
             (lo, hi)
         })
         .collect();
-    let grid = PairGrid::new(&boxes, fresh);
     let extremes: Vec<u32> = tris.iter().zip(&boxes).map(|(t, b)| extreme_corners(x, t, b)).collect();
-    let (low_cell, ids) = (&grid.low_cell, &grid.ids);
     let planes: Vec<TriPlane> = tris.iter().map(|t| TriPlane::new(x, t)).collect();
+    // the boxes the grid and the sweep compare: along the axes, or along
+    // the frame of a thin part tilted against them (`sweep_frame`). Either
+    // kind holds its triangle, so a pair that meets passes both; with a
+    // frame the axis-aligned boxes are compared too, and `box_contact`
+    // always reads those. "x", "y", "z" below are the sweep boxes' axes.
+    let framed = sweep_boxes(x, tris, planes.iter().map(TriPlane::normal), &boxes);
+    let sweep_boxes = framed.as_deref().unwrap_or(&boxes);
+    let grid = PairGrid::new(sweep_boxes, fresh);
+    let (low_cell, ids) = (&grid.low_cell, &grid.ids);
     // One grid cell's triangles, copied next to each other (box, start
     // bits, id) and swept along x: in order of the low x of their boxes (as
     // the grid leaves them), each triangle meets only the following ones
@@ -83,7 +91,7 @@ pub(crate) fn intersecting_pairs_touching(
         let here = grid.coords(key);
         buf.clear();
         buf.extend(ids[s as usize..e as usize].iter().map(|&t| {
-            let (b, l) = (&boxes[t as usize], &low_cell[t as usize]);
+            let (b, l) = (&sweep_boxes[t as usize], &low_cell[t as usize]);
             let starts = (l[0] == here[0]) as u8 | ((l[1] == here[1]) as u8) << 1 | ((l[2] == here[2]) as u8) << 2;
             (b.0, b.1, starts, t)
         }));
@@ -109,7 +117,16 @@ pub(crate) fn intersecting_pairs_touching(
                 if separation.is_some_and(|s| s.separated(u1, u2)) {
                     continue;
                 }
-                let (b1, b2) = ((lo1, hi1), (lo2, hi2));
+                let (b1, b2) = match framed {
+                    None => ((lo1, hi1), (lo2, hi2)),
+                    Some(_) => {
+                        let (b1, b2) = (boxes[u1], boxes[u2]);
+                        if (0..3).any(|k| b1.0[k] > b2.1[k] || b2.0[k] > b1.1[k]) {
+                            continue;
+                        }
+                        (b1, b2)
+                    }
+                };
                 let meets = match box_contact(x, &tris[u1], &b1, extremes[u1], &tris[u2], &b2, extremes[u2]) {
                     Some(m) => m,
                     None => pair_intersects_planes(x, &tris[u1], &planes[u1], &tris[u2], &planes[u2]),

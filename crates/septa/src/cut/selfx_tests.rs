@@ -69,3 +69,56 @@ fn re_check_finds_the_pairs_with_a_fresh_triangle() {
     assert!(want.len() > 20, "{want:?}");
     assert_eq!(intersecting_pairs_touching(&x, &t, Some(&fresh), None, false), want);
 }
+
+/// A tilted thin plate (two parallel faces of small triangles) with walls
+/// across it, some crossing the faces: boxed in the frame of its normal.
+fn tilted_plate_with_walls() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let n = [0.5564f64, -0.5092, -0.6566];
+    let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let n = n.map(|c| c / l);
+    let (mut x, mut t) = crate::cut::test_rng::plate(n, 0.02, 16);
+    // walls joining the faces at grid vertices (meeting them in shared
+    // corners only), and walls poking through both faces
+    let per_face = 17 * 17;
+    for i in (0..per_face as u32).step_by(23) {
+        let j = if i % 17 == 16 { i - 1 } else { i + 1 };
+        t.push([i, j, i + per_face as u32]);
+    }
+    let mut r = crate::cut::test_rng::lcg(11);
+    let mut unit = move || r() as f64 / (1u64 << 53) as f64;
+    for _ in 0..12 {
+        let c = x[(unit() * per_face as f64) as usize];
+        let i = x.len() as u32;
+        for s in [-1.0, 1.0] {
+            x.push(std::array::from_fn(|k| c[k] + s * 0.05 * n[k] + 0.01 * (unit() - 0.5)));
+        }
+        x.push(std::array::from_fn(|k| c[k] + 0.08 * (unit() - 0.5)));
+        t.push([i, i + 1, i + 2]);
+    }
+    (x, t)
+}
+
+#[test]
+fn a_framed_sweep_finds_the_pairs_every_pair_test_finds() {
+    let (x, t) = tilted_plate_with_walls();
+    // the sweep does go through the frame here
+    let boxes: Vec<_> = t
+        .iter()
+        .map(|t| {
+            let p = t.map(|v| x[v as usize]);
+            let lo = std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k]));
+            let hi = std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k]));
+            (lo, hi)
+        })
+        .collect();
+    let normals = t.iter().map(|t| TriPlane::new(&x, t).normal());
+    assert!(crate::cut::sweep_frame::sweep_boxes(&x, &t, normals, &boxes).is_some());
+    let all = every_pair(&x, &t, |_, _| true);
+    // not vacuous: the poking walls cross the faces
+    assert!(all.len() >= 12, "{all:?}");
+    assert_eq!(intersecting_pairs(&x, &t, false), all);
+    assert_eq!(intersecting_pairs(&x, &t, true), all[..1].to_vec());
+    let fresh: Vec<bool> = (0..t.len()).map(|i| i % 5 == 2).collect();
+    let want = every_pair(&x, &t, |a, b| fresh[a] || fresh[b]);
+    assert_eq!(intersecting_pairs_touching(&x, &t, Some(&fresh), None, false), want);
+}

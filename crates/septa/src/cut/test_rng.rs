@@ -46,3 +46,36 @@ pub(super) fn tet_ctx(planes: &[[f64; 4]]) -> super::geom::Ctx<'_> {
         pp_b: Vec::new(),
     }
 }
+
+/// Two parallel grids of triangles `thickness` apart, in the plane through
+/// the origin with unit normal `n` (a thin plate's two faces).
+pub(super) fn plate(n: [f64; 3], thickness: f64, cells: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    // an orthonormal basis (e1, e2) of the plane
+    let a = if n[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
+    let cross =
+        |p: [f64; 3], q: [f64; 3]| [p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]];
+    let unit = |p: [f64; 3]| {
+        let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        p.map(|c| c / l)
+    };
+    let e1 = unit(cross(n, a));
+    let e2 = cross(n, e1);
+    let (mut x, mut t) = (Vec::new(), Vec::new());
+    for side in [0.0, thickness] {
+        let base = x.len() as u32;
+        for i in 0..=cells {
+            for j in 0..=cells {
+                let (u, v) = (i as f64 / cells as f64, j as f64 / cells as f64);
+                x.push(std::array::from_fn(|k| u * e1[k] + v * e2[k] + side * n[k]));
+            }
+        }
+        let id = |i: usize, j: usize| base + (i * (cells + 1) + j) as u32;
+        for i in 0..cells {
+            for j in 0..cells {
+                t.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                t.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+            }
+        }
+    }
+    (x, t)
+}

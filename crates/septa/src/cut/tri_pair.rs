@@ -128,6 +128,12 @@ impl TriPlane {
         }
     }
 
+    /// The floating-point normal `(b - a) x (c - a)` (a direction for
+    /// heuristics; no sign is read from it).
+    pub(crate) fn normal(&self) -> [f64; 3] {
+        self.n
+    }
+
     /// Side of `q`: the sign of `det(b - a, c - a, q - a)` when the static
     /// filter proves it, else `None` (never an exact fallback). This is
     /// Shewchuk's orient3d filter (`o3derrboundA = 7u + 56u^2`) on the
