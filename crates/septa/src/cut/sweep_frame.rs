@@ -149,7 +149,8 @@ fn symmetric_eigen(mut a: [[f64; 3]; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
 /// own rounding (`fl(lo - e) <= lo - e` is not guaranteed, so the ends are
 /// moved one more ulp outwards). Products below the normal range lose an
 /// absolute `2^-1075` at most, which `2^-1000` added to `e_k` covers.
-/// Non-finite coordinates give `None` (no frame is used).
+/// Non-finite coordinates, and coordinates so large that an image could
+/// overflow, give `None` (no frame is used).
 pub(super) fn framed_boxes(x: &[[f64; 3]], tris: &[[u32; 3]], r: &[[f64; 3]; 3]) -> Option<Vec<Aabb>> {
     const U: f64 = f64::EPSILON / 2.0;
     let mut m = [0.0f64; 3];
@@ -163,13 +164,14 @@ pub(super) fn framed_boxes(x: &[[f64; 3]], tris: &[[u32; 3]], r: &[[f64; 3]; 3])
     if !m.iter().all(|c| c.is_finite()) {
         return None;
     }
-    let e: [f64; 3] = std::array::from_fn(|k| {
-        let s = r[k][0].abs() * m[0] + r[k][1].abs() * m[1] + r[k][2].abs() * m[2];
-        4.0 * U * s + f64::from_bits(0x0170_0000_0000_0000) // 2^-1000
-    });
-    if !e.iter().all(|c| c.is_finite()) {
+    let s: [f64; 3] = std::array::from_fn(|k| r[k][0].abs() * m[0] + r[k][1].abs() * m[1] + r[k][2].abs() * m[2]);
+    // every partial sum of an image is at most `S_k` in magnitude (up to its
+    // rounding): with `2 S_k` finite no image overflows, where an infinite
+    // one could leave a box without its exact point
+    if !s.iter().all(|c| (2.0 * c).is_finite()) {
         return None;
     }
+    let e: [f64; 3] = std::array::from_fn(|k| 4.0 * U * s[k] + f64::from_bits(0x0170_0000_0000_0000)); // + 2^-1000
     let image =
         |p: &[f64; 3]| -> [f64; 3] { std::array::from_fn(|k| r[k][0] * p[0] + r[k][1] * p[1] + r[k][2] * p[2]) };
     Some(

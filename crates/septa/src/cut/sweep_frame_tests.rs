@@ -61,10 +61,18 @@ fn widened_boxes_hold_the_exact_images() {
 }
 
 #[test]
-fn non_finite_coordinates_give_no_frame() {
+fn non_finite_or_overflowing_coordinates_give_no_frame() {
     let x = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, f64::INFINITY, 0.0]];
     assert!(framed_boxes(&x, &[[0, 1, 2]], &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).is_none());
     assert!(normal_frame([[f64::NAN, 0.0, 0.0], [0.0; 3]].into_iter()).is_none());
+    // images that could overflow (`S_k` = 1.2e308 is finite, twice it is not):
+    // no frame rather than a box without its point
+    let big = [[6e307, 6e307, 0.0], [-6e307, 6e307, 1.0], [0.0, -6e307, 6e307]];
+    let diagonal = [[1.0, 1.0, 0.0], [0.0, 1.0, 1.0], [1.0, 0.0, 1.0]];
+    assert!(framed_boxes(&big, &[[0, 1, 2]], &diagonal).is_none());
+    let large = big.map(|p| p.map(|c| c / 8.0));
+    let boxes = framed_boxes(&large, &[[0, 1, 2]], &diagonal).unwrap();
+    assert!(boxes.iter().all(|(lo, hi)| lo.iter().chain(hi).all(|c| c.is_finite())));
 }
 
 /// Axis-aligned boxes of `tris`.
