@@ -32,7 +32,7 @@
 //! costs nothing measurable.
 //!
 //! On plate_genus9 the frame takes the input check from 3.7 to 1.8 ms and
-//! the certification of its R20 cut from 41 to 36 ms (a fifth fewer
+//! the certification of its R20 cut from 40 to 34 ms (a fifth fewer
 //! candidate pairs reach the exact test).
 
 use super::pair_grid::Aabb;
