@@ -102,15 +102,7 @@ fn tilted_plate_with_walls() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
 fn a_framed_sweep_finds_the_pairs_every_pair_test_finds() {
     let (x, t) = tilted_plate_with_walls();
     // the sweep does go through the frame here
-    let boxes: Vec<_> = t
-        .iter()
-        .map(|t| {
-            let p = t.map(|v| x[v as usize]);
-            let lo = std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k]));
-            let hi = std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k]));
-            (lo, hi)
-        })
-        .collect();
+    let boxes = crate::cut::test_rng::aabbs(&x, &t);
     let normals = t.iter().map(|t| TriPlane::new(&x, t).normal());
     assert!(crate::cut::sweep_frame::sweep_boxes(&x, &t, normals, &boxes).is_some());
     let all = every_pair(&x, &t, |_, _| true);

@@ -2,7 +2,8 @@
 //! exact images of their triangles, and when the frame is chosen.
 
 use super::*;
-use crate::cut::test_rng::{lcg, plate};
+use crate::cut::test_rng::{aabbs, lcg, plate};
+use crate::cut::tri_pair::TriPlane;
 use num_rational::BigRational;
 
 /// Doubles in [0, 1) from a fixed LCG.
@@ -75,28 +76,8 @@ fn non_finite_or_overflowing_coordinates_give_no_frame() {
     assert!(boxes.iter().all(|(lo, hi)| lo.iter().chain(hi).all(|c| c.is_finite())));
 }
 
-/// Axis-aligned boxes of `tris`.
-fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<Aabb> {
-    tris.iter()
-        .map(|t| {
-            let p = t.map(|v| x[v as usize]);
-            (
-                std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k])),
-                std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k])),
-            )
-        })
-        .collect()
-}
-
 fn normals(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<[f64; 3]> {
-    tris.iter()
-        .map(|t| {
-            let (a, b, c) = (x[t[0] as usize], x[t[1] as usize], x[t[2] as usize]);
-            let u: [f64; 3] = std::array::from_fn(|k| b[k] - a[k]);
-            let w: [f64; 3] = std::array::from_fn(|k| c[k] - a[k]);
-            [u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]]
-        })
-        .collect()
+    tris.iter().map(|t| TriPlane::new(x, t).normal()).collect()
 }
 
 #[test]

@@ -79,3 +79,16 @@ pub(super) fn plate(n: [f64; 3], thickness: f64, cells: usize) -> (Vec<[f64; 3]>
     }
     (x, t)
 }
+
+/// The axis-aligned bounding box of each triangle of `tris`.
+pub(super) fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<super::pair_grid::Aabb> {
+    tris.iter()
+        .map(|t| {
+            let p = t.map(|v| x[v as usize]);
+            (
+                std::array::from_fn(|k| p[0][k].min(p[1][k]).min(p[2][k])),
+                std::array::from_fn(|k| p[0][k].max(p[1][k]).max(p[2][k])),
+            )
+        })
+        .collect()
+}
