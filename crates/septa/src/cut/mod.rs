@@ -77,6 +77,7 @@ mod selfx;
 mod shells;
 mod side_filter;
 mod sweep_frame;
+mod tiling;
 mod tri_pair;
 // The sidedness filter against exact rationals (internal, so a unit test).
 #[cfg(test)]

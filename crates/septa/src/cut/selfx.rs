@@ -41,6 +41,20 @@ pub(crate) fn intersecting_pairs_touching(
     separation: Option<&PlaneSeparation>,
     first_only: bool,
 ) -> Vec<(u32, u32)> {
+    intersecting_pairs_wanted(x, tris, fresh, separation, first_only, &|_, _| true)
+}
+
+/// [`intersecting_pairs_touching`] restricted further to the pairs `(a, b)`
+/// (indices into `tris`) for which `wanted(a, b)` holds: the pairs a
+/// certificate still needs ([`super::tiling`]).
+pub(crate) fn intersecting_pairs_wanted(
+    x: &[[f64; 3]],
+    tris: &[[u32; 3]],
+    fresh: Option<&[bool]>,
+    separation: Option<&PlaneSeparation>,
+    first_only: bool,
+    wanted: &(impl Fn(usize, usize) -> bool + Sync),
+) -> Vec<(u32, u32)> {
     let n = tris.len();
     if n < 2 {
         return Vec::new();
@@ -114,6 +128,9 @@ pub(crate) fn intersecting_pairs_touching(
                     continue;
                 }
                 let (u1, u2) = (t1 as usize, t2 as usize);
+                if !wanted(u1, u2) {
+                    continue;
+                }
                 if separation.is_some_and(|s| s.separated(u1, u2)) {
                     continue;
                 }

@@ -31,7 +31,8 @@
 
 use super::plane_separation::PlaneSeparation;
 use super::radix::sort_u64;
-use super::selfx::intersecting_pairs_touching;
+use super::selfx::{intersecting_pairs_touching, intersecting_pairs_wanted};
+use super::tiling::{tiling_plan, TilingPlan};
 use super::tri_pair::{orient, orient2};
 use super::triangulate::triangulate;
 use super::verify_volume::volume_sign_static;
@@ -78,6 +79,10 @@ pub struct VerifyReport {
     /// ids, for a re-check of a changed mesh ([`verify_cells_since`]).
     #[serde(skip)]
     pub(crate) memo: Option<std::sync::Arc<PairMemo>>,
+    /// Were the pairs proven apart by the cells' shapes ([`tiling`])
+    /// rather than pair by pair? (The report is the same either way.)
+    #[serde(skip)]
+    pub(crate) tiled: bool,
 }
 
 /// What the triangle-triangle test of one check saw: its triangles (each
@@ -358,6 +363,18 @@ pub(crate) fn verify_flat(
     prev: Option<&VerifyReport>,
     planes: &[[f64; 4]],
 ) -> VerifyReport {
+    verify_flat_with(x, cells, prev, planes, true)
+}
+
+/// [`verify_flat`], trying the certificate of [`tiling`] first when
+/// `use_tiling` (the tests compare it with every pair tested).
+pub(super) fn verify_flat_with(
+    x: &[[f64; 3]],
+    cells: &CellPolygons,
+    prev: Option<&VerifyReport>,
+    planes: &[[f64; 4]],
+    use_tiling: bool,
+) -> VerifyReport {
     let nc = cells.num_cells();
     let mut r = VerifyReport { cells: nc, ..Default::default() };
     // every decision below is an exact sign on finite doubles; the vertices
@@ -502,32 +519,87 @@ pub(crate) fn verify_flat(
         }
     }
     r.triangles = all.len() + r.degenerate_triangles;
-    let separation = PlaneSeparation::new(x, &all, planes);
-    let pairs = triangle_pairs(x, &all, prev.and_then(|p| p.memo.as_deref()), separation.as_ref(), &mut r);
+    // exact volume sign per cell (reported after the pairs)
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    let positive: Vec<bool> = (0..nc)
+        .map(|ci| {
+            tris.clear();
+            for &(f, rev) in &refs[ref_start[ci] as usize..ref_start[ci + 1] as usize] {
+                for t in tris_of(f as usize) {
+                    tris.push(if rev { [t[0], t[2], t[1]] } else { *t });
+                }
+            }
+            volume_sign(x, &tris) == Sign::Positive
+        })
+        .collect();
+    // the cells' shapes prove most pairs apart when nothing else is wrong
+    // (`tiling`; with no degenerate triangle, `all` is `face_tris`)
+    let memo = prev.and_then(|p| p.memo.as_deref());
+    let plan = (use_tiling && r.violations() == r.nonplanar_faces && positive.iter().all(|&p| p))
+        .then(|| tiling_plan(x, &face_tris, &tri_start, &refs, &ref_start))
+        .flatten();
+    if std::env::var_os("SEPTA_DEBUG").is_some() {
+        match &plan {
+            Some(p) => eprintln!(
+                "verify: tiling plan: {} of {} cells star-shaped, {} of {} triangles swept",
+                p.star_cells,
+                nc,
+                p.sweep.len(),
+                all.len()
+            ),
+            None => eprintln!("verify: no tiling plan"),
+        }
+    }
+    let pairs = match plan {
+        Some(plan) if tiling_certified(x, &all, &plan, memo, planes) => {
+            r.memo = disjoint_memo(&all);
+            r.tiled = true;
+            Vec::new()
+        }
+        _ => {
+            let separation = PlaneSeparation::new(x, &all, planes);
+            triangle_pairs(x, &all, memo, separation.as_ref(), &mut r)
+        }
+    };
     r.intersecting_pairs = pairs.len();
     bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
     for &(a, b) in pairs.iter().take(3) {
         let (ta, tb) = (all[a as usize], all[b as usize]);
         r.note(|| format!("triangles {ta:?} and {tb:?} intersect"));
     }
-    // exact volume sign per cell
-    let mut tris: Vec<[u32; 3]> = Vec::new();
-    for ci in 0..nc {
-        tris.clear();
-        for &(f, rev) in &refs[ref_start[ci] as usize..ref_start[ci + 1] as usize] {
-            for t in tris_of(f as usize) {
-                tris.push(if rev { [t[0], t[2], t[1]] } else { *t });
-            }
-        }
-        if volume_sign(x, &tris) != Sign::Positive {
-            r.nonpositive_cells += 1;
-            r.note(|| format!("cell {ci} has no positive volume"));
-        }
+    for ci in (0..nc).filter(|&ci| !positive[ci]) {
+        r.nonpositive_cells += 1;
+        r.note(|| format!("cell {ci} has no positive volume"));
     }
     bad_faces.sort_unstable();
     bad_faces.dedup();
     r.offending_polygons = bad_faces.iter().map(|&f| index.key(f).to_vec()).collect();
     r
+}
+
+/// Does the pair test leave the certificate of `plan` standing ([`tiling`]:
+/// no two of its wanted triangles meet)? Pairs of two triangles that an
+/// earlier check found no pair among (`prev`) are known.
+fn tiling_certified(
+    x: &[[f64; 3]],
+    all: &[[u32; 3]],
+    plan: &TilingPlan,
+    prev: Option<&PairMemo>,
+    planes: &[[f64; 4]],
+) -> bool {
+    let sub: Vec<[u32; 3]> = plan.sweep.iter().map(|&t| all[t as usize]).collect();
+    let fresh: Option<Vec<bool>> =
+        prev.filter(|m| m.pairs.is_empty()).map(|m| sub.iter().map(|t| !m.triangles.contains(&tri_key(t))).collect());
+    let separation = PlaneSeparation::new(x, &sub, planes);
+    let wanted = |a: usize, b: usize| plan.wanted(a, b);
+    intersecting_pairs_wanted(x, &sub, fresh.as_deref(), separation.as_ref(), true, &wanted).is_empty()
+}
+
+/// The memo of a check that proved no two of `all` meeting (none when a
+/// triangle is written twice, as [`triangle_pairs`] leaves it).
+fn disjoint_memo(all: &[[u32; 3]]) -> Option<std::sync::Arc<PairMemo>> {
+    let triangles: rustc_hash::FxHashSet<[u32; 3]> = all.iter().map(tri_key).collect();
+    (triangles.len() == all.len()).then(|| std::sync::Arc::new(PairMemo { triangles, pairs: Vec::new() }))
 }
 
 /// The intersecting pairs of `all` (indices, sorted), through the memo of a
