@@ -140,6 +140,12 @@ impl PlaneSeparation {
         Some(PlaneSeparation { masks })
     }
 
+    /// The bits of the triangles `idx` (indices into the triangles given to
+    /// [`Self::new`]), in that order.
+    pub(crate) fn subset(&self, idx: &[u32]) -> PlaneSeparation {
+        PlaneSeparation { masks: idx.iter().map(|&t| self.masks[t as usize]).collect() }
+    }
+
     /// Is some plane proven to lie between triangles `a` and `b` (indices
     /// into the triangles given to [`Self::new`])? Then they are disjoint.
     #[inline]

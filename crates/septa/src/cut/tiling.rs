@@ -72,37 +72,43 @@ use crate::uf::UnionFind;
 use rayon::prelude::*;
 use septa_exact::Sign;
 
-/// What the pair test still has to show for the certificate to hold:
-/// that no two of `sweep` (indices into the checked triangles) meet that are
-/// on the outer surface in different cells, or both in one cell that is not
-/// star-shaped ([`Self::wanted`]). Two triangles of one star-shaped cell
-/// are proven apart by its shape, on the outer surface too.
+/// What the pair test still has to show for the certificate to hold: that
+/// no two triangles meet that are on the outer surface in different cells
+/// ([`Self::outer_wanted`]), or in one cell that is not star-shaped (all its
+/// pairs but those of two outer triangles, which the outer surface's test
+/// takes). Two triangles of one star-shaped cell are proven apart by its
+/// shape, on the outer surface too.
 #[derive(Debug)]
 pub(super) struct TilingPlan {
-    /// The triangles taking part in some wanted pair, ascending.
-    pub(super) sweep: Vec<u32>,
-    /// Per swept triangle: its cell when on the outer surface, else `NONE_A`.
-    outer: Vec<u32>,
-    /// Per swept triangle: the cells holding it that are not star-shaped
-    /// (`NONE_A` / `NONE_B` where fewer).
-    open_cells: Vec<[u32; 2]>,
-    /// Cells found star-shaped (reported by the debug output and the tests).
-    pub(super) star_cells: usize,
+    /// The outer surface's triangles (indices into the checked triangles).
+    pub(super) outer: Vec<u32>,
+    /// The cell of each of `outer`.
+    outer_cell: Vec<u32>,
+    /// Per cell: star-shaped.
+    star: Vec<bool>,
+    /// Per cell that is not star-shaped: its triangles and whether each is
+    /// inside (on a face between two cells).
+    pub(super) open: Vec<(Vec<u32>, Vec<bool>)>,
 }
-
-const NONE_A: u32 = u32::MAX;
-const NONE_B: u32 = u32::MAX - 1;
 
 impl TilingPlan {
-    /// Must the pair of swept triangles `a`, `b` be tested?
+    /// Must the pair of outer triangles `a`, `b` (indices into `outer`) be
+    /// tested?
     #[inline]
-    pub(super) fn wanted(&self, a: usize, b: usize) -> bool {
-        let (p, q) = (self.open_cells[a], self.open_cells[b]);
-        let (c, d) = (self.outer[a], self.outer[b]);
-        let shared = |c: u32| c < NONE_B && (c == q[0] || c == q[1]);
-        (c != NONE_A && d != NONE_A && c != d) || shared(p[0]) || shared(p[1])
+    pub(super) fn outer_wanted(&self, a: usize, b: usize) -> bool {
+        let (c, d) = (self.outer_cell[a], self.outer_cell[b]);
+        c != d || !self.star[c as usize]
+    }
+
+    /// Cells found star-shaped.
+    pub(super) fn star_cells(&self) -> usize {
+        self.star.iter().filter(|&&s| s).count()
     }
 }
+
+/// No cell (the first and second user of a face).
+const NONE_A: u32 = u32::MAX;
+const NONE_B: u32 = u32::MAX - 1;
 
 /// The plan of the certificate for cells given as references to faces
 /// (`refs[ref_start[c]..ref_start[c + 1]]`, each a face id and whether the
@@ -170,18 +176,26 @@ pub(super) fn tiling_plan(
     if !Surface::new(&outer).is_some_and(|s| s.connected_manifold()) {
         return None;
     }
-    let star = |c: u32| c < NONE_B && shapes[c as usize] == Some(true);
-    let mut plan = TilingPlan { sweep: Vec::new(), outer: Vec::new(), open_cells: Vec::new(), star_cells: 0 };
-    plan.star_cells = shapes.iter().filter(|s| **s == Some(true)).count();
+    let star: Vec<bool> = shapes.iter().map(|s| *s == Some(true)).collect();
+    let mut plan = TilingPlan { outer: Vec::new(), outer_cell: Vec::new(), star, open: Vec::new() };
+    let mut open_index = vec![u32::MAX; nc];
+    for (c, _) in plan.star.iter().enumerate().filter(|(_, s)| !**s) {
+        open_index[c] = plan.open.len() as u32;
+        plan.open.push((Vec::new(), Vec::new()));
+    }
     for f in 0..nf {
         let [a, b] = users[f];
         let boundary = b == NONE_B;
-        let open = [if star(a) { NONE_A } else { a }, if b == NONE_B || star(b) { NONE_B } else { b }];
-        if boundary || open != [NONE_A, NONE_B] {
-            for t in tri_start[f]..tri_start[f + 1] {
-                plan.sweep.push(t);
-                plan.outer.push(if boundary { a } else { NONE_A });
-                plan.open_cells.push(open);
+        for t in tri_start[f]..tri_start[f + 1] {
+            if boundary {
+                plan.outer.push(t);
+                plan.outer_cell.push(a);
+            }
+            for c in [a, b] {
+                if let Some(&i) = open_index.get(c as usize).filter(|&&i| i != u32::MAX) {
+                    plan.open[i as usize].0.push(t);
+                    plan.open[i as usize].1.push(!boundary);
+                }
             }
         }
     }

@@ -541,10 +541,10 @@ pub(super) fn verify_flat_with(
     if std::env::var_os("SEPTA_DEBUG").is_some() {
         match &plan {
             Some(p) => eprintln!(
-                "verify: tiling plan: {} of {} cells star-shaped, {} of {} triangles swept",
-                p.star_cells,
+                "verify: tiling plan: {} of {} cells star-shaped, {} outer triangles of {}",
+                p.star_cells(),
                 nc,
-                p.sweep.len(),
+                p.outer.len(),
                 all.len()
             ),
             None => eprintln!("verify: no tiling plan"),
@@ -587,12 +587,24 @@ fn tiling_certified(
     prev: Option<&PairMemo>,
     planes: &[[f64; 4]],
 ) -> bool {
-    let sub: Vec<[u32; 3]> = plan.sweep.iter().map(|&t| all[t as usize]).collect();
+    let separation = PlaneSeparation::new(x, all, planes);
+    let pick = |idx: &[u32]| -> (Vec<[u32; 3]>, Option<PlaneSeparation>) {
+        (idx.iter().map(|&t| all[t as usize]).collect(), separation.as_ref().map(|s| s.subset(idx)))
+    };
+    // the outer surface, across cells
+    let (outer, sep) = pick(&plan.outer);
     let fresh: Option<Vec<bool>> =
-        prev.filter(|m| m.pairs.is_empty()).map(|m| sub.iter().map(|t| !m.triangles.contains(&tri_key(t))).collect());
-    let separation = PlaneSeparation::new(x, &sub, planes);
-    let wanted = |a: usize, b: usize| plan.wanted(a, b);
-    intersecting_pairs_wanted(x, &sub, fresh.as_deref(), separation.as_ref(), true, &wanted).is_empty()
+        prev.filter(|m| m.pairs.is_empty()).map(|m| outer.iter().map(|t| !m.triangles.contains(&tri_key(t))).collect());
+    let wanted = |a: usize, b: usize| plan.outer_wanted(a, b);
+    if !intersecting_pairs_wanted(x, &outer, fresh.as_deref(), sep.as_ref(), true, &wanted).is_empty() {
+        return false;
+    }
+    // inside each cell that is not star-shaped, the pairs with a triangle
+    // inside (`fresh`)
+    plan.open.iter().all(|(idx, inside)| {
+        let (tris, sep) = pick(idx);
+        intersecting_pairs_touching(x, &tris, Some(inside), sep.as_ref(), true).is_empty()
+    })
 }
 
 /// The memo of a check that proved no two of `all` meeting (none when a
