@@ -27,7 +27,13 @@
 //!
 //! Item 5 uses a floating-point ear clipping to triangulate planar polygons;
 //! a poor triangulation of a valid polygon can only add reported
-//! intersections, never hide one, so a zero report is a proof.
+//! intersections, never hide one, so a zero report is a proof. When nothing
+//! else is wrong, item 5 is first tried through the cells' shapes
+//! ([`super::tiling`]: cells star-shaped around a point, proven by exact
+//! orientations, need no pair test among their own triangles, and cells that
+//! are embedded and share their faces consistently cannot overlap); only
+//! when that certificate does not hold are all pairs tested, so the report
+//! is the same either way.
 
 use super::plane_separation::PlaneSeparation;
 use super::radix::sort_u64;
