@@ -41,13 +41,15 @@
 //!   reaches `y`, so the other triangle is of `A` or `B`, which are
 //!   embedded: a contradiction. If `t` is on the outer surface, `S_b`
 //!   embedded gives `w_b = 0` on its outer side and the same follows.
-//! - If `y` is inside an edge `e`: each cell whose surface holds `e` fills a
-//!   wedge at `e` (two triangles at `e`, by 2); crossing a triangle of an
-//!   interior face swaps one cell for another, so the wedges' count is the
-//!   same in every sector around `e` not cut off by the outer surface, and
-//!   equal to `w_b`: they fill the neighbourhood (inside the domain), and
-//!   any cell reaching `y` without holding `e` would overlap one of them.
-//!   So every triangle through `y` has the edge `e`: a contradiction.
+//! - If `y` is inside an edge `e`: near `y`, each cell whose surface holds
+//!   `e` is the wedge between its two triangles at `e` (by 2 and 3), and
+//!   every other cell has a constant winding number. Crossing a triangle of
+//!   an interior face at `e` swaps one wedge for another, so the wedges'
+//!   count changes only across the outer surface's triangles at `e` (none,
+//!   or two, where `w_b` steps between 1 and 0): it is 1 where `w_b` is 1
+//!   and 0 where it is 0, and every other cell's winding number near `y` is
+//!   0. So no cell reaches `y` without holding `e`, and every triangle
+//!   through `y` has the edge `e`: a contradiction.
 //! - If `y` is a vertex of both: two ids at one point, excluded by 4.
 //!
 //! # Star-shaped, exactly

@@ -556,16 +556,14 @@ pub(super) fn verify_flat_with(
             None => eprintln!("verify: no tiling plan"),
         }
     }
+    let separation = PlaneSeparation::new(x, &all, planes);
     let pairs = match plan {
-        Some(plan) if tiling_certified(x, &all, &plan, memo, planes) => {
+        Some(plan) if tiling_certified(x, &all, &plan, memo, separation.as_ref()) => {
             r.memo = disjoint_memo(&all);
             r.tiled = true;
             Vec::new()
         }
-        _ => {
-            let separation = PlaneSeparation::new(x, &all, planes);
-            triangle_pairs(x, &all, memo, separation.as_ref(), &mut r)
-        }
+        _ => triangle_pairs(x, &all, memo, separation.as_ref(), &mut r),
     };
     r.intersecting_pairs = pairs.len();
     bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
@@ -585,17 +583,17 @@ pub(super) fn verify_flat_with(
 
 /// Does the pair test leave the certificate of `plan` standing ([`tiling`]:
 /// no two of its wanted triangles meet)? Pairs of two triangles that an
-/// earlier check found no pair among (`prev`) are known.
+/// earlier check found no pair among (`prev`) are known; `separation`
+/// holds the plane bits of `all`.
 fn tiling_certified(
     x: &[[f64; 3]],
     all: &[[u32; 3]],
     plan: &TilingPlan,
     prev: Option<&PairMemo>,
-    planes: &[[f64; 4]],
+    separation: Option<&PlaneSeparation>,
 ) -> bool {
-    let separation = PlaneSeparation::new(x, all, planes);
     let pick = |idx: &[u32]| -> (Vec<[u32; 3]>, Option<PlaneSeparation>) {
-        (idx.iter().map(|&t| all[t as usize]).collect(), separation.as_ref().map(|s| s.subset(idx)))
+        (idx.iter().map(|&t| all[t as usize]).collect(), separation.map(|s| s.subset(idx)))
     };
     // the outer surface, across cells
     let (outer, sep) = pick(&plan.outer);
