@@ -92,3 +92,23 @@ pub(super) fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<super::pair_grid::
         })
         .collect()
 }
+
+/// A unit cube of 12 triangles, outward.
+pub(super) fn unit_cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let v: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64]).collect();
+    let t = vec![
+        [0, 2, 1],
+        [1, 2, 3],
+        [4, 5, 6],
+        [5, 7, 6],
+        [0, 1, 4],
+        [1, 5, 4],
+        [2, 6, 3],
+        [3, 6, 7],
+        [0, 4, 2],
+        [2, 4, 6],
+        [1, 3, 5],
+        [3, 7, 5],
+    ];
+    (v, t)
+}

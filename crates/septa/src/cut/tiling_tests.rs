@@ -2,7 +2,7 @@
 //! against the test of every pair on cut meshes with vertices moved.
 
 use super::Surface;
-use crate::cut::test_rng::{lcg, xorshift_unit};
+use crate::cut::test_rng::{lcg, unit_cube as cube, xorshift_unit};
 use crate::cut::verify::{verify_flat, verify_flat_with};
 use crate::cut::{cut_mesh, CutOptions};
 
@@ -76,26 +76,6 @@ fn surfaces_that_are_not_closed_connected_manifolds_are_refused() {
         t.iter().copied().chain(t.iter().map(|t| t.map(|v| if v == 0 { 0 } else { v + 3 }))).collect();
     assert!(!Surface::new(&pinched).unwrap().connected_manifold());
     assert!(Surface::new(&[]).is_none());
-}
-
-/// A unit cube of 12 triangles.
-fn cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let v: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64]).collect();
-    let t = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    (v, t)
 }
 
 /// An L-shaped prism (its cells are often not star-shaped).

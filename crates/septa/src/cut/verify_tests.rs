@@ -2,7 +2,7 @@
 //! edge balance against a plain count per undirected edge.
 
 use super::{unbalanced, verify_cells, verify_flat, CellPolygons};
-use crate::cut::test_rng::{lcg, xorshift_unit};
+use crate::cut::test_rng::{lcg, unit_cube as cube, xorshift_unit};
 use crate::cut::{cut_mesh, CutOptions};
 
 /// The balance of a cell's edges counted the plain way: per undirected
@@ -37,26 +37,6 @@ fn edge_balance_equals_a_plain_count() {
         assert_eq!(n, want.len(), "case {case}: {edges:?}");
         assert_eq!(found, want, "case {case}: {edges:?}");
     }
-}
-
-/// A unit cube of 12 triangles.
-fn cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
-    let v: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64]).collect();
-    let t = vec![
-        [0, 2, 1],
-        [1, 2, 3],
-        [4, 5, 6],
-        [5, 7, 6],
-        [0, 1, 4],
-        [1, 5, 4],
-        [2, 6, 3],
-        [3, 6, 7],
-        [0, 4, 2],
-        [2, 4, 6],
-        [1, 3, 5],
-        [3, 7, 5],
-    ];
-    (v, t)
 }
 
 #[test]
