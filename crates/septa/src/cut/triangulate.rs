@@ -260,6 +260,7 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
         let n = |p: [f64; 3]| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
         n(c) / (n(a) * n(b)).max(f64::MIN_POSITIVE)
     };
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
     let mut idx: Vec<u32> = poly.to_vec();
     let mut out = Vec::with_capacity(poly.len().saturating_sub(2));
     let mut start = 0;
@@ -273,8 +274,18 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
                 continue;
             }
             fallback.get_or_insert(a);
+            // a point outside the ear's box (in projection) is outside the
+            // closed ear: compared before the orientations, the same answer
+            let (pu, pv, pw) = (x[u as usize], x[v as usize], x[w as usize]);
+            let lo = [pu[i].min(pv[i]).min(pw[i]), pu[j].min(pv[j]).min(pw[j])];
+            let hi = [pu[i].max(pv[i]).max(pw[i]), pu[j].max(pv[j]).max(pw[j])];
             let blocked = idx.iter().any(|&q| {
-                q != u
+                let pq = x[q as usize];
+                pq[i] >= lo[0]
+                    && pq[i] <= hi[0]
+                    && pq[j] >= lo[1]
+                    && pq[j] <= hi[1]
+                    && q != u
                     && q != v
                     && q != w
                     && o2(u, v, q) != Sign::Negative
