@@ -70,6 +70,7 @@
 
 use super::radix::radix_sort_keys;
 use super::tri_pair::orient;
+use crate::scene::vec3::{cross, dot, norm, scale, sub};
 use crate::uf::UnionFind;
 use rayon::prelude::*;
 use septa_exact::Sign;
@@ -213,14 +214,6 @@ const MIN_INTERIOR_SHARE: usize = 6;
 /// Projections of [`Surface::kernel_point`] before it gives up.
 const KERNEL_ROUNDS: usize = 16;
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 /// Sorts `(key, value)` entries by key: a comparison sort when short, the
 /// radix sort when long.
 fn sort_entries(v: &mut Vec<(u64, u32)>) {
@@ -328,10 +321,8 @@ impl<'a> Surface<'a> {
         // the centroid of the volume (tetrahedra from the corner mean)
         let (mut c, mut w) = ([0.0; 3], 0.0);
         for t in self.tris {
-            let p = |i: usize| std::array::from_fn::<f64, 3, _>(|k| x[t[i] as usize][k] - q[k]);
-            let (a, b, d) = (p(0), p(1), p(2));
-            let vol = a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0])
-                + a[2] * (b[0] * d[1] - b[1] * d[0]);
+            let (a, b, d) = (sub(x[t[0] as usize], q), sub(x[t[1] as usize], q), sub(x[t[2] as usize], q));
+            let vol = dot(a, cross(b, d));
             for k in 0..3 {
                 c[k] += vol * (a[k] + b[k] + d[k]);
             }
@@ -353,10 +344,8 @@ impl<'a> Surface<'a> {
             .iter()
             .map(|t| {
                 let (a, b, c) = (x[t[0] as usize], x[t[1] as usize], x[t[2] as usize]);
-                let (u, v) = (sub(b, a), sub(c, a));
-                let n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
-                let len = dot(n, n).sqrt();
-                let n = n.map(|c| c / len);
+                let n = cross(sub(b, a), sub(c, a));
+                let n = scale(n, 1.0 / norm(n));
                 (n, dot(n, a))
             })
             .collect();

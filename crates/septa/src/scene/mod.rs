@@ -82,7 +82,7 @@ mod sample;
 mod scene;
 mod shapes;
 mod spec;
-mod vec3;
+pub(crate) mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
