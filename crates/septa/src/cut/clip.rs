@@ -92,136 +92,137 @@ pub fn clip_all(c: &Ctx) -> Clipped {
 
 fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
     let np = c.planes.len() as u32;
-    let mut polys: Vec<Work> = Vec::new();
-    let mut next: Vec<Work> = Vec::new();
+    // the pieces are kept where they were made (`work`, several hundred
+    // bytes each) and listed in order by index: a piece a plane does not
+    // split stays in place instead of being moved once per plane
+    let mut work: Vec<Work> = Vec::new();
+    let mut polys: Vec<u32> = Vec::new();
+    let mut next: Vec<u32> = Vec::new();
     let mut signs: Vec<Sign> = Vec::new();
     let tri = &c.tris[t as usize];
-    {
-        let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
-        let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
-        for p in 0..np {
-            let s = tri.map(|v| c.pv_sign(p, v));
-            if s.iter().any(|&x| x > 0) && s.iter().any(|&x| x < 0) {
-                crossing.push(p);
-            } else if s.iter().all(|&x| x == 0) {
-                coplanar.push(p);
-            }
+    let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
+    let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
+    for p in 0..np {
+        let s = tri.map(|v| c.pv_sign(p, v));
+        if s.iter().any(|&x| x > 0) && s.iter().any(|&x| x < 0) {
+            crossing.push(p);
+        } else if s.iter().all(|&x| x == 0) {
+            coplanar.push(p);
         }
-        let first = Work {
-            tri: t,
-            nodes: tri.iter().map(|&v| Def::V(v)).collect(),
-            boxes: tri.iter().map(|_| None).collect(),
-            lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
-        };
-        polys.clear();
-        polys.push(first);
-        // planes through each interior vertex, local to this triangle
-        let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
-        for &q in &crossing {
-            next.clear();
-            for poly in polys.drain(..) {
-                signs.clear();
-                for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
-                    let d = n;
-                    let s = corner_side(c, d, bx, q);
-                    if s == Sign::Zero {
-                        if let Def::TPP(..) = d {
-                            if let Some(e) = inner.iter_mut().find(|e| e.0 == n) {
-                                if !e.1.contains(&q) {
-                                    e.1.push(q);
-                                }
-                            }
-                        }
-                    }
-                    signs.push(s);
-                }
-                let pos = signs.contains(&Sign::Positive);
-                let neg = signs.contains(&Sign::Negative);
-                if !(pos && neg) {
-                    next.push(poly);
-                    continue;
-                }
-                let mut a = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
-                let mut b = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
-                let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
-                let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
-                let n = poly.nodes.len();
-                for i in 0..n {
-                    let j = (i + 1) % n;
-                    let (si, sj) = (signs[i], signs[j]);
-                    let line = poly.lines[i];
-                    let zero = si == Sign::Zero;
-                    if si != Sign::Negative {
-                        a.nodes.push(poly.nodes[i]);
-                        a.boxes.push(poly.boxes[i]);
-                        a.lines.push(line);
-                        a_on.push(zero);
-                    }
-                    if si != Sign::Positive {
-                        b.nodes.push(poly.nodes[i]);
-                        b.boxes.push(poly.boxes[i]);
-                        b.lines.push(line);
-                        b_on.push(zero);
-                    }
-                    if si.as_i8() * sj.as_i8() < 0 {
-                        let x = match line {
-                            EdgeLine::Mesh(e) => Def::EP(e, q),
-                            EdgeLine::Plane(p, _) => {
-                                let k = Def::TPP(t, p.min(q), p.max(q));
-                                let mut z: SmallVec<[u32; 4]> = SmallVec::new();
-                                z.push(p);
-                                z.push(q);
-                                inner.push((k, z));
-                                k
-                            }
-                        };
-                        let bx = coords(c, x);
-                        for (piece, on) in [(&mut a, &mut a_on), (&mut b, &mut b_on)] {
-                            piece.nodes.push(x);
-                            piece.boxes.push(bx);
-                            piece.lines.push(line);
-                            on.push(true);
-                        }
-                    }
-                }
-                // In a convex piece, an edge with both ends on q lies on q.
-                for (piece, on, pos) in [(&mut a, &a_on, true), (&mut b, &b_on, false)] {
-                    let m = piece.nodes.len();
-                    for i in 0..m {
-                        if on[i] && on[(i + 1) % m] {
-                            let in_q = match piece.lines[i] {
-                                EdgeLine::Mesh(e) => {
-                                    let [u, v] = c.edges[e as usize];
-                                    c.pv_sign(q, u) == 0 && c.pv_sign(q, v) == 0
-                                }
-                                EdgeLine::Plane(..) => false,
-                            };
-                            if !in_q {
-                                piece.lines[i] = EdgeLine::Plane(q, pos);
-                            }
-                        }
-                    }
-                }
-                next.push(a);
-                next.push(b);
-            }
-            std::mem::swap(&mut polys, &mut next);
-        }
-        let mut interior = Vec::with_capacity(inner.len());
-        for (k, mut z) in inner {
-            z.extend(coplanar.iter().copied());
-            interior.push((k, z));
-        }
-        // a fresh, exactly sized vector (an in-place collect would keep the
-        // larger buffer of the work pieces alive)
-        let mut pieces = Vec::with_capacity(polys.len());
-        for w in polys {
-            pieces.push(Piece {
-                tri: w.tri,
-                nodes: w.nodes.into_iter().collect(),
-                lines: w.lines.into_iter().collect(),
-            });
-        }
-        (pieces, interior)
     }
+    work.push(Work {
+        tri: t,
+        nodes: tri.iter().map(|&v| Def::V(v)).collect(),
+        boxes: tri.iter().map(|_| None).collect(),
+        lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
+    });
+    polys.push(0);
+    // planes through each interior vertex, local to this triangle
+    let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
+    for &q in &crossing {
+        next.clear();
+        for &w in &polys {
+            let poly = &work[w as usize];
+            signs.clear();
+            for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
+                let d = n;
+                let s = corner_side(c, d, bx, q);
+                if s == Sign::Zero {
+                    if let Def::TPP(..) = d {
+                        if let Some(e) = inner.iter_mut().find(|e| e.0 == n) {
+                            if !e.1.contains(&q) {
+                                e.1.push(q);
+                            }
+                        }
+                    }
+                }
+                signs.push(s);
+            }
+            let pos = signs.contains(&Sign::Positive);
+            let neg = signs.contains(&Sign::Negative);
+            if !(pos && neg) {
+                next.push(w);
+                continue;
+            }
+            let mut a = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
+            let mut b = Work { tri: t, nodes: SmallVec::new(), lines: SmallVec::new(), boxes: SmallVec::new() };
+            let mut a_on: SmallVec<[bool; 8]> = SmallVec::new();
+            let mut b_on: SmallVec<[bool; 8]> = SmallVec::new();
+            let n = poly.nodes.len();
+            for i in 0..n {
+                let j = (i + 1) % n;
+                let (si, sj) = (signs[i], signs[j]);
+                let line = poly.lines[i];
+                let zero = si == Sign::Zero;
+                if si != Sign::Negative {
+                    a.nodes.push(poly.nodes[i]);
+                    a.boxes.push(poly.boxes[i]);
+                    a.lines.push(line);
+                    a_on.push(zero);
+                }
+                if si != Sign::Positive {
+                    b.nodes.push(poly.nodes[i]);
+                    b.boxes.push(poly.boxes[i]);
+                    b.lines.push(line);
+                    b_on.push(zero);
+                }
+                if si.as_i8() * sj.as_i8() < 0 {
+                    let x = match line {
+                        EdgeLine::Mesh(e) => Def::EP(e, q),
+                        EdgeLine::Plane(p, _) => {
+                            let k = Def::TPP(t, p.min(q), p.max(q));
+                            let mut z: SmallVec<[u32; 4]> = SmallVec::new();
+                            z.push(p);
+                            z.push(q);
+                            inner.push((k, z));
+                            k
+                        }
+                    };
+                    let bx = coords(c, x);
+                    for (piece, on) in [(&mut a, &mut a_on), (&mut b, &mut b_on)] {
+                        piece.nodes.push(x);
+                        piece.boxes.push(bx);
+                        piece.lines.push(line);
+                        on.push(true);
+                    }
+                }
+            }
+            // In a convex piece, an edge with both ends on q lies on q.
+            for (piece, on, pos) in [(&mut a, &a_on, true), (&mut b, &b_on, false)] {
+                let m = piece.nodes.len();
+                for i in 0..m {
+                    if on[i] && on[(i + 1) % m] {
+                        let in_q = match piece.lines[i] {
+                            EdgeLine::Mesh(e) => {
+                                let [u, v] = c.edges[e as usize];
+                                c.pv_sign(q, u) == 0 && c.pv_sign(q, v) == 0
+                            }
+                            EdgeLine::Plane(..) => false,
+                        };
+                        if !in_q {
+                            piece.lines[i] = EdgeLine::Plane(q, pos);
+                        }
+                    }
+                }
+            }
+            next.push(work.len() as u32);
+            work.push(a);
+            next.push(work.len() as u32);
+            work.push(b);
+        }
+        std::mem::swap(&mut polys, &mut next);
+    }
+    let mut interior = Vec::with_capacity(inner.len());
+    for (k, mut z) in inner {
+        z.extend(coplanar.iter().copied());
+        interior.push((k, z));
+    }
+    let pieces = polys
+        .iter()
+        .map(|&w| {
+            let w = &work[w as usize];
+            Piece { tri: w.tri, nodes: w.nodes.iter().copied().collect(), lines: w.lines.iter().copied().collect() }
+        })
+        .collect();
+    (pieces, interior)
 }

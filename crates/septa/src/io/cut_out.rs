@@ -80,6 +80,24 @@ pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &CellPolygons, explode: f64) -> 
     let (mut float, mut int) = (FloatText::default(), itoa::Buffer::new());
     let mut base = 1usize;
     let points = cell_points(cells, m.vertices.len());
+    // unexploded and finite, a point's line is the same text in every cell
+    // it is written in (the shift is a zero): formed once per point. Only
+    // a coordinate -0.0 depends on the zero's sign and is formed in place.
+    let (mut line_start, mut lines) = (Vec::new(), String::new());
+    if explode == 0.0 && m.vertices.iter().flatten().all(|c| c.is_finite()) {
+        line_start.reserve(m.vertices.len() + 1);
+        line_start.push(0);
+        for x in &m.vertices {
+            lines.push('v');
+            for &c in x {
+                lines.push(' ');
+                float.push_f64(&mut lines, c + 0.0);
+            }
+            lines.push('\n');
+            line_start.push(lines.len());
+        }
+    }
+    let negative_zero = |x: &[f64; 3]| x.iter().any(|c| c.to_bits() == (-0.0f64).to_bits());
     // the file's number of each point of the cell being written
     let mut local = vec![0usize; m.vertices.len()];
     for (i, used) in points.iter().enumerate() {
@@ -96,6 +114,10 @@ pub fn cut_cells_obj_of(m: &CutCellMesh, cells: &CellPolygons, explode: f64) -> 
         for (j, &v) in used.iter().enumerate() {
             local[v as usize] = base + j;
             let x = m.vertices[v as usize];
+            if !line_start.is_empty() && !negative_zero(&x) {
+                s.push_str(&lines[line_start[v as usize]..line_start[v as usize + 1]]);
+                continue;
+            }
             s.push('v');
             for k in 0..3 {
                 s.push(' ');
