@@ -177,3 +177,54 @@ fn overlapping_cells_with_no_shared_face_are_found() {
     let r = verify_flat(&far, &flat, None, &[]);
     assert_eq!(r.violations(), 0, "{r:?}");
 }
+
+/// A prism over a polygon star-shaped around the origin (its vertices in
+/// order of angle), each cap a fan around its centre on the axis.
+fn star_prism(p: &[[f64; 2]]) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+    let n = p.len() as u32;
+    let mut x: Vec<[f64; 3]> = p.iter().map(|q| [q[0], q[1], 0.0]).collect();
+    x.extend(p.iter().map(|q| [q[0], q[1], 1.0]));
+    x.extend([[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]]);
+    let (bottom, top) = (2 * n, 2 * n + 1);
+    let mut t = Vec::new();
+    for i in 0..n {
+        let j = (i + 1) % n;
+        t.extend([[i, j, n + j], [i, n + j, n + i], [bottom, j, i], [top, n + i, n + j]]);
+    }
+    (x, t)
+}
+
+#[test]
+fn a_kernel_away_from_the_centroid_and_the_corner_mean_is_found() {
+    // a random octagon, star-shaped around the origin, whose kernel holds
+    // neither the centroid of the prism's volume nor the mean of its
+    // triangles' corners: `kernel_point` has to find a point
+    let p = [
+        [0.352, 0.142],
+        [-0.282, 2.083],
+        [-2.056, 1.65],
+        [-0.836, 0.037],
+        [-2.544, -0.927],
+        [-1.174, -2.367],
+        [0.141, -0.209],
+        [1.587, -1.496],
+    ];
+    let (x, t) = star_prism(&p);
+    let s = Surface::new(&t).expect("closed");
+    assert!(s.connected_manifold());
+    assert!(s.star_shaped_around(&x, [0.0, 0.0, 0.5]));
+    // the polygon's area centroid, at mid-height
+    let (mut a, mut c) = (0.0, [0.0; 2]);
+    for i in 0..p.len() {
+        let (u, v) = (p[i], p[(i + 1) % p.len()]);
+        let w = u[0] * v[1] - v[0] * u[1];
+        a += w / 2.0;
+        c = [c[0] + (u[0] + v[0]) * w, c[1] + (u[1] + v[1]) * w];
+    }
+    let centroid = [c[0] / (6.0 * a), c[1] / (6.0 * a), 0.5];
+    assert!(!s.star_shaped_around(&x, centroid));
+    let n = (3 * t.len()) as f64;
+    let mean = t.iter().flatten().fold([0.0; 3], |m, &v| std::array::from_fn(|k| m[k] + x[v as usize][k] / n));
+    assert!(!s.star_shaped_around(&x, mean));
+    assert!(s.star_shaped(&x));
+}
