@@ -208,8 +208,11 @@ pub(super) fn tiling_plan(
 /// The plan is made only when at least one triangle in this many is on a
 /// face between two cells: below that it cost more than it spared (whole
 /// run, one thread: armadillo A10, a tenth inside, +11%; rocker_arm A10, a
-/// fifth, -8%).
-const MIN_INTERIOR_SHARE: usize = 6;
+/// fifth, -8%). Certification ms without the plan / with it, after the
+/// kernels were found better: bumpy_cube R20 (14.6% inside) 77 / 57, A10
+/// (15.1%) 64 / 53; armadillo43k R20 (13.9%) 92 / 90, A10 (14.2%) 75 / 79;
+/// armadillo and nefertiti (10-12%) 5-15% slower with it.
+const MIN_INTERIOR_SHARE: usize = 7;
 
 /// Projections of [`Surface::kernel_point`] before it gives up.
 const KERNEL_ROUNDS: usize = 24;
