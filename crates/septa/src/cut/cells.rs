@@ -24,11 +24,12 @@ pub struct FaceLoop {
     /// Supporting triangle or plane.
     pub support: Support,
     /// Corners (compact cut-vertex ids), counter-clockwise about the
-    /// support normal for an outer boundary. Inline up to 8 (the pieces of
-    /// the input's triangles, a million on the large meshes, have a few).
-    pub verts: smallvec::SmallVec<[u32; 8]>,
+    /// support normal for an outer boundary. Inline up to 6, as the clipped
+    /// pieces' corners (the pieces of the input's triangles, a million on the
+    /// large meshes, have a few).
+    pub verts: smallvec::SmallVec<[u32; 6]>,
     /// Line of edge `i -> i+1`, and whether it runs along `+dir`.
-    pub dirs: smallvec::SmallVec<[(LineDir, bool); 8]>,
+    pub dirs: smallvec::SmallVec<[(LineDir, bool); 6]>,
     /// The cut-face this loop bounds (several loops for a face with holes).
     pub face: u32,
 }
@@ -60,15 +61,18 @@ pub struct Cells {
 
 /// Joins half-faces into cells.
 pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
-    // incident (edge key, face loop, traverses min -> max, its own direction
-    // label), grouped by sorting (no per-edge allocation)
-    let mut inc: Vec<(u64, u32, bool, (LineDir, bool))> = Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
+    // incident (edge key, face loop, `2 i + 1` for the loop's edge `i` when
+    // it traverses min -> max, else `2 i`), grouped by sorting (no per-edge
+    // allocation); the edge's direction label is read from the loop only
+    // where more than two faces meet (16 bytes an entry instead of 32: the
+    // entries of the large meshes are some 500,000, sorted by a copy)
+    let mut inc: Vec<(u64, u32, u32)> = Vec::with_capacity(faces.iter().map(|f| f.verts.len()).sum());
     for (f, fl) in faces.iter().enumerate() {
         let n = fl.verts.len();
         for i in 0..n {
             let (a, b) = (fl.verts[i], fl.verts[(i + 1) % n]);
             let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-            inc.push((key, f as u32, a < b, fl.dirs[i]));
+            inc.push((key, f as u32, (i as u32) << 1 | (a < b) as u32));
         }
     }
     // in order of (edge key, face loop): a counting sort by the smaller
@@ -114,7 +118,11 @@ pub fn assemble(c: &Ctx, faces: &[FaceLoop]) -> Cells {
             g1 += 1;
         }
         list.clear();
-        list.extend(inc[g0..g1].iter().map(|x| (x.1, x.2, x.3)));
+        let labelled = g1 - g0 > 2;
+        list.extend(inc[g0..g1].iter().map(|&(_, f, e)| {
+            let dir = if labelled { faces[f as usize].dirs[(e >> 1) as usize] } else { (LineDir::Mesh(0), false) };
+            (f, e & 1 == 1, dir)
+        }));
         g0 = g1;
         nedges += 1;
         let k = list.len();

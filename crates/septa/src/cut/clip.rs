@@ -68,37 +68,75 @@ fn corner_side(c: &Ctx, d: Def, b: &Option<[Bounded; 3]>, q: u32) -> Sign {
     c.side(d, q)
 }
 
+/// Triangles clipped by one task into one list of pieces (a list per
+/// triangle, then copied into one, was two allocations per triangle and
+/// twice the pieces' pages on the large meshes).
+const RUN: usize = 512;
+
 /// Output of clipping all triangles.
 pub struct Clipped {
-    /// All pieces.
-    pub pieces: Vec<Piece>,
+    /// The pieces, triangle after triangle, in runs of [`RUN`] triangles'.
+    runs: Vec<Vec<Piece>>,
     /// Interior cut-vertices of triangles with the planes through them
     /// (including planes containing the triangle), for line point lists.
     pub interior: Vec<(Def, SmallVec<[u32; 4]>)>,
 }
 
+impl Clipped {
+    /// All pieces, triangle after triangle.
+    pub fn pieces(&self) -> impl Iterator<Item = &Piece> {
+        self.runs.iter().flatten()
+    }
+
+    /// The number of pieces.
+    pub fn num_pieces(&self) -> usize {
+        self.runs.iter().map(Vec::len).sum()
+    }
+}
+
+/// What clipping one triangle works in, kept from triangle to triangle.
+#[derive(Default)]
+struct Scratch {
+    work: Vec<Work>,
+    polys: Vec<u32>,
+    next: Vec<u32>,
+    signs: Vec<Sign>,
+    inner: Vec<(Def, SmallVec<[u32; 4]>)>,
+}
+
 /// Clips every triangle by the planes crossing it (in parallel; the
 /// result is in triangle order whatever the thread count).
 pub fn clip_all(c: &Ctx) -> Clipped {
-    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> =
-        (0..c.tris.len() as u32).into_par_iter().map(|t| clip_tri(c, t)).collect();
-    let mut out = Clipped { pieces: Vec::new(), interior: Vec::new() };
+    let nt = c.tris.len();
+    let per: Vec<(Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>)> = (0..nt.div_ceil(RUN))
+        .into_par_iter()
+        .map(|k| {
+            let (mut s, mut pieces, mut interior) = (Scratch::default(), Vec::new(), Vec::new());
+            for t in k * RUN..(nt.min((k + 1) * RUN)) {
+                clip_tri(c, t as u32, &mut s, &mut pieces, &mut interior);
+            }
+            (pieces, interior)
+        })
+        .collect();
+    let mut interior = Vec::with_capacity(per.iter().map(|p| p.1.len()).sum());
+    let mut runs = Vec::with_capacity(per.len());
     for (p, i) in per {
-        out.pieces.extend(p);
-        out.interior.extend(i);
+        runs.push(p);
+        interior.extend(i);
     }
-    out
+    Clipped { runs, interior }
 }
 
-fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
+/// Clips triangle `t`, appending its pieces and its interior cut-vertices.
+fn clip_tri(c: &Ctx, t: u32, s: &mut Scratch, pieces: &mut Vec<Piece>, interior: &mut Vec<(Def, SmallVec<[u32; 4]>)>) {
     let np = c.planes.len() as u32;
     // the pieces are kept where they were made (`work`, several hundred
     // bytes each) and listed in order by index: a piece a plane does not
     // split stays in place instead of being moved once per plane
-    let mut work: Vec<Work> = Vec::new();
-    let mut polys: Vec<u32> = Vec::new();
-    let mut next: Vec<u32> = Vec::new();
-    let mut signs: Vec<Sign> = Vec::new();
+    let Scratch { work, polys, next, signs, inner } = s;
+    work.clear();
+    polys.clear();
+    inner.clear();
     let tri = &c.tris[t as usize];
     let mut crossing: SmallVec<[u32; 16]> = SmallVec::new();
     let mut coplanar: SmallVec<[u32; 4]> = SmallVec::new();
@@ -117,11 +155,10 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
         lines: c.tri_edges[t as usize].iter().map(|&e| EdgeLine::Mesh(e)).collect(),
     });
     polys.push(0);
-    // planes through each interior vertex, local to this triangle
-    let mut inner: Vec<(Def, SmallVec<[u32; 4]>)> = Vec::new();
+    // planes through each interior vertex, local to this triangle (`inner`)
     for &q in &crossing {
         next.clear();
-        for &w in &polys {
+        for &w in polys.iter() {
             let poly = &work[w as usize];
             signs.clear();
             for (&n, bx) in poly.nodes.iter().zip(&poly.boxes) {
@@ -210,19 +247,14 @@ fn clip_tri(c: &Ctx, t: u32) -> (Vec<Piece>, Vec<(Def, SmallVec<[u32; 4]>)>) {
             next.push(work.len() as u32);
             work.push(b);
         }
-        std::mem::swap(&mut polys, &mut next);
+        std::mem::swap(polys, next);
     }
-    let mut interior = Vec::with_capacity(inner.len());
-    for (k, mut z) in inner {
+    for (k, mut z) in inner.drain(..) {
         z.extend(coplanar.iter().copied());
         interior.push((k, z));
     }
-    let pieces = polys
-        .iter()
-        .map(|&w| {
-            let w = &work[w as usize];
-            Piece { tri: w.tri, nodes: w.nodes.iter().copied().collect(), lines: w.lines.iter().copied().collect() }
-        })
-        .collect();
-    (pieces, interior)
+    pieces.extend(polys.iter().map(|&w| {
+        let w = &work[w as usize];
+        Piece { tri: w.tri, nodes: w.nodes.iter().copied().collect(), lines: w.lines.iter().copied().collect() }
+    }));
 }
