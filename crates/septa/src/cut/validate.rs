@@ -1,6 +1,7 @@
 //! Checks of a cut-cell mesh (TopoCut Sec. 6.2): faces bound one or two
 //! cells, volumes add up, Euler characteristic accounted per cell.
 
+use super::radix::sort_u64;
 use super::{CutCellMesh, CutError, CutFace, Support};
 use crate::cut::triangulate;
 use rayon::prelude::*;
@@ -113,14 +114,20 @@ impl CutCellMesh {
                 fill[cell as usize] += 1;
             }
         }
+        // vertices counted with a mark per vertex (the cell that last saw
+        // it), edges by sorting their keys: one sort per cell instead of two
+        let nv = self.vertices.len();
+        let chunk = self.num_cells.div_ceil(4 * rayon::current_num_threads()).max(1);
+        let (start, faces_of) = (&start, &faces_of);
         let chi2: Vec<i64> = (0..self.num_cells)
             .into_par_iter()
-            .map_init(
-                || (Vec::new(), Vec::new()),
-                |(vs, es): &mut (Vec<u32>, Vec<(u32, u32)>), cell| {
-                    vs.clear();
+            .chunks(chunk)
+            .flat_map_iter(|cells| {
+                // one mark array per run of cells (not per rayon job)
+                let (mut seen, mut es) = (vec![u32::MAX; nv], Vec::new());
+                cells.into_iter().map(move |cell| {
                     es.clear();
-                    let mut chi = 0i64;
+                    let (mut chi, mut nverts) = (0i64, 0i64);
                     for &i in &faces_of[start[cell]..start[cell + 1]] {
                         let f = &self.faces[i as usize];
                         // a joined hole adds one edge and keeps one face: chi contribution 0
@@ -128,18 +135,22 @@ impl CutCellMesh {
                         for l in &f.loops {
                             for (k, &v) in l.iter().enumerate() {
                                 let w = l[(k + 1) % l.len()];
-                                vs.push(v);
-                                es.push((v.min(w), v.max(w)));
+                                if v as usize >= seen.len() {
+                                    seen.resize(v as usize + 1, u32::MAX); // an id past the points
+                                }
+                                if seen[v as usize] != cell as u32 {
+                                    seen[v as usize] = cell as u32;
+                                    nverts += 1;
+                                }
+                                es.push(u64::from(v.min(w)) << 32 | u64::from(v.max(w)));
                             }
                         }
                     }
-                    vs.sort_unstable();
-                    vs.dedup();
-                    es.sort_unstable();
+                    sort_u64(&mut es);
                     es.dedup();
-                    chi + vs.len() as i64 - es.len() as i64
-                },
-            )
+                    chi + nverts - es.len() as i64
+                })
+            })
             .collect();
         let sum_chi: i64 = chi2.iter().map(|x| x / 2).sum();
         let non_ball = chi2.iter().filter(|&&x| x != 2).count();
