@@ -62,29 +62,32 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             return Err(CutError::DegenerateTriangle { triangle: t });
         }
     }
-    // undirected sides (min, max, forward?, triangle, side k), grouped by sorting
-    let mut sides: Vec<(u32, u32, bool, u32, u8)> = Vec::with_capacity(3 * tris.len());
-    for (t, tri) in tris.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            sides.push((a.min(b), a.max(b), a < b, t as u32, k as u8));
-        }
-    }
-    // sorted: a counting sort by the smaller vertex, then each short
-    // bucket (the entries are distinct: the same order as sorting all)
+    // undirected sides (min, max, forward?, triangle, side k), grouped by
+    // sorting: placed straight into buckets by the smaller vertex (a
+    // counting sort), then each short bucket sorted (the entries are
+    // distinct: the same order as sorting all)
+    let side = |t: usize, k: usize| {
+        let (a, b) = (tris[t][k], tris[t][(k + 1) % 3]);
+        (a.min(b), a.max(b), a < b, t as u32, k as u8)
+    };
     let sides = {
         let mut start = vec![0u32; verts.len() + 1];
-        for e in &sides {
-            start[e.0 as usize + 1] += 1;
+        for tri in tris {
+            for k in 0..3 {
+                start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
+            }
         }
         for b in 0..verts.len() {
             start[b + 1] += start[b];
         }
         let mut fill = start.clone();
-        let mut out = sides.clone();
-        for e in &sides {
-            out[fill[e.0 as usize] as usize] = *e;
-            fill[e.0 as usize] += 1;
+        let mut out = vec![(0, 0, false, 0, 0); 3 * tris.len()];
+        for t in 0..tris.len() {
+            for k in 0..3 {
+                let e = side(t, k);
+                out[fill[e.0 as usize] as usize] = e;
+                fill[e.0 as usize] += 1;
+            }
         }
         for b in 0..verts.len() {
             out[start[b] as usize..start[b + 1] as usize].sort_unstable();
