@@ -49,20 +49,36 @@ pub type FxMap<K, V> = HashMap<K, V, BuildHasherDefault<FxHasher>>;
 pub struct Nodes {
     /// Definition of each node.
     pub defs: Vec<Def>,
+    /// The nodes of cut-vertex triples, by triple.
     index: FxMap<Def, u32>,
+    /// The node of input vertex `v` (`u32::MAX`: none yet): most corners
+    /// of the pieces of a large mesh are input vertices, looked up here
+    /// without hashing.
+    of_vertex: Vec<u32>,
     same: UnionFind,
 }
 
 impl Nodes {
     /// The node of a triple, created on first use.
     pub fn get(&mut self, d: Def) -> u32 {
-        if let Some(&i) = self.index.get(&d) {
-            return i;
-        }
         let i = self.defs.len() as u32;
+        if let Def::V(v) = d {
+            let v = v as usize;
+            if v >= self.of_vertex.len() {
+                self.of_vertex.resize(v + 1, u32::MAX);
+            }
+            if self.of_vertex[v] != u32::MAX {
+                return self.of_vertex[v];
+            }
+            self.of_vertex[v] = i;
+        } else {
+            if let Some(&j) = self.index.get(&d) {
+                return j;
+            }
+            self.index.insert(d, i);
+        }
         self.defs.push(d);
         self.same.push();
-        self.index.insert(d, i);
         i
     }
 
