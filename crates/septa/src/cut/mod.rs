@@ -388,6 +388,11 @@ fn cut_impl(
     for (e, chain) in chains.iter().enumerate() {
         let [u, v] = c.edges[e];
         let inside: Vec<u32> = (0..np as u32).filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0).collect();
+        // only the planes' graphs look pieces of mesh edges up, and a piece
+        // on a plane's graph lies on that plane with its whole mesh edge
+        if inside.is_empty() {
+            continue;
+        }
         for w in chain.windows(2) {
             let (a, b) = (cid(w[0]), cid(w[1]));
             bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
@@ -396,32 +401,22 @@ fn cut_impl(
             }
         }
     }
-    let mut faces: Vec<FaceLoop> = Vec::with_capacity(clipped.num_pieces());
+    // the pieces' edges inside their triangles, on the planes: the
+    // boundary map and the planes' graphs (the pieces' loops are made
+    // below, once the planes' loops are counted)
     for (k, piece) in clipped.pieces().enumerate() {
         let pn = &piece_nodes[piece_start[k] as usize..piece_start[k + 1] as usize];
-        let t = piece.tri;
-        let n = pn.len();
-        let mut fl =
-            FaceLoop { support: Support::Tri(t), verts: Default::default(), dirs: Default::default(), face: 0 };
+        let (t, n) = (piece.tri, pn.len());
         for i in 0..n {
-            let (na, nb) = (pn[i], pn[(i + 1) % n]);
-            let (a, b) = (cid(na), cid(nb));
-            fl.verts.push(a);
-            match piece.lines[i] {
-                EdgeLine::Mesh(e) => fl.dirs.push((LineDir::Mesh(e), c.edge_tris[e as usize][0] == t)),
-                EdgeLine::Plane(p, fwd) => {
-                    let dir = LineDir::TriPlane(t, p);
-                    debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
-                    fl.dirs.push((dir, fwd));
-                    bnd.gamma.insert((a.min(b), a.max(b)), t);
-                    pedges[p as usize].push(GEdge { a, b, dir, fwd });
-                }
+            if let EdgeLine::Plane(p, fwd) = piece.lines[i] {
+                let (a, b) = (cid(pn[i]), cid(pn[(i + 1) % n]));
+                let dir = LineDir::TriPlane(t, p);
+                debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
+                bnd.gamma.insert((a.min(b), a.max(b)), t);
+                pedges[p as usize].push(GEdge { a, b, dir, fwd });
             }
         }
-        faces.push(fl);
     }
-    // the pieces are loops now; their pages go to the plane faces' loops
-    drop((clipped, piece_nodes, piece_start));
     for ((p, q), pts) in &plines {
         // before the first and after the last point on the mesh the line is
         // outside the domain (a point's representative triple is (P,P,P)
@@ -439,10 +434,7 @@ fn cut_impl(
     }
     lap("edges", &mut stats);
     let mut nholes = 0usize;
-    for f in faces.iter_mut().enumerate() {
-        f.1.face = f.0 as u32;
-    }
-    let mut nface = faces.len() as u32;
+    let mut nface = clipped.num_pieces() as u32;
     let per_plane: Vec<(Vec<plane_graph::PlaneLoop>, u64, usize, usize)> = (0..np)
         .into_par_iter()
         .map(|p| {
@@ -452,9 +444,27 @@ fn cut_impl(
             (loops, u, h, t)
         })
         .collect();
-    // the plane loops' room at once: growing by doubling copied the input
-    // pieces' loops (most of them) into fresh pages
-    faces.reserve_exact(per_plane.iter().map(|p| p.0.len()).sum());
+    // the pieces' loops, then the planes' (room for all at once: grown by
+    // doubling, or by the planes' loops after the pieces', the pieces'
+    // loops, most of them, were copied into fresh pages)
+    let mut faces: Vec<FaceLoop> =
+        Vec::with_capacity(nface as usize + per_plane.iter().map(|p| p.0.len()).sum::<usize>());
+    for (k, piece) in clipped.pieces().enumerate() {
+        let pn = &piece_nodes[piece_start[k] as usize..piece_start[k + 1] as usize];
+        let (t, n) = (piece.tri, pn.len());
+        let mut fl =
+            FaceLoop { support: Support::Tri(t), verts: Default::default(), dirs: Default::default(), face: k as u32 };
+        for i in 0..n {
+            fl.verts.push(cid(pn[i]));
+            fl.dirs.push(match piece.lines[i] {
+                EdgeLine::Mesh(e) => (LineDir::Mesh(e), c.edge_tris[e as usize][0] == t),
+                EdgeLine::Plane(p, fwd) => (LineDir::TriPlane(t, p), fwd),
+            });
+        }
+        faces.push(fl);
+    }
+    // the pieces are loops now; their pages go to what follows
+    drop((clipped, piece_nodes, piece_start));
     for (loops, u, h, t) in per_plane {
         let _ = u; // loops of unbounded, outside regions
         nholes += h;
