@@ -559,15 +559,10 @@ pub(super) fn verify_flat_with(
     let separation = PlaneSeparation::new(x, &all, planes);
     let pairs = match plan {
         Some(plan) if tiling_certified(x, &all, &plan, memo, separation.as_ref()) => {
-            // a re-check follows only a report with violations (here only
-            // non-planar faces can be left)
-            if r.violations() > 0 {
-                r.memo = disjoint_memo(&all);
-            }
             r.tiled = true;
             Vec::new()
         }
-        _ => triangle_pairs(x, &all, memo, separation.as_ref(), &mut r),
+        _ => triangle_pairs(x, &all, memo, separation.as_ref()),
     };
     r.intersecting_pairs = pairs.len();
     bad_faces.extend(pairs.iter().flat_map(|&(a, b)| [tri_face[a as usize], tri_face[b as usize]]));
@@ -578,6 +573,10 @@ pub(super) fn verify_flat_with(
     for ci in (0..nc).filter(|&ci| !positive[ci]) {
         r.nonpositive_cells += 1;
         r.note(|| format!("cell {ci} has no positive volume"));
+    }
+    // a re-check follows only a report with violations
+    if r.violations() > 0 {
+        r.memo = pair_memo(&all, &pairs);
     }
     bad_faces.sort_unstable();
     bad_faces.dedup();
@@ -615,46 +614,45 @@ fn tiling_certified(
     })
 }
 
-/// The memo of a check that proved no two of `all` meeting (none when a
-/// triangle is written twice, as [`triangle_pairs`] leaves it).
-fn disjoint_memo(all: &[[u32; 3]]) -> Option<std::sync::Arc<PairMemo>> {
-    let triangles: rustc_hash::FxHashSet<[u32; 3]> = all.iter().map(tri_key).collect();
-    (triangles.len() == all.len()).then(|| std::sync::Arc::new(PairMemo { triangles, pairs: Vec::new() }))
-}
-
 /// The intersecting pairs of `all` (indices, sorted), through the memo of a
-/// previous check when there is one; records this check's memo in `r`.
+/// previous check when there is one (not with a triangle written twice:
+/// pairs are named by vertex ids).
 fn triangle_pairs(
     x: &[[f64; 3]],
     all: &[[u32; 3]],
     prev: Option<&PairMemo>,
     separation: Option<&PlaneSeparation>,
-    r: &mut VerifyReport,
 ) -> Vec<(u32, u32)> {
+    let every = || intersecting_pairs_touching(x, all, None, separation, false);
+    let Some(m) = prev else { return every() };
     let keys: Vec<[u32; 3]> = all.iter().map(tri_key).collect();
     let index: FxHashMap<[u32; 3], u32> = keys.iter().enumerate().map(|(i, k)| (*k, i as u32)).collect();
     if index.len() != keys.len() {
-        // a triangle written twice: no memo (pairs are named by vertex ids)
-        return intersecting_pairs_touching(x, all, None, separation, false);
+        return every();
     }
-    let mut pairs = match prev {
-        None => intersecting_pairs_touching(x, all, None, separation, false),
-        Some(m) => {
-            let fresh: Vec<bool> = keys.iter().map(|k| !m.triangles.contains(k)).collect();
-            let mut p = intersecting_pairs_touching(x, all, Some(&fresh), separation, false);
-            for (a, b) in &m.pairs {
-                if let (Some(&i), Some(&j)) = (index.get(a), index.get(b)) {
-                    p.push((i.min(j), i.max(j)));
-                }
-            }
-            p.sort_unstable();
-            p
+    let fresh: Vec<bool> = keys.iter().map(|k| !m.triangles.contains(k)).collect();
+    let mut pairs = intersecting_pairs_touching(x, all, Some(&fresh), separation, false);
+    for (a, b) in &m.pairs {
+        if let (Some(&i), Some(&j)) = (index.get(a), index.get(b)) {
+            pairs.push((i.min(j), i.max(j)));
         }
-    };
+    }
+    pairs.sort_unstable();
     pairs.dedup();
-    let memo_pairs = pairs.iter().map(|&(a, b)| (keys[a as usize], keys[b as usize])).collect();
-    r.memo = Some(std::sync::Arc::new(PairMemo { triangles: index.into_keys().collect(), pairs: memo_pairs }));
     pairs
+}
+
+/// The memo of a check of `all` that found `pairs` (indices into `all`),
+/// for a re-check; none when a triangle is written twice. Made only for a
+/// report with violations (on a clean one it cost a hash set of every
+/// triangle: a re-check follows only a report with violations).
+fn pair_memo(all: &[[u32; 3]], pairs: &[(u32, u32)]) -> Option<std::sync::Arc<PairMemo>> {
+    let keys: Vec<[u32; 3]> = all.iter().map(tri_key).collect();
+    let triangles: rustc_hash::FxHashSet<[u32; 3]> = keys.iter().copied().collect();
+    (triangles.len() == keys.len()).then(|| {
+        let pairs = pairs.iter().map(|&(a, b)| (keys[a as usize], keys[b as usize])).collect();
+        std::sync::Arc::new(PairMemo { triangles, pairs })
+    })
 }
 
 #[cfg(test)]
