@@ -102,6 +102,9 @@ pub struct RegionSurfaces {
     pub sparse: Option<SparseStats>,
     /// What the clean-up did (`None`: not asked for).
     pub clean: Option<CleanStats>,
+    /// What the certification of the kept polygons' written doubles found
+    /// and changed (`septa::mesh::certify_regions`; `None`: not certified).
+    pub embedding: Option<crate::network::embedding::Embedding>,
 }
 
 impl RegionSurfaces {
@@ -235,6 +238,7 @@ pub(crate) fn from_network_with(
         seconds,
         sparse: None,
         clean: None,
+        embedding: None,
     }
 }
 
