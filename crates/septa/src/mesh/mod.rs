@@ -23,7 +23,7 @@ mod check;
 mod local;
 mod volume;
 
-pub use crate::network::embedding::{Embedding, EmbeddingCheck, Projection};
+pub use crate::network::embedding::{snap_point, Embedding, EmbeddingCheck, Projection};
 
 use crate::grid::BoxGrid;
 use crate::network::{Network, VKey};
@@ -31,22 +31,12 @@ use crate::regions::RegionSurfaces;
 use certify::{certify, Target};
 use check::Polygons;
 
-/// Sets each coordinate that a vertex shares exactly with its grid element
-/// (all the element's grid vertices have it: a vertex on a grid edge parallel
-/// to x has that edge's y and z) to the grid's double, which interpolation
-/// can miss by an ulp; returns how many vertices changed. Vertices on the
-/// box are then exactly on its planes.
+/// Puts every vertex where [`snap_point`] says (its coordinates shared with
+/// its grid element set to the grid's doubles); returns how many changed.
 pub fn snap_to_grid(points: &mut [[f64; 3]], keys: &[VKey], grid: &BoxGrid) -> usize {
     let mut changed = 0;
     for (p, key) in points.iter_mut().zip(keys) {
-        let ijk: Vec<[usize; 3]> = key.grid.iter().filter(|&&g| g != u32::MAX).map(|&g| grid.vertex_ijk(g)).collect();
-        let Some(first) = ijk.first() else { continue };
-        let mut q = *p;
-        for k in 0..3 {
-            if ijk.iter().all(|g| g[k] == first[k]) {
-                q[k] = crate::grid::grid_coordinate(grid.bounds[0][k], grid.bounds[1][k], first[k], grid.res[k]);
-            }
-        }
+        let q = snap_point(*p, key, grid);
         if q != *p {
             *p = q;
             changed += 1;
@@ -72,6 +62,7 @@ pub fn certify_network(net: &mut Network, grid: Option<&BoxGrid>) -> Embedding {
     };
     let mut e = certify(&mut t);
     e.snapped = snapped;
+    net.seconds.push(("certify", e.seconds));
     net.embedding = Some(e.clone());
     e
 }
@@ -94,6 +85,7 @@ pub fn certify_regions(r: &mut RegionSurfaces, grid: Option<&BoxGrid>, bounds: O
     };
     let mut e = certify(&mut t);
     e.snapped += snapped;
+    r.seconds.push(("certify", e.seconds));
     r.embedding = Some(e.clone());
     e
 }

@@ -73,7 +73,9 @@ pub struct Embedding {
     /// asked for or not analytic).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub projection: Option<Projection>,
-    /// Seconds spent.
+    /// Seconds spent (also a stage, `certify`, of the result's seconds; not
+    /// written here, so everything but `"seconds"` depends only on the input).
+    #[serde(skip)]
     pub seconds: f64,
 }
 
@@ -92,4 +94,28 @@ pub struct Projection {
     pub residual_before: f64,
     /// The same after.
     pub residual_after: f64,
+}
+
+/// The position `p` of the vertex with key `key` with each coordinate that
+/// the exact vertex shares with its grid element (all the element's grid
+/// vertices have it: a vertex on a grid edge parallel to x has that edge's y
+/// and z) set to the grid's double, which interpolation can miss by an ulp.
+/// Vertices on the box are then exactly on its planes. Every path that
+/// writes a network (certified in memory, streamed) puts its points there.
+pub fn snap_point(p: [f64; 3], key: &super::VKey, grid: &crate::grid::BoxGrid) -> [f64; 3] {
+    let mut ijk = key.grid.iter().filter(|&&g| g != u32::MAX).map(|&g| grid.vertex_ijk(g));
+    let Some(first) = ijk.next() else { return p };
+    let mut same = [true; 3];
+    for g in ijk {
+        for k in 0..3 {
+            same[k] &= g[k] == first[k];
+        }
+    }
+    std::array::from_fn(|k| {
+        if same[k] {
+            crate::grid::grid_coordinate(grid.bounds[0][k], grid.bounds[1][k], first[k], grid.res[k])
+        } else {
+            p[k]
+        }
+    })
 }
