@@ -145,7 +145,8 @@ impl PlyStreamSink {
                     return Err(std::io::Error::other("more than 2^31 - 1 vertices: PLY int indices overflow"));
                 }
                 if id == self.vertices {
-                    let p = crate::network::embedding::snap_point(b.points[v as usize], &b.keys[v as usize], &self.grid);
+                    let p =
+                        crate::network::embedding::snap_point(b.points[v as usize], &b.keys[v as usize], &self.grid);
                     for x in p {
                         main.write_all(&x.to_le_bytes())?;
                     }
