@@ -94,9 +94,17 @@ pub struct Scene {
     pub regions: RegionRule,
     /// Region pairs and triples of interest.
     pub interest: Interest,
+    /// Names of regions (`"region_names": {"1": "part"}`; a `solid` is
+    /// `inside` (1) and `outside` (0) unless named otherwise).
+    pub region_names: std::collections::BTreeMap<RegionId, String>,
 }
 
 impl Scene {
+    /// The names every result writer uses (`io::Names`): the functions' and the regions'.
+    pub fn result_names(&self) -> crate::io::Names {
+        crate::io::Names { functions: self.names.clone(), regions: self.region_names.clone() }
+    }
+
     /// Index of the function called `name` (or whose index `name` is).
     pub fn function_index(&self, name: &str) -> Option<usize> {
         resolve(&self.names, name)
@@ -431,10 +439,44 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         Some(s) => Some(tuples::<2>(s, &root.key("surfaces"), &known)?),
     };
     let curves = match o.map.get("curves") {
-        None => Vec::new(),
-        Some(c) => tuples::<3>(c, &root.key("curves"), &known)?,
+        None => None,
+        Some(Value::String(s)) if s == "all" => None,
+        Some(c) => Some(tuples::<3>(c, &root.key("curves"), &known)?),
     };
-    Ok(Scene { grid, mode, names, functions, regions, interest: Interest::new(surfaces.as_deref(), &curves) })
+    let features = match o.map.get("features") {
+        None => true,
+        Some(Value::Bool(b)) => *b,
+        Some(_) => return err(&root.key("features"), "`features` is true or false"),
+    };
+    let mut interest = Interest::new(surfaces.as_deref(), curves.as_deref().unwrap_or(&[]));
+    if curves.is_none() {
+        interest.curves = None;
+    }
+    interest.features = features;
+    let mut region_names = std::collections::BTreeMap::new();
+    if o.has("solid") {
+        region_names.insert(0, "outside".to_string());
+        region_names.insert(1, "inside".to_string());
+    }
+    if let Some(v) = o.map.get("region_names") {
+        let p = root.key("region_names");
+        let Some(map) = v.as_object() else {
+            return err(&p, "`region_names` is an object: {\"1\": \"part\", \"0\": \"air\"}");
+        };
+        for (k, name) in map {
+            let Ok(r) = k.trim().parse::<RegionId>() else {
+                return err(&p.key(k), format!("`{k}` is not a region number"));
+            };
+            if !known.is_empty() && !known.contains(&r) {
+                return err(&p.key(k), format!("region {r} is never produced by the region rule"));
+            }
+            match name.as_str() {
+                Some(n) if !n.trim().is_empty() => region_names.insert(r, n.to_string()),
+                _ => return err(&p.key(k), "a region name is a non-empty string"),
+            };
+        }
+    }
+    Ok(Scene { grid, mode, names, functions, regions, interest, region_names })
 }
 
 /// A reference implementation config (`{"gridResolution": R, "gridBbox":
@@ -481,5 +523,6 @@ fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> 
         functions,
         regions: RegionRule::Identity,
         interest: Interest::all(),
+        region_names: Default::default(),
     })
 }
