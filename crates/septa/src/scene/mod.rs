@@ -67,6 +67,7 @@ mod arith;
 pub mod builtin;
 mod closed_form;
 mod composite;
+mod csg_tree;
 mod error;
 mod field;
 mod gradbound;
@@ -94,6 +95,7 @@ pub(crate) mod vec3;
 
 pub use closed_form::ClosedForm;
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
+pub use csg_tree::load_csg_tree;
 pub use error::{JsonPath, SceneError, Seg};
 pub use field::Primitives;
 pub use interval::Interval;

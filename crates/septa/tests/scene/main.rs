@@ -3,6 +3,7 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+mod anchor_csg;
 mod anchor_types;
 mod bounds_float;
 mod files;
