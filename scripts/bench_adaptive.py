@@ -236,7 +236,8 @@ def scene_for(args, fig, d):
         grid = {"resolution": n, "bounds": [g["bbox_min"], g["bbox_max"]], "split": 6}
     sc = {"grid": grid, "mode": "mi" if mode == "MI" else "ia", "functions": os.path.join(src, funcs)}
     if tree:
-        sc["solid"] = {"csg_tree": os.path.join(src, tree)}
+        # The figures' trees are written for the paper's program's reading (in where negative).
+        sc["solid"] = {"csg_tree": os.path.join(src, tree), "inside": "negative"}
     path = os.path.join(d, f"scene_{fig}.json")
     json.dump(sc, open(path, "w"))
     return path
