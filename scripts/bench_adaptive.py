@@ -254,6 +254,8 @@ def main():
     ap.add_argument("--rounds", type=int, default=1)
     ap.add_argument("--markdown", action="store_true")
     args = ap.parse_args()
+    args.anchor, args.risn = os.path.abspath(args.anchor), os.path.abspath(args.risn)
+    args.septa = os.path.abspath(args.septa) if args.septa else None
     if not os.path.isdir(args.data):
         args.data = "/work/shared/data/adaptive"
     rows = []
