@@ -76,6 +76,7 @@ mod patch;
 mod primitive;
 mod print;
 mod region_rule;
+mod strict_json;
 mod rounding;
 mod sample;
 #[allow(clippy::module_inception)]
@@ -91,9 +92,10 @@ pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use print::{primitive_json, scene_json, scene_text};
-pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
+pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule, MAX_DEPTH, MAX_RULE_LEN};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
-pub use scene::{load_function_list, GridSpec, Mode, Scene};
+pub use strict_json::parse as parse_json_strict;
+pub use scene::{load_function_list, load_function_list_warnings, GridSpec, Mode, Scene};
 pub use shapes::{
     BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind, Torus,
 };
