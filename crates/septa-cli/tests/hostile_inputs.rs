@@ -154,10 +154,26 @@ fn ply_counts_are_checked_against_the_file() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-fn gzip(data: &[u8]) -> Vec<u8> {
-    let mut e = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
-    e.write_all(data).unwrap();
-    e.finish().unwrap()
+/// The eight voxels (two labels) then zeros up to [`BOMB`] bytes, written
+/// through `w` a megabyte at a time: the test never holds the bomb in
+/// memory (a child forked from a large test process would count the
+/// parent's pages in its peak).
+fn bomb_into(w: &mut impl Write, head: &[u8]) {
+    w.write_all(head).unwrap();
+    let mut chunk = vec![0u8; 1 << 20];
+    chunk[..8].copy_from_slice(&[0, 1, 0, 1, 0, 1, 0, 1]);
+    for _ in 0..BOMB >> 20 {
+        w.write_all(&chunk).unwrap();
+        chunk[..8].fill(0);
+    }
+}
+
+fn gz_file(path: &Path, prefix: &[u8], head: &[u8]) {
+    let mut f = std::fs::File::create(path).unwrap();
+    f.write_all(prefix).unwrap();
+    let mut e = flate2::write::GzEncoder::new(f, flate2::Compression::fast());
+    bomb_into(&mut e, head);
+    e.finish().unwrap();
 }
 
 /// `septa ARGS` and the child's peak resident memory in bytes.
@@ -188,12 +204,8 @@ const BOMB: usize = 192 << 20;
 #[test]
 fn decompression_is_bounded_by_the_declared_shape() {
     let d = scratch("bombs");
-    // eight voxels of two labels, then zeros
-    let zeros: Vec<u8> = (0..BOMB).map(|i| u8::from(i < 8 && i % 2 == 1)).collect();
     // NRRD, gzip: 2x2x2 int8 declared, the gzip stream holds 192 MiB.
-    let mut nrrd = b"NRRD0004\ntype: int8\ndimension: 3\nsizes: 2 2 2\nencoding: gzip\n\n".to_vec();
-    nrrd.extend(gzip(&zeros));
-    std::fs::write(d.join("bomb.nrrd"), nrrd).unwrap();
+    gz_file(&d.join("bomb.nrrd"), b"NRRD0004\ntype: int8\ndimension: 3\nsizes: 2 2 2\nencoding: gzip\n\n", b"");
     // NIfTI-1, gzip: 2x2x2 uint8 after the 352-byte header, then the zeros.
     let mut hdr = vec![0u8; 352];
     hdr[0..4].copy_from_slice(&348i32.to_le_bytes());
@@ -204,9 +216,7 @@ fn decompression_is_bounded_by_the_declared_shape() {
     hdr[72..74].copy_from_slice(&8i16.to_le_bytes()); // bitpix
     hdr[108..112].copy_from_slice(&352f32.to_le_bytes());
     hdr[344..348].copy_from_slice(b"n+1\0");
-    let mut nii = hdr;
-    nii.extend_from_slice(&zeros);
-    std::fs::write(d.join("bomb.nii.gz"), gzip(&nii)).unwrap();
+    gz_file(&d.join("bomb.nii.gz"), b"", &hdr);
     for name in ["bomb.nrrd", "bomb.nii.gz"] {
         let (out, rss) = peak(&d, &["labels", name, "--json", "-o", "l"]);
         assert!(out.status.success(), "{name}");
@@ -227,17 +237,20 @@ fn decompression_is_bounded_by_the_declared_shape() {
     };
     let f8 = |v: &[f64]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
     let mut z = zip::ZipWriter::new(std::fs::File::create(d.join("bomb.npz")).unwrap());
-    let opts = zip::write::SimpleFileOptions::default().compression_method(zip::CompressionMethod::Deflated);
+    let opts = zip::write::SimpleFileOptions::default()
+        .compression_method(zip::CompressionMethod::Deflated)
+        .compression_level(Some(1));
     let members = [
         ("vertices.npy", npy("<f8", "(4, 3)", &f8(&[0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.]))),
         ("tets.npy", npy("<i8", "(1, 4)", &[0i64, 1, 2, 3].iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<_>>())),
         ("values.npy", npy("<f8", "(4,)", &f8(&[-1.0, 1.0, 1.0, 1.0]))),
-        ("junk.npy", npy("|u1", &format!("({BOMB},)"), &zeros)),
     ];
     for (name, bytes) in &members {
         z.start_file(*name, opts).unwrap();
         z.write_all(bytes).unwrap();
     }
+    z.start_file("junk.npy", opts).unwrap();
+    bomb_into(&mut z, &npy("|u1", &format!("({BOMB},)"), b""));
     z.finish().unwrap();
     let (out, rss) = peak(&d, &["ia", "bomb.npz", "--no-output", "--json"]);
     assert!(out.status.success());
