@@ -177,12 +177,13 @@ class Network:
         path = Path(path)
         name = path.name.lower()
         ext = ".plain.ply" if name.endswith(".plain.ply") else path.suffix.lower()
+        # never replace a link, FIFO or device at `path` (septa.InputError
+        # naming it, whatever the format); the temporary file is made new
+        # (O_EXCL), never opened through a planted link
+        _septa.check_output_file(str(path))
         if ext in _RUST_FORMATS:
             self._write_rust(path, _RUST_FORMATS[ext])
             return path
-        # never replace a link, FIFO or device at `path`; the temporary file
-        # is made new (O_EXCL), never opened through a planted link
-        _septa.check_output_file(str(path))
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
         os.close(fd)
         tmp = Path(tmp)

@@ -21,7 +21,7 @@ def _fixture(tmp_path):
 
 @pytest.mark.parametrize("change, array", [
     (lambda n: n.update(points=[p[:2] for p in n["points"]]), "points"),
-    (lambda n: n.update(face_label=[[x[0]] for x in n["face_label"]]), "face_label"),
+    (lambda n: n.update(face_label=[[0] for _ in n["faces"]]), "face_label"),
     (lambda n: n.update(faces=[[i + 0.5 for i in f] for f in n["faces"]]), "faces"),
     (lambda n: n.update(faces=[[0, 1, 10**9]]), "faces"),
     (lambda n: n.update(points=[[0, 0, "x"]]), "points"),

@@ -89,8 +89,7 @@ fn out_of_memory(size: usize) -> ! {
 /// Sets `RLIMIT_DATA` to `SEPTA_MEMORY_LIMIT` when it is set (called first
 /// thing in `main`, before any thread starts).
 pub fn apply() {
-    let Some(limit) = std::env::var("SEPTA_MEMORY_LIMIT").ok().and_then(|s| septa::grid::memory::parse_size(&s))
-    else {
+    let Some(limit) = std::env::var("SEPTA_MEMORY_LIMIT").ok().and_then(|s| septa::grid::memory::parse_size(&s)) else {
         return;
     };
     LIMIT.store(limit, std::sync::atomic::Ordering::Relaxed);

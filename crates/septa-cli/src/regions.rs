@@ -89,22 +89,7 @@ pub fn run(a: Args) -> CliResult {
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
-        println!("{path}: {} polygons in {} surfaces, {} curves", r.faces.len(), r.surfaces.len(), r.curves.len());
-        for s in &r.surfaces {
-            println!(
-                "  surface {:?}: {} polygons, Euler characteristic {}, {} boundary loop(s)",
-                s.regions, s.faces, s.euler, s.boundary_loops
-            );
-        }
-        for c in &r.curves {
-            println!(
-                "  curve {:?}: {} vertices, {}, length {:.4}",
-                c.regions,
-                c.vertices.len(),
-                if c.closed { "closed" } else { "open" },
-                c.length
-            );
-        }
+        print!("{}", crate::summary::regions_text(&path, &r));
         println!("wrote {}", dir.display());
     }
     Ok(())

@@ -151,7 +151,8 @@ fn inputs_must_be_regular_files_or_a_pipe_on_purpose() {
     refused(&d, &["cut", "to-fifo.obj", "--grid", "2", "-o", "c"], &["to-fifo.obj", "FIFO"]);
     refused(&d, &["ia", "folder.json", "--grid", "4", "-o", "o"], &["folder.json", "folder"]);
     // A scene's mesh primitive and a result folder's network.json.
-    let scene = r#"{"grid":{"resolution":4,"bounds":[[-1,-1,-1],[1,1,1]]},"functions":[{"type":"mesh","path":"fifo.obj"}]}"#;
+    let scene =
+        r#"{"grid":{"resolution":4,"bounds":[[-1,-1,-1],[1,1,1]]},"functions":[{"type":"mesh","path":"fifo.obj"}]}"#;
     std::fs::write(d.join("scene.json"), scene).unwrap();
     refused(&d, &["ia", "scene.json", "-o", "o"], &["fifo.obj", "FIFO"]);
     std::fs::create_dir_all(d.join("r")).unwrap();
@@ -183,7 +184,11 @@ fn a_scene_on_standard_input_is_read_once() {
     for (cmd, input) in [("ia", "/dev/stdin"), ("ia", "-"), ("regions", "/dev/stdin")] {
         let mut child = Command::new(env!("CARGO_BIN_EXE_septa"))
             .current_dir(&d)
-            .args(if cmd == "ia" { vec![cmd, input, "--no-output", "--json"] } else { vec![cmd, input, "-o", "r", "--json"] })
+            .args(if cmd == "ia" {
+                vec![cmd, input, "--no-output", "--json"]
+            } else {
+                vec![cmd, input, "-o", "r", "--json"]
+            })
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
             .stderr(Stdio::piped())

@@ -131,7 +131,8 @@ fn ply_counts_are_checked_against_the_file() {
     // a closed tetrahedron, with an element of no properties and a count
     // of 1.8e19 before it: it reads nothing, so it is skipped at once (was: a hang)
     let tet = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
-    let tet_head = head("element junk 18000000000000000000\n").replace("vertex 3", "vertex 4").replace("face 1", "face 4");
+    let tet_head =
+        head("element junk 18000000000000000000\n").replace("vertex 3", "vertex 4").replace("face 1", "face 4");
     std::fs::write(d.join("empty.ply"), tet_head + tet).unwrap();
     succeeds(&d, &["cut", "empty.ply", "--grid", "2", "-o", "t"]);
     // an element with properties and a count the file cannot hold
@@ -334,8 +335,11 @@ fn cut_at_any_scale_is_the_unit_cut_scaled() {
 #[test]
 fn scene_fields_are_strict() {
     let d = scratch("strict");
-    let misspelt = scene(r#"[{"type":"sphere","center":[0,0,0],
-  "radiuss":0.5, "radius": 0.4}]"#, "");
+    let misspelt = scene(
+        r#"[{"type":"sphere","center":[0,0,0],
+  "radiuss":0.5, "radius": 0.4}]"#,
+        "",
+    );
     std::fs::write(d.join("typo.json"), misspelt).unwrap();
     refused(&d, &["ia", "typo.json", "-o", "o"], &["typo.json:2:", "radiuss"]);
     let twice = scene("[{\"type\":\"sphere\",\"center\":[0,0,0],\n\"radius\":0.5,\n\"radius\":0.4}]", "");
@@ -356,7 +360,11 @@ fn scene_fields_are_strict() {
     // Two vertex ids at one position: a seam (was: accepted, cells split).
     let seam = "[[[0,0,0],[1,0,0],[0,1,0],[0,0,1],[1,0,0],[1,1,1]],[[0,1,2,3],[4,2,3,5]]]";
     std::fs::write(d.join("seam.json"), seam).unwrap();
-    refused(&d, &["ia", "f.json", "--mesh", "seam.json", "-o", "o"], &["seam.json", "vertices 1 and 4", "same position"]);
+    refused(
+        &d,
+        &["ia", "f.json", "--mesh", "seam.json", "-o", "o"],
+        &["seam.json", "vertices 1 and 4", "same position"],
+    );
     assert!(!d.join("o").exists());
     let _ = std::fs::remove_dir_all(&d);
 }
@@ -367,7 +375,11 @@ fn scene_fields_are_strict() {
 #[test]
 fn the_memory_limit_is_a_cap() {
     let d = scratch("cap");
-    std::fs::write(d.join("f.json"), r#"[{"type":"sphere","center":[0.1,0,0],"radius":0.7},{"type":"sphere","center":[-0.1,0.05,0],"radius":0.6}]"#).unwrap();
+    std::fs::write(
+        d.join("f.json"),
+        r#"[{"type":"sphere","center":[0.1,0,0],"radius":0.7},{"type":"sphere","center":[-0.1,0.05,0],"radius":0.6}]"#,
+    )
+    .unwrap();
     let args = ["ia", "f.json", "--grid", "160", "--no-output", "--json"];
     succeeds(&d, &args);
     refused_env(&d, &args, &[("SEPTA_MEMORY_LIMIT", "48M")], &["SEPTA_MEMORY_LIMIT", "memory limit"]);

@@ -161,6 +161,7 @@ pub fn sparse_finish_regions<'py>(
             j.scene.as_ref().ok_or_else(|| "region surfaces need a scene (with its region rule)".to_string())?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
+        out.names = scene.result_names();
         if normals {
             septa::regions::add_normals(&mut out, &scene.functions);
         }

@@ -28,7 +28,11 @@ pub(crate) fn check_axis(axis: usize, lo: f64, hi: f64, n: usize) -> Result<(), 
     for i in 1..=n {
         let x = grid_coordinate(lo, hi, i, n);
         if x <= prev {
-            return Err(bad(format!("grid lines {} and {i} are both at {prev:e} (the spacing {:e} is below the doubles' resolution there)", i - 1, width / n as f64)));
+            return Err(bad(format!(
+                "grid lines {} and {i} are both at {prev:e} (the spacing {:e} is below the doubles' resolution there)",
+                i - 1,
+                width / n as f64
+            )));
         }
         prev = x;
     }

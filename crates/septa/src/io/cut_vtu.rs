@@ -292,7 +292,8 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
         let mut polys = Vec::with_capacity(nf);
         for _ in 0..nf {
             let nv = next("a face")?;
-            let nv = whole(nv, left + 1).ok_or_else(|| err(format!("cell {c}: face size {nv} is not possible here")))?;
+            let nv =
+                whole(nv, left + 1).ok_or_else(|| err(format!("cell {c}: face size {nv} is not possible here")))?;
             let mut p = Vec::with_capacity(nv);
             for _ in 0..nv {
                 p.push(check_point(c, next("a face")?)?);

@@ -37,9 +37,9 @@ fn explicit_stream(path: &Path) -> bool {
     let s = path.to_string_lossy();
     s == "-"
         || s == "/dev/stdin"
-        || s.strip_prefix("/dev/fd/").or_else(|| s.strip_prefix("/proc/self/fd/")).is_some_and(|n| {
-            !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit())
-        })
+        || s.strip_prefix("/dev/fd/")
+            .or_else(|| s.strip_prefix("/proc/self/fd/"))
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// What `path` is when it is not a regular file, in words.

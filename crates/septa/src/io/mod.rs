@@ -17,6 +17,7 @@ mod mesh_off;
 mod mesh_ply;
 mod mesh_stl;
 mod msh;
+mod names;
 mod network_out;
 mod npy_labels;
 mod npz;
@@ -38,14 +39,15 @@ pub use atomic::{remove_pending_temps, set_durable, write_atomic, write_atomic_w
 pub use cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
 pub use cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_cells_vtu_of};
 pub use cut_vtu::{read_polyhedra, Polyhedra};
-pub use input::{check_count, input_limit, open_regular, read_input, read_input_text};
 pub use functions::{read_tet_mesh_json, MeshData, RefError};
+pub use input::{check_count, input_limit, open_regular, read_input, read_input_text};
 pub use mesh::{read_mesh, IndexedMesh, ReadError};
 pub use mesh_obj::parse_obj;
 pub use mesh_off::parse_off;
 pub use mesh_ply::parse_ply;
 pub use mesh_stl::parse_stl;
 pub use msh::{parse_msh, read_msh, MshError};
+pub use names::{name_token, Names};
 pub use network_out::{
     network_meta, write_network, write_network_formats, write_network_json, write_network_obj, write_network_ply,
     write_network_vtu,

@@ -86,8 +86,8 @@ pub fn read_npz_arrays(path: &Path, wanted: Option<&[&str]>) -> Result<BTreeMap<
         if wanted.is_some_and(|w| !w.contains(&name.as_str())) {
             continue;
         }
-        let bytes = read_member(member)
-            .map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
+        let bytes =
+            read_member(member).map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
         let arr =
             parse_npy(&bytes).map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
         out.insert(name, arr);
@@ -109,18 +109,21 @@ fn read_member(mut r: impl Read) -> Result<Vec<u8>, String> {
     let npyz::DType::Plain(ts) = header.dtype() else {
         return Err(format!("structured dtype {} is not supported (expected numbers)", header.dtype().descr()));
     };
+    // bytes per item: `<U5` holds 5 characters of 4 bytes; an object
+    // (pickled) array has no fixed size and is refused by `parse_npy`
+    let item = ts.num_bytes().ok_or_else(|| format!("dtype {} has no fixed item size", header.dtype().descr()))?;
     let count = header.shape().iter().try_fold(1u64, |a, &d| a.checked_mul(d));
-    let data = count.and_then(|c| c.checked_mul(ts.size_field()));
+    let data = count.and_then(|c| c.checked_mul(item as u64));
     let limit = super::input::input_limit();
     let need = match data.and_then(|d| d.checked_add(header_len as u64)) {
         Some(n) if n <= limit => n,
         _ => {
             return Err(format!(
-                "shape {:?} of {} declares more data than the input limit of {} (the memory budget, or SEPTA_MAX_INPUT)",
-                header.shape(),
-                header.dtype().descr(),
-                crate::grid::memory::human(limit)
-            ))
+            "shape {:?} of {} declares more data than the input limit of {} (the memory budget, or SEPTA_MAX_INPUT)",
+            header.shape(),
+            header.dtype().descr(),
+            crate::grid::memory::human(limit)
+        ))
         }
     };
     if (buf.len() as u64) < need {

@@ -111,7 +111,10 @@ impl PlyStreamSink {
             polygons: 0,
             triangles: false,
         };
-        let mut main = BufWriter::with_capacity(1 << 20, super::safe_write::create_temp(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?);
+        let mut main = BufWriter::with_capacity(
+            1 << 20,
+            super::safe_write::create_temp(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?,
+        );
         main.write_all(header(&sink.comment, 0, 0).as_bytes())?;
         sink.main = Some(main);
         let faces = super::safe_write::create_temp(&sink.tmp_faces).map_err(|e| with_path(&sink.tmp_faces, e))?;

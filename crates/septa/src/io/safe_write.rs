@@ -108,7 +108,10 @@ fn plain_components(rel: &Path) -> Option<Vec<&std::ffi::OsStr>> {
 /// be a link.
 pub(crate) fn real_dir(root: &Path, rel: &Path) -> std::io::Result<PathBuf> {
     let parts = plain_components(rel).ok_or_else(|| {
-        Error::new(ErrorKind::InvalidInput, format!("{}: a folder inside {} was expected", rel.display(), root.display()))
+        Error::new(
+            ErrorKind::InvalidInput,
+            format!("{}: a folder inside {} was expected", rel.display(), root.display()),
+        )
     })?;
     let mut at = root.to_path_buf();
     for part in parts {

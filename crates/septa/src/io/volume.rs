@@ -89,7 +89,8 @@ fn nifti_bytes(raw: &[u8]) -> Result<Vec<u8>, String> {
 fn nifti_size(b: &[u8]) -> Option<u64> {
     let b: &[u8; 348] = b.get(..348)?.try_into().ok()?;
     let big = i32::from_le_bytes(b[0..4].try_into().ok()?) != 348;
-    let i16_at = |o: usize| if big { i16::from_be_bytes([b[o], b[o + 1]]) } else { i16::from_le_bytes([b[o], b[o + 1]]) };
+    let i16_at =
+        |o: usize| if big { i16::from_be_bytes([b[o], b[o + 1]]) } else { i16::from_le_bytes([b[o], b[o + 1]]) };
     let x = [b[108], b[109], b[110], b[111]];
     let offset = if big { f32::from_be_bytes(x) } else { f32::from_le_bytes(x) };
     let voxels = (1..=3).try_fold(1u64, |a, k| a.checked_mul(u64::try_from(i16_at(40 + 2 * k)).ok()?))?;
@@ -434,9 +435,8 @@ pub fn diagonal_affine(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
 pub fn check_placement(affine: &[[f64; 4]; 3], shape: [usize; 3]) -> Result<(), String> {
     for c in 0..8 {
         let p: [f64; 3] = std::array::from_fn(|a| if c >> a & 1 == 1 { shape[a] as f64 } else { -1.0 });
-        let q: [f64; 3] = std::array::from_fn(|k| {
-            affine[k][0] * p[0] + affine[k][1] * p[1] + affine[k][2] * p[2] + affine[k][3]
-        });
+        let q: [f64; 3] =
+            std::array::from_fn(|k| affine[k][0] * p[0] + affine[k][1] * p[1] + affine[k][2] * p[2] + affine[k][3]);
         if q.iter().any(|x| !x.is_finite()) {
             return Err(format!(
                 "the voxel-to-world map (spacing and origin) takes voxel {p:?} to {q:?}, outside the finite doubles; give a smaller spacing or origin"

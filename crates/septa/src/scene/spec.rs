@@ -9,12 +9,15 @@ use std::sync::Arc;
 
 use serde_json::{Map, Value};
 
+use super::closed_form::ClosedForm;
 use super::composite::{rotation, Mat3, Transform, Wyvill};
 use super::error::{err, JsonPath, Located};
 use super::mesh::{read_tri_mesh, TriMesh};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
+use super::rbf::{read_hermite_rbf, HermiteRbf};
 use super::shapes::*;
+use super::torus::Torus;
 use super::vec3::{normalize, sub, V3};
 
 /// Every primitive `type` name accepted (hyphens may replace underscores).
@@ -38,6 +41,12 @@ pub const PRIMITIVE_TYPES: &[&str] = &[
     "mesh",
     "patch",
     "wyvill",
+    "Gaussian",
+    "smile",
+    "cyclide",
+    "wave",
+    "teardrop",
+    "rbf",
     "transform",
     "sum",
     "scale",
@@ -221,6 +230,9 @@ fn primitive_of(o: &Obj, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Locate
     let squared = || o.flag("squared");
     Ok(match ty.as_str() {
         "sphere" => {
+            // the reference's display option (a flat-shaded sphere): the
+            // function is the same
+            o.mark("flat");
             let center = o.vec3("center")?;
             let r = o.f64("radius")?;
             let kind = if squared()? {
@@ -268,12 +280,14 @@ fn primitive_of(o: &Obj, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Locate
             axis: o.dir("axis_vector")?,
             major: o.nonneg("major_radius")?,
             minor: o.nonneg("minor_radius")?,
+            squared: squared()?,
         }),
         "circle" => Primitive::Torus(Torus {
             center: o.vec3("center")?,
             axis: o.dir("axis_vector")?,
             major: o.nonneg("radius")?,
             minor: 0.0,
+            squared: squared()?,
         }),
         "cone" => Primitive::Cone(Cone {
             apex: o.vec3("apex")?,
@@ -368,6 +382,10 @@ fn primitive_of(o: &Obj, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Locate
             }
             Primitive::Patch(Box::new(BicubicPatch { origin, size: sz, heights }))
         }
+        "Gaussian" | "gaussian" | "smile" | "cyclide" | "wave" | "teardrop" => {
+            Primitive::ClosedForm(ClosedForm::from_name(if ty == "gaussian" { "Gaussian" } else { &ty }).unwrap())
+        }
+        "rbf" => Primitive::Rbf(Arc::new(rbf(&o, ctx)?)),
         "wyvill" => Primitive::Wyvill(Wyvill {
             center: o.vec3("center")?,
             axis: if o.has("axis") { Some(o.dir("axis")?) } else { None },
@@ -393,6 +411,40 @@ fn primitive_of(o: &Obj, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Locate
             )
         }
     })
+}
+
+/// A Hermite RBF: the reference's `points` (`.xyz`) and `rbf_coeffs`
+/// files, relative to the function file, or inline `centers`,
+/// `coefficients` (4N) and `polynomial` (4). The reference's display
+/// fields `color` and `samples` are not used.
+fn rbf(o: &Obj, ctx: &Ctx) -> Result<HermiteRbf, Located> {
+    o.mark_all(&["color", "samples"]);
+    if o.has("points") || o.has("rbf_coeffs") {
+        let full = |k: &str| -> Result<std::path::PathBuf, Located> {
+            let rel = o.str(k)?;
+            Ok(ctx.base_dir.map_or_else(|| Path::new(rel).to_path_buf(), |d| d.join(rel)))
+        };
+        let (points, coeffs) = (full("points")?, full("rbf_coeffs")?);
+        return read_hermite_rbf(&points, &coeffs).or_else(|e| err(&o.path.key("points"), e));
+    }
+    let cp = o.path.key("centers");
+    let cs = array(o.get("centers")?, &cp)?;
+    let centers: Vec<V3> = cs.iter().enumerate().map(|(i, v)| vec3(v, &cp.index(i))).collect::<Result<_, _>>()?;
+    let kp = o.path.key("coefficients");
+    let ks = array(o.get("coefficients")?, &kp)?;
+    let coeffs: Vec<f64> = ks.iter().enumerate().map(|(i, v)| num(v, &kp.index(i))).collect::<Result<_, _>>()?;
+    let pp = o.path.key("polynomial");
+    let ps = array(o.get("polynomial")?, &pp)?;
+    if ps.len() != 4 {
+        return err(&pp, "the polynomial needs 4 numbers (c0, cx, cy, cz)");
+    }
+    let poly = [
+        num(&ps[0], &pp.index(0))?,
+        num(&ps[1], &pp.index(1))?,
+        num(&ps[2], &pp.index(2))?,
+        num(&ps[3], &pp.index(3))?,
+    ];
+    HermiteRbf::new(centers, &coeffs, poly).or_else(|e| err(&kp, e))
 }
 
 fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {

@@ -82,7 +82,10 @@ mod tests {
     #[test]
     fn duplicates_are_refused_with_their_line() {
         let v = super::parse(r#"{"a": [1, 2.5, "x", null, true], "b": {"c": -3}}"#).unwrap();
-        assert_eq!(v, serde_json::from_str::<serde_json::Value>(r#"{"a": [1, 2.5, "x", null, true], "b": {"c": -3}}"#).unwrap());
+        assert_eq!(
+            v,
+            serde_json::from_str::<serde_json::Value>(r#"{"a": [1, 2.5, "x", null, true], "b": {"c": -3}}"#).unwrap()
+        );
         let e = super::parse("{\"f\": {\"radius\": 1,\n \"radius\": 2}}").unwrap_err();
         assert_eq!(e.line(), 2, "{e}");
         assert!(e.to_string().contains("duplicate key `radius`"), "{e}");

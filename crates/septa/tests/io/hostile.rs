@@ -251,10 +251,84 @@ fn failed_writes_name_the_final_file() {
 /// lowercase `</script` was escaped).
 #[test]
 fn inline_viewer_escapes_script_ends_in_any_case() {
-    let net = serde_json::json!({"points": [], "faces": [], "note": "</SCRIPT><script>alert(1)</script></ScRiPt ><!--"});
+    let net =
+        serde_json::json!({"points": [], "faces": [], "note": "</SCRIPT><script>alert(1)</script></ScRiPt ><!--"});
     let plain = serde_json::json!({"points": [], "faces": []});
-    let ends = |v: &serde_json::Value| septa::io::viewer_inline_page("t", v, None).to_ascii_lowercase().matches("</script").count();
+    let ends = |v: &serde_json::Value| {
+        septa::io::viewer_inline_page("t", v, None).to_ascii_lowercase().matches("</script").count()
+    };
     assert_eq!(ends(&net), ends(&plain));
     let page = septa::io::viewer_inline_page("t", &net, None);
     assert!(page.contains("alert(1)") && !page.contains("<!--\""), "the text is kept, escaped");
+}
+
+/// A string member (`<U3`: three characters of four bytes each) is read
+/// whole: the bound on what is inflated counts its bytes, not its characters.
+#[test]
+fn npz_string_members_are_read_whole() {
+    let d = scratch("npz-str");
+    let p = d.join("s.npz");
+    let mut z = zip::ZipWriter::new(std::fs::File::create(&p).unwrap());
+    let utf32: Vec<u8> = "abc".chars().flat_map(|c| (c as u32).to_le_bytes()).collect();
+    z.start_file("spec_json.npy", zip::write::SimpleFileOptions::default()).unwrap();
+    z.write_all(&npy("<U3", false, &[], &utf32)).unwrap();
+    z.start_file("bbox.npy", zip::write::SimpleFileOptions::default()).unwrap();
+    z.write_all(&npy("<f8", false, &[2], &[1.0f64, 2.0].iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<_>>()))
+        .unwrap();
+    z.finish().unwrap();
+    let a = septa::io::read_npz(&p).unwrap();
+    assert_eq!(a["spec_json"], septa::io::NpyArray::Str("abc".into()));
+    assert_eq!(a["bbox"], septa::io::NpyArray::F64(vec![2], vec![1.0, 2.0]));
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+/// CSG trees of the adaptive-grid paper's format: a chain of nodes deeper
+/// than the limit, or nodes shared so often that the expression would
+/// double at each level, are errors naming the limit; so is a node key the
+/// format does not have.
+#[test]
+fn csg_trees_deep_or_exploding_are_refused() {
+    let tree =
+        |n: usize, node: &dyn Fn(usize) -> String| format!("[{}]", (1..=n).map(node).collect::<Vec<_>>().join(","));
+    let chain = tree(5000, &|k| {
+        let next = if k == 5000 { "-1".to_string() } else { (k + 1).to_string() };
+        format!(r#"{{"type":"Negation","elements":[{next},0]}}"#)
+    });
+    let e = septa::scene::load_csg_tree(&chain, "t.json", 1, false).unwrap_err().to_string();
+    assert!(e.contains("deeper than 1024"), "{e}");
+    let doubling = tree(60, &|k| {
+        let next = if k == 60 { "-1".to_string() } else { (k + 1).to_string() };
+        format!(r#"{{"type":"Union","elements":[{next},{next}]}}"#)
+    });
+    let e = septa::scene::load_csg_tree(&doubling, "t.json", 1, false).unwrap_err().to_string();
+    assert!(e.contains("expands to more than"), "{e}");
+    // 1000 levels and a few shared nodes are read
+    let ok = tree(1000, &|k| {
+        let next = if k == 1000 { "-1".to_string() } else { (k + 1).to_string() };
+        format!(r#"{{"type":"Negation","elements":[{next},0]}}"#)
+    });
+    assert!(septa::scene::load_csg_tree(&ok, "t.json", 1, false).unwrap().eval(&|_| true));
+    let e = septa::scene::load_csg_tree(r#"[{"type":"Union","elements":[-1,-1],"elemnts":[]}]"#, "t.json", 1, false)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("`elemnts`") && e.starts_with("t.json:1:"), "{e}");
+}
+
+/// The keys main's scene reader accepts stay accepted (the adaptive-grid
+/// paper's `flat` sphere, its grid with `bbox_min`/`bbox_max`, an `rbf`'s
+/// display fields), and a key next to them that nothing reads is refused.
+#[test]
+fn strict_scenes_keep_the_accepted_keys() {
+    let scene = |grid: &str, f: &str| format!(r#"{{"grid": {grid}, "functions": [{f}]}}"#);
+    let anchor = r#"{"resolution": [2], "bbox_min": [-1,-1,-1], "bbox_max": [1,1,1]}"#;
+    let flat = r#"{"type":"sphere","center":[0,0,0],"radius":0.8,"squared":true,"flat":true,"name":"s"}"#;
+    septa::scene::Scene::from_json(&scene(anchor, flat), "s.json", None).unwrap();
+    let inline_rbf = r#"{"type":"rbf","centers":[[0,0,0]],"coefficients":[1,0,0,0],"polynomial":[-0.5,0,0,0],"color":[1,0,0,1],"samples":"x.xyz"}"#;
+    septa::scene::Scene::from_json(&scene(anchor, inline_rbf), "s.json", None).unwrap();
+    let bad_grid = r#"{"resolution": [2], "bbox_min": [-1,-1,-1], "bbox_max": [1,1,1], "bbox_mid": 0}"#;
+    let e = septa::scene::Scene::from_json(&scene(bad_grid, flat), "s.json", None).unwrap_err().to_string();
+    assert!(e.contains("`bbox_mid`"), "{e}");
+    let typo = r#"{"type":"sphere","center":[0,0,0],"radiuss":0.8,"radius":0.5}"#;
+    let e = septa::scene::Scene::from_json(&scene(anchor, typo), "s.json", None).unwrap_err().to_string();
+    assert!(e.contains("`radiuss`"), "{e}");
 }
