@@ -103,6 +103,9 @@ pub struct RegionSurfaces {
     pub sparse: Option<SparseStats>,
     /// What the clean-up did (`None`: not asked for).
     pub clean: Option<CleanStats>,
+    /// What the certification of the kept polygons' written doubles found
+    /// and changed (`septa::mesh::certify_regions`; `None`: not certified).
+    pub embedding: Option<crate::network::embedding::Embedding>,
     /// The scene's function and region names (or a label table's).
     pub names: crate::io::Names,
 }
@@ -241,6 +244,7 @@ pub(crate) fn from_network_with(
         seconds,
         sparse: None,
         clean: None,
+        embedding: None,
         names: Default::default(),
     }
 }
