@@ -44,6 +44,8 @@ CYCLE_ALLOWED = {"cut", "io"}
 CYCLE_KNOWN = {
     "complex": [["build.rs", "lookup.rs", "lookup_table.rs", "merge.rs", "predicate.rs", "split.rs", "types.rs"]],
     "grid": [["mesh.rs", "overlap.rs"]],
+    "mesh": [["check.rs", "volume.rs"]],
+    "network": [["embedding.rs", "mod.rs"]],
     "regions": [["mod.rs", "surfaces.rs"]],
     "scene": [
         ["arith.rs", "closed_form.rs", "composite.rs", "mesh.rs", "primitive.rs", "rounding.rs", "shapes.rs", "torus.rs"],
