@@ -159,7 +159,9 @@ impl BoxGrid {
             return Err(GridError::TooManyVertices { res });
         }
         for a in 0..3 {
-            super::spacing::check_axis(a, bounds[0][a], bounds[1][a], res[a])?;
+            let (lo, hi, n) = (bounds[0][a], bounds[1][a], res[a]);
+            super::spacing::check_axis(lo, hi, n, |i| grid_coordinate(lo, hi, i, n))
+                .map_err(|reason| GridError::Spacing { axis: a, lo, hi, n, reason })?;
         }
         Ok(BoxGrid { res, bounds, split })
     }

@@ -4,35 +4,32 @@
 //! and 16 cubes over `[1e16, 1e16 + 8]` put several grid lines at one
 //! double (coincident vertices: degenerate tets and polygons, exit 0).
 
-use super::boxgrid::grid_coordinate;
-use super::GridError;
-
-/// Checks axis `axis` of `n` cubes over `[lo, hi]` (finite, `lo < hi`):
-/// the width is finite and every grid line lies strictly above the one
-/// before. The lines are monotone in their index (each step of
-/// [`grid_coordinate`] rounds monotonically), so a spacing of a few ulps
-/// of the bounds' magnitude is accepted at once and only a spacing near
-/// the doubles' resolution is scanned line by line.
-pub(crate) fn check_axis(axis: usize, lo: f64, hi: f64, n: usize) -> Result<(), GridError> {
-    let bad = |reason: String| GridError::Spacing { axis, lo, hi, n, reason };
+/// Checks an axis of `n` cubes over `[lo, hi]` (finite, `lo < hi`) whose
+/// grid line `i` is at `line(i)` (the box grid's `grid_coordinate`): the
+/// width is finite and every grid line lies strictly above the one before.
+/// The lines are monotone in their index (each step of the coordinate
+/// rounds monotonically), so a spacing of a few ulps of the bounds'
+/// magnitude is accepted at once and only a spacing near the doubles'
+/// resolution is scanned line by line. The error says what goes wrong.
+pub(crate) fn check_axis(lo: f64, hi: f64, n: usize, line: impl Fn(usize) -> f64) -> Result<(), String> {
     let width = hi - lo;
     if !width.is_finite() {
-        return Err(bad(format!("the width {width} overflows the doubles")));
+        return Err(format!("the width {width} overflows the doubles"));
     }
     let ulp = |x: f64| f64::from_bits(x.abs().to_bits() + 1) - x.abs();
     let scale = lo.abs().max(hi.abs());
     if width / n as f64 >= 8.0 * ulp(scale) {
         return Ok(());
     }
-    let mut prev = grid_coordinate(lo, hi, 0, n);
+    let mut prev = line(0);
     for i in 1..=n {
-        let x = grid_coordinate(lo, hi, i, n);
+        let x = line(i);
         if x <= prev {
-            return Err(bad(format!(
+            return Err(format!(
                 "grid lines {} and {i} are both at {prev:e} (the spacing {:e} is below the doubles' resolution there)",
                 i - 1,
                 width / n as f64
-            )));
+            ));
         }
         prev = x;
     }
@@ -41,7 +38,18 @@ pub(crate) fn check_axis(axis: usize, lo: f64, hi: f64, n: usize) -> Result<(), 
 
 #[cfg(test)]
 mod tests {
-    use super::check_axis;
+    use crate::grid::{grid_coordinate, GridError};
+
+    /// The box grid's check of axis `axis` (boxgrid.rs), as it reports it.
+    fn check_axis(axis: usize, lo: f64, hi: f64, n: usize) -> Result<(), GridError> {
+        super::check_axis(lo, hi, n, |i| grid_coordinate(lo, hi, i, n)).map_err(|reason| GridError::Spacing {
+            axis,
+            lo,
+            hi,
+            n,
+            reason,
+        })
+    }
 
     #[test]
     fn spacing_must_be_representable() {
