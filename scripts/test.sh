@@ -71,6 +71,22 @@ cp -r tests/fixtures/two-planes "$ART/two-planes"
 # Two labels (f0, f1) and four patches: see scripts/make_fixture.py.
 node viewer/test/browser.mjs "$ART/two-planes/viewer" "$ART" --label-colours 2 --patch-colours 4
 
+# A label volume's result: the regions' ids in network.json, picking and the
+# exploded view (the demo below adds a regions, an MI and a cut result).
+rm -rf "$ART/labels-volume" "$ART/labels"
+.venv/bin/python - "$ART/labels-volume.npy" <<'PYEOF'
+import sys
+import numpy as np
+v = np.zeros((14, 14, 14), np.int64)
+v[2:8, 2:10, 2:10] = 1
+v[8:11, 2:10, 2:10] = 2
+v[3:7, 3:7, 9:12] = 3
+np.save(sys.argv[1], v)
+PYEOF
+"$ROOT/target/release/septa" labels "$ART/labels-volume.npy" -o "$ART/labels-volume" -q
+"$ROOT/target/release/septa" view "$ART/labels-volume" --no-open
+node viewer/test/browser.mjs "$ART/labels-volume/viewer" "$ART/labels"
+
 # And on real results: every demo job with a viewer. Its first page view is
 # the user guide's picture, written to test-artifacts/guide-images/<job>.png;
 # `bash scripts/guide_images.sh --refresh` copies them over docs/images/.

@@ -137,9 +137,15 @@ def _check_folder(name, d, summary):
     for key in ("points", "offsets", "indices", "face_patch", "patch_labels", "corners"):
         assert np.array_equal(getattr(a, key), getattr(b, key)), key
     assert [c.tolist() for c in a.chains] == [c.tolist() for c in b.chains]
-    if name in ("ia", "mi"):  # (region JSON keeps network cell ids per face; its npz the region index)
-        assert np.array_equal(a.face_label, b.face_label) and np.array_equal(a.face_cells, b.face_cells)
-        assert a.cells == b.cells and [s.tolist() for s in a.shells] == [s.tolist() for s in b.shells]
+    # Per-face ids: the JSON (what the viewer reads) says what the npz says,
+    # for region and label results too (cells index `cells`, the regions).
+    assert np.array_equal(a.face_label, b.face_label) and np.array_equal(a.face_cells, b.face_cells)
+    assert np.array_equal(b.face_label, z["labels"]) and np.array_equal(b.face_cells, z["cells"])
+    assert a.cells == b.cells and [s.tolist() for s in a.shells] == [s.tolist() for s in b.shells]
+    if name in ("regions", "labels"):
+        # each face's cells are the regions of its labels (lesser first, the positive side)
+        region = np.array([c["label"][0] for c in b.cells])
+        assert np.array_equal(region[b.face_cells], b.face_label)
     return z
 
 

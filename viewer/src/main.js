@@ -118,7 +118,11 @@ function start() {
     info.textContent =
       `patch ${p.patch} label ${JSON.stringify(p.patchLabel)}${side}\n` +
       `face ${p.face}, cells [+ ${p.faceCells[0]}, - ${p.faceCells[1]}]\n` +
-      (p.cell >= 0 ? `cell ${p.cell} label ${JSON.stringify(p.cellLabel)}` : 'cell: outside');
+      (p.cell >= 0
+        ? (net.mode === 'regions' && Array.isArray(p.cellLabel)
+          ? `cell ${p.cell}: region ${p.cellLabel[0]}`
+          : `cell ${p.cell} label ${JSON.stringify(p.cellLabel)}`)
+        : 'cell: outside');
   }
   let down = null;
   canvas.addEventListener('pointerdown', (e) => { down = [e.clientX, e.clientY]; });

@@ -157,6 +157,19 @@ try {
     await page.mouse.click(box.x + x, box.y + y);
     const info = await page.locator('#info').textContent();
     check('picking names a patch and its cells', /^patch \d+ label/.test(info) && /cell/.test(info), JSON.stringify(info));
+    // The picked cell is a real cell, and its label agrees with the face's
+    // label on the side clicked (MI: the material; regions: the region).
+    const p = await page.evaluate(([cx, cy]) => {
+      const q = window.__septa.pick(cx, cy);
+      return q && { ...q, mode: window.__septa.net.mode, ncells: window.__septa.net.cells.length };
+    }, [box.x + x, box.y + y]);
+    const inRange = p && p.faceCells.every((c) => c >= -1 && c < p.ncells);
+    check('picked face names real cells', inRange, JSON.stringify(p && p.faceCells));
+    if (p && (p.mode === 'regions' || p.mode === 'mi') && p.cell >= 0 && p.side) {
+      const want = p.patchLabel[p.side === '+' ? 0 : 1];
+      check('picked cell has the label of the side clicked', Array.isArray(p.cellLabel) && p.cellLabel[0] === want,
+        `side ${p.side}, face label ${JSON.stringify(p.patchLabel)}, cell ${p.cell} label ${JSON.stringify(p.cellLabel)}`);
+    }
   } else {
     check('picking names a patch and its cells', false, 'no patch colour found to click');
   }
@@ -167,6 +180,9 @@ try {
   const change = changedFraction(byPatch, exploded);
   check('exploded view changes the image', change > 0.02, `${(100 * change).toFixed(1)}% of pixels changed`);
   check('exploded view is not blank', nonBackground(exploded) > 0.02);
+  // Exploding moves the cells apart; it does not make them vanish.
+  check('exploded view keeps the cells', nonBackground(exploded) > 0.4 * nonBackground(byPatch),
+    `${(100 * nonBackground(exploded)).toFixed(1)}% vs ${(100 * nonBackground(byPatch)).toFixed(1)}% non-background`);
 
   // 5. Lit exploded view and clipping, for people to look at.
   await page.goto(url);

@@ -69,28 +69,27 @@ pub fn regions_face_normals(r: &RegionSurfaces) -> Vec<Vec<u32>> {
         .collect()
 }
 
-/// The `network.json` document of region surfaces (the schema every job writes).
+/// The `network.json` document of region surfaces (the schema every job
+/// writes). Per polygon `face_label` and `face_cells` come from the one
+/// result model ([`ResultView::of_regions`]), as in every other format:
+/// `face_cells` index `cells` (the regions, ascending), never the
+/// underlying network's internal cells.
 pub fn regions_document(r: &RegionSurfaces) -> Value {
-    let net = &r.network;
-    let polys: Vec<&[u32]> =
-        (0..r.faces.len()).map(|i| &r.loops[r.loop_start[i] as usize..r.loop_start[i + 1] as usize]).collect();
-    let mut corners: Vec<u32> =
-        r.curves.iter().filter(|c| !c.closed).flat_map(|c| [c.vertices[0], *c.vertices.last().unwrap()]).collect();
-    corners.sort_unstable();
-    corners.dedup();
-    let regions: std::collections::BTreeSet<_> = r.cell_region.iter().copied().collect();
+    let view = ResultView::of_regions(r);
+    let polys: Vec<&[u32]> = (0..view.num_faces()).map(|f| view.face(f)).collect();
     let mut doc = json!({
         "mode": "regions",
-        "points": net.points,
+        "points": view.points,
         "faces": polys,
-        "face_patch": r.face_surface,
-        "face_cells": r.faces.iter().map(|&f| net.face_cells[f as usize].map(|c| if c == u32::MAX { -1 } else { c as i64 })).collect::<Vec<_>>(),
+        "face_label": view.labels,
+        "face_patch": view.patch,
+        "face_cells": view.cells,
         "patches": r.surfaces.iter().map(|s| json!({"label": s.regions, "faces": s.faces, "euler": s.euler, "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
-        "chains": r.curves.iter().map(|c| &c.vertices).collect::<Vec<_>>(),
+        "chains": view.chains,
         "chain_regions": r.curves.iter().map(|c| c.regions).collect::<Vec<_>>(),
-        "corners": corners,
-        "shells": Vec::<Vec<u32>>::new(),
-        "cells": regions.iter().map(|g| json!({"shells": [], "label": [g]})).collect::<Vec<_>>(),
+        "corners": view.corners,
+        "shells": view.shells,
+        "cells": view.cell_labels.iter().map(|l| json!({"shells": [], "label": l})).collect::<Vec<_>>(),
         "counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
     });

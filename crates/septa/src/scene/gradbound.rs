@@ -4,52 +4,110 @@
 //! bounding each function separately loses the fact that far from their
 //! sites both gradients nearly agree, so their difference varies little.
 
-use super::interval::{offset_box, Interval};
+use super::interval::Interval;
+use super::interval_vec::{hull3, point3, scale3, IV3};
 use super::primitive::Primitive;
-use super::shapes::{lipschitz, SphereKind};
-use super::vec3::{box_center_radius, norm, sub, V3};
+use super::vec3::V3;
+
+/// Relative widening of every gradient enclosure, so that it also holds
+/// the *computed* analytic gradient ([`Primitive::gradient`], a few
+/// roundings away from the exact one) wherever the gradient's own formula
+/// does not cancel badly (within about 1e-3 of a cylinder's or torus's
+/// axis relative to the coordinates' size, the computed direction can err
+/// by more).
+const GRAD_PAD: f64 = 1e-12;
 
 impl Primitive {
-    /// An enclosure of every gradient (every Clarke gradient at kinks) of
-    /// the function over the box, or `None` when the primitive has none.
-    pub(crate) fn gradient_bounds(&self, lo: V3, hi: V3) -> Option<[Interval; 3]> {
-        let pt = |v: V3| v.map(Interval::point);
-        match self {
-            Primitive::Constant(_) => Some(pt([0.0; 3])),
-            Primitive::Plane(p) => Some(pt(p.normal)),
-            Primitive::HalfSpace(p) => Some(pt(p.normal.map(|x| -x))),
-            Primitive::Sphere(s) if s.kind == SphereKind::Signed => {
-                // -(p - c)/|p - c| for p in the ball of radius R around the
-                // box centre m: a cone of half-angle asin(R/d) around
-                // a = (m - c)/d, so each component is within the chord
-                // 2 sin(angle/2) of -a.
-                let (m, r) = box_center_radius(lo, hi);
-                let v = sub(m, s.center);
-                let d = norm(v);
-                if d.is_nan() || d <= r * (1.0 + 1e-12) {
-                    return Some([Interval::new(-1.0, 1.0); 3]);
+    /// An enclosure of every gradient of the function over the box `[lo,
+    /// hi]`, and of every Clarke generalized gradient where it has a kink
+    /// (the convex hull of the limits of nearby gradients: at a sphere's
+    /// centre the unit ball, where `max` switches the hull of both sides'),
+    /// or `None` when there is none to give (an open triangle mesh).
+    ///
+    /// Each component is an [`Interval`] with outward rounding. Away from
+    /// kinks the enclosure tightens linearly as the box shrinks (width
+    /// about the Hessian's size times the box's), which is what the
+    /// adaptive criterion needs (a gradient cone bounded away from 0 on a
+    /// small enough box). Boxes holding a kink keep the hull.
+    ///
+    /// ```
+    /// use septa::scene::Primitive;
+    /// let s = Primitive::sphere([0.0; 3], 1.0);
+    /// let g = s.gradient_bounds([0.9, -0.01, -0.01], [1.1, 0.01, 0.01]).unwrap();
+    /// assert!(g[0].hi < -0.99 && g[1].contains(0.0));
+    /// let c = s.gradient_bounds([-0.1; 3], [0.1; 3]).unwrap(); // holds the centre
+    /// assert!(c[0].lo <= -1.0 && c[0].hi >= 1.0);
+    /// ```
+    pub fn gradient_bounds(&self, lo: V3, hi: V3) -> Option<[Interval; 3]> {
+        use Primitive::*;
+        let g: IV3 = match self {
+            Constant(_) => point3([0.0; 3]),
+            Plane(p) => point3(p.normal),
+            HalfSpace(p) => point3(p.normal.map(|x| -x)),
+            Sphere(s) => s.grad_bounds(lo, hi),
+            Ellipsoid(s) => s.grad_bounds(lo, hi),
+            Box(s) => s.grad_bounds(lo, hi),
+            Cylinder(s) => s.grad_bounds(lo, hi),
+            CappedCylinder(s) => s.grad_bounds(lo, hi),
+            Cone(s) => s.grad_bounds(lo, hi),
+            Torus(s) => s.grad_bounds(lo, hi),
+            Capsule(s) => s.grad_bounds(lo, hi),
+            Points(s) => s.grad_bounds(lo, hi),
+            Mesh(m) => m.grad_bounds()?,
+            Patch(s) => s.grad_bounds(lo, hi),
+            Wyvill(s) => s.grad_bounds(lo, hi),
+            Transform(t) => t.grad_bounds(lo, hi)?,
+            Sum(ts) => {
+                let mut acc = point3([0.0; 3]);
+                for t in ts {
+                    acc = super::interval_vec::add3(acc, t.gradient_bounds(lo, hi)?);
                 }
-                let sin = (r / d).min(1.0);
-                // 2 sin(t/2) = s sqrt(2 / (1 + cos t)): no cancellation for small s.
-                let cos = (1.0 - sin * sin).max(0.0).sqrt();
-                let chord = sin * (2.0 / (1.0 + cos)).sqrt() * (1.0 + 1e-12) + 1e-15;
-                Some(v.map(|x| Interval::point(-x / d).pad(chord)))
+                acc
             }
-            Primitive::Sphere(s) if s.kind == SphereKind::Squared => {
-                Some(offset_box(lo, hi, s.center).map(|x| x.scale(-2.0)))
+            Scale(k, t) => scale3(t.gradient_bounds(lo, hi)?, *k),
+            Abs(t) => {
+                // |g|: the sign of g where it is known, both where it may be 0.
+                let v = t.bounds_interval(lo, hi);
+                let g = t.gradient_bounds(lo, hi)?;
+                if v.lo > 0.0 {
+                    g
+                } else if v.hi < 0.0 {
+                    scale3(g, -1.0)
+                } else {
+                    hull3(g, scale3(g, -1.0))
+                }
             }
-            Primitive::Cylinder(c) if !c.squared => {
-                let o = offset_box(lo, hi, c.point);
-                let t = o[0].scale(c.axis[0]).add(o[1].scale(c.axis[1])).add(o[2].scale(c.axis[2]));
-                let perp = [0, 1, 2].map(|a| o[a].sub(t.scale(c.axis[a])));
-                // Encloses the exact distance to the axis (rounding.rs).
-                let err = c.rho_error(super::rounding::box_mag(lo, hi));
-                let rho = lipschitz(|p| norm(c.perp(p)), 1.0, lo, hi, err);
-                Some(perp.map(|x| x.div(rho).neg()))
+            Min(ts) => extreme_gradient(ts, lo, hi, false)?,
+            Max(ts) => extreme_gradient(ts, lo, hi, true)?,
+        };
+        Some(g.map(|x| x.pad(GRAD_PAD * (1.0 + x.mag().min(f64::MAX)))))
+    }
+}
+
+/// The hull of the gradient enclosures of the terms that can be the
+/// extreme somewhere in the box (by their value bounds): every gradient of
+/// `max`/`min`, and its Clarke gradients where terms tie.
+fn extreme_gradient(terms: &[Primitive], lo: V3, hi: V3, max: bool) -> Option<IV3> {
+    let b: Vec<Interval> = terms.iter().map(|t| t.bounds_interval(lo, hi)).collect();
+    let mut out: Option<IV3> = None;
+    if max {
+        let best = b.iter().map(|x| x.lo).fold(f64::NEG_INFINITY, f64::max);
+        for (t, v) in terms.iter().zip(&b) {
+            if v.hi >= best {
+                let g = t.gradient_bounds(lo, hi)?;
+                out = Some(out.map_or(g, |o| hull3(o, g)));
             }
-            _ => None,
+        }
+    } else {
+        let best = b.iter().map(|x| x.hi).fold(f64::INFINITY, f64::min);
+        for (t, v) in terms.iter().zip(&b) {
+            if v.lo <= best {
+                let g = t.gradient_bounds(lo, hi)?;
+                out = Some(out.map_or(g, |o| hull3(o, g)));
+            }
         }
     }
+    out
 }
 
 /// A lower bound of the *computed* `f.eval(p) - g.eval(p)` over the box

@@ -157,6 +157,75 @@ impl Interval {
     pub fn max(self, o: Interval) -> Interval {
         Interval::new(self.lo.max(o.lo), self.hi.max(o.hi))
     }
+
+    /// The smallest interval holding both (exact).
+    pub fn hull(self, o: Interval) -> Interval {
+        Interval::new(self.lo.min(o.lo), self.hi.max(o.hi))
+    }
+
+    /// The overlap of two enclosures of the same quantity; `self` if they
+    /// are disjoint (impossible for two valid enclosures, but never empty).
+    pub fn meet(self, o: Interval) -> Interval {
+        let (lo, hi) = (self.lo.max(o.lo), self.hi.min(o.hi));
+        if lo <= hi {
+            Interval { lo, hi }
+        } else {
+            self
+        }
+    }
+
+    /// Width `hi - lo` (rounded up; infinite for an unbounded interval).
+    pub fn width(self) -> f64 {
+        up(self.hi - self.lo)
+    }
+
+    /// `exp`: monotone; the library's `exp` errs by less than an ulp, so
+    /// widening the exact ends' computed values by 4 ulps (relative)
+    /// encloses both the exact and every computed value.
+    pub fn exp(self) -> Interval {
+        let k = 4.0 * f64::EPSILON;
+        let lo = self.lo.exp();
+        let hi = self.hi.exp();
+        Interval::new((lo * (1.0 - k)).max(0.0), hi * (1.0 + k))
+    }
+
+    /// `sin`: the extremes are at the ends or at `pi/2 + k pi` inside;
+    /// padded by `4e-16 + 4u |x|` for the library's error and the
+    /// rounding of `pi` in locating the extremes.
+    pub fn sin(self) -> Interval {
+        self.shifted_cos(-std::f64::consts::FRAC_PI_2)
+    }
+
+    /// `cos` (as [`Interval::sin`]).
+    pub fn cos(self) -> Interval {
+        self.shifted_cos(0.0)
+    }
+
+    /// Range of `cos(x + shift)` over the interval (shift 0 or -pi/2).
+    fn shifted_cos(self, shift: f64) -> Interval {
+        let whole = Interval::new(-1.0, 1.0);
+        if !(self.lo.is_finite() && self.hi.is_finite()) || self.hi - self.lo >= 6.3 {
+            return whole;
+        }
+        let pi = std::f64::consts::PI;
+        let f = |x: f64| if shift == 0.0 { x.cos() } else { x.sin() };
+        let (a, b) = (f(self.lo), f(self.hi));
+        let (mut lo, mut hi) = (a.min(b), a.max(b));
+        // Extremes of cos(x + shift) at x + shift = k pi: maxima for even k.
+        let (t0, t1) = ((self.lo + shift) / pi, (self.hi + shift) / pi);
+        // A margin of a millionth of a period so a rounding of `t` never
+        // hides an extreme (including one costs only width).
+        let (k0, k1) = ((t0 - 1e-6).ceil() as i64, (t1 + 1e-6).floor() as i64);
+        for k in k0..=k1 {
+            if k.rem_euclid(2) == 0 {
+                hi = 1.0;
+            } else {
+                lo = -1.0;
+            }
+        }
+        let pad = 4e-16 + 4.0 * f64::EPSILON * self.mag();
+        Interval::new(lo - pad, hi + pad).meet(whole.pad(pad))
+    }
 }
 
 /// Interval enclosure of the Euclidean norm of a vector of intervals.

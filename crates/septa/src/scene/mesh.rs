@@ -126,6 +126,12 @@ impl TriMesh {
         lipschitz(|p| self.eval(p), 1.0, lo, hi, err)
     }
 
+    /// Closed and consistently oriented (every directed edge once, its
+    /// reverse once): the sign of [`TriMesh`]'s distance is trustworthy.
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
     /// Largest absolute vertex coordinate.
     pub(crate) fn magnitude(&self) -> f64 {
         self.vertices.iter().map(|v| mag(*v)).fold(0.0, f64::max)

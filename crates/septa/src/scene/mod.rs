@@ -25,7 +25,7 @@
 //! | `plane` | `point`, `normal` | `n . (p - point)`, `n` normalized |
 //! | `line` | `point`, `unit_vector` (or `direction`), `squared`? | minus the distance to the line |
 //! | `cylinder` | `axis_point` + `axis_vector` or `axis_point1` + `axis_point2`, `radius`, `squared`? | `r -` distance to the axis |
-//! | `torus` | `center`, `axis_vector`, `major_radius`, `minor_radius` | `r - sqrt((rho - R)^2 + h^2)` |
+//! | `torus` | `center`, `axis_vector`, `major_radius`, `minor_radius`, `squared`? | `r - sqrt((rho - R)^2 + h^2)` (`r^2 - (rho - R)^2 - h^2`) |
 //! | `circle` | `center`, `axis_vector`, `radius` | minus the distance to the circle |
 //! | `cone` | `apex`, `axis_vector`, `apex_angle` (radians) | `u . (p - apex) - cos(angle) \|p - apex\|` |
 //! | `zero` | | 0 |
@@ -68,7 +68,10 @@ mod composite;
 mod error;
 mod field;
 mod gradbound;
+mod gradbound_composite;
+mod gradbound_shapes;
 mod interval;
+mod interval_vec;
 mod mesh;
 mod mesh_bvh;
 mod normals;
@@ -82,11 +85,13 @@ mod sample;
 mod scene;
 mod shapes;
 mod spec;
+mod torus;
 pub(crate) mod vec3;
 
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use error::{JsonPath, SceneError, Seg};
 pub use field::Primitives;
+pub use interval::Interval;
 pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
@@ -95,6 +100,7 @@ pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
 pub use scene::{load_function_list, GridSpec, Mode, Scene};
 pub use shapes::{
-    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind, Torus,
+    BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind,
 };
 pub use spec::PRIMITIVE_TYPES;
+pub use torus::Torus;

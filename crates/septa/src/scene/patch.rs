@@ -57,7 +57,31 @@ fn bern_d1_iv(s: Interval) -> [Interval; 4] {
     ]
 }
 
+fn bern_d2_iv(s: Interval) -> [Interval; 4] {
+    let r = Interval::point(1.0).sub(s);
+    [r.scale(6.0), s.scale(6.0).sub(r.scale(12.0)), r.scale(6.0).sub(s.scale(12.0)), s.scale(6.0)]
+}
+
 impl BicubicPatch {
+    /// Enclosures of `h` and its parameter derivatives `h_s, h_t, h_ss,
+    /// h_st, h_tt` over the parameter rectangle `s x t` (Bernstein sums in
+    /// intervals; for the gradient enclosure).
+    #[allow(clippy::needless_range_loop)]
+    pub(crate) fn derivatives_iv(&self, s: Interval, t: Interval) -> [Interval; 6] {
+        let comb = |a: [Interval; 4], b: [Interval; 4]| {
+            let mut v = Interval::point(0.0);
+            for i in 0..4 {
+                for j in 0..4 {
+                    v = v.add(a[i].mul(b[j]).scale(self.heights[i][j]));
+                }
+            }
+            v
+        };
+        let (b0s, b1s, b2s) = (bern_iv(s), bern_d1_iv(s), bern_d2_iv(s));
+        let (b0t, b1t, b2t) = (bern_iv(t), bern_d1_iv(t), bern_d2_iv(t));
+        [comb(b0s, b0t), comb(b1s, b0t), comb(b0s, b1t), comb(b2s, b0t), comb(b1s, b1t), comb(b0s, b2t)]
+    }
+
     fn st(&self, p: V3) -> (f64, f64) {
         ((p[0] - self.origin[0]) / self.size[0], (p[1] - self.origin[1]) / self.size[1])
     }

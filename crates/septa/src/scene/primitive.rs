@@ -8,6 +8,7 @@ use super::interval::Interval;
 use super::mesh::TriMesh;
 use super::patch::BicubicPatch;
 use super::shapes::*;
+use super::torus::Torus;
 use super::vec3::{normalize, V3};
 
 /// A real function of a point in space.
@@ -103,7 +104,7 @@ impl Primitive {
     }
     /// Torus.
     pub fn torus(center: V3, axis: V3, major: f64, minor: f64) -> Primitive {
-        Primitive::Torus(Torus { center, axis: normalize(axis), major, minor })
+        Primitive::Torus(Torus { center, axis: normalize(axis), major, minor, squared: false })
     }
     /// Affine transform `p -> A p + t` of `inner`; `None` if `A` is singular.
     pub fn transform(linear: Mat3, translation: V3, inner: Primitive) -> Option<Primitive> {

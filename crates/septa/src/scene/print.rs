@@ -101,9 +101,11 @@ pub fn primitive_json(p: &Primitive) -> Result<Value, String> {
         Primitive::Cone(c) => {
             json!({"type": "cone", "apex": c.apex, "axis_vector": c.axis, "apex_angle": c.cos_angle.acos()})
         }
-        Primitive::Torus(t) if t.minor == 0.0 => {
+        Primitive::Torus(t) if t.minor == 0.0 && !t.squared => {
             json!({"type": "circle", "center": t.center, "axis_vector": t.axis, "radius": t.major})
         }
+        Primitive::Torus(t) if t.squared => json!({"type": "torus", "center": t.center, "axis_vector": t.axis,
+            "major_radius": t.major, "minor_radius": t.minor, "squared": true}),
         Primitive::Torus(t) => json!({"type": "torus", "center": t.center, "axis_vector": t.axis,
             "major_radius": t.major, "minor_radius": t.minor}),
         Primitive::Capsule(c) if c.radius == 0.0 => json!({"type": "segment", "a": c.a, "b": c.b}),

@@ -37,7 +37,8 @@ use super::composite::Transform;
 use super::interval::Interval;
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
-use super::shapes::{CappedCylinder, Capsule, Cone, Cylinder, SphereKind, Torus};
+use super::shapes::{CappedCylinder, Capsule, Cone, Cylinder, SphereKind};
+use super::torus::Torus;
 use super::vec3::{mag, V3};
 
 /// Unit roundoff of `f64`.
@@ -106,20 +107,31 @@ impl Torus {
     /// ~5u error, `2 r err(rho)` ~ 120 u Q^2, a non-unit axis 4u |v|^2), so
     /// `2 K u Q^2` holds with margin. The cancellation is real: the
     /// argument is small near the core circle.
-    fn arg_error(&self, a: f64) -> f64 {
+    pub(crate) fn arg_error(&self, a: f64) -> f64 {
         let q = 1.0 + a + mag(self.center) + self.major.abs();
         2.0 * K * U * q * q
     }
-    /// Error of `eval = minor - sqrt(arg)`: `|sqrt(x) - sqrt(y)| <=
-    /// sqrt(|x - y|)` always, and `<= |x - y| / sqrt(y)` when the exact
-    /// argument is at least `y`; `s_min` is a lower bound of the exact
-    /// `sqrt(arg)` on the box (0 when unknown).
-    pub(crate) fn eval_error(&self, a: f64, s_min: f64) -> f64 {
+    /// Error of the computed distance to the core circle `sqrt(arg)`:
+    /// `|sqrt(x) - sqrt(y)| <= sqrt(|x - y|)` always, and `<= |x - y| /
+    /// sqrt(y)` when the exact argument is at least `y`; `s_min` is a lower
+    /// bound of the exact distance on the box (0 when unknown). Plus the
+    /// final sqrt (a few ulps of the values).
+    pub(crate) fn distance_error(&self, a: f64, s_min: f64) -> f64 {
         let e = self.arg_error(a);
         let root = if s_min > 0.0 { (e / s_min).min(e.sqrt()) } else { e.sqrt() };
-        // Plus the final sqrt and subtraction (a few ulps of the values).
         let q = 1.0 + a + mag(self.center) + self.major.abs() + self.minor.abs();
         root * (1.0 + 1e-12) + 8.0 * U * q
+    }
+    /// Error of `eval`: the distance's error (plus one subtraction, within
+    /// the margin) for `minor - D`; the argument's error and the last two
+    /// roundings for `minor^2 - D^2`.
+    pub(crate) fn eval_error(&self, a: f64, s_min: f64) -> f64 {
+        if self.squared {
+            let q = 1.0 + a + mag(self.center) + self.major.abs() + self.minor.abs();
+            self.arg_error(a) + 8.0 * U * q * q
+        } else {
+            self.distance_error(a, s_min)
+        }
     }
 }
 

@@ -359,69 +359,6 @@ impl Cone {
     }
 }
 
-/// Reference `torus`: `minor - sqrt((rho - major)^2 + h^2)`; with minor
-/// radius 0 the reference `circle` (negated distance to the circle).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Torus {
-    /// Centre.
-    pub center: V3,
-    /// Unit axis.
-    pub axis: V3,
-    /// Major radius.
-    pub major: f64,
-    /// Minor radius (0 for a circle).
-    pub minor: f64,
-}
-
-impl Torus {
-    fn split(&self, p: V3) -> (V3, V3, V3, f64) {
-        let v = sub(p, self.center);
-        let d = dot(self.axis, v);
-        let para = scale(self.axis, d);
-        let perp = sub(v, para);
-        (v, para, perp, norm(perp))
-    }
-    pub(crate) fn eval(&self, p: V3) -> f64 {
-        let (v, para, _, rho) = self.split(p);
-        let r = self.major;
-        if rho == 0.0 {
-            self.minor - (dot(para, para) + r * r).sqrt()
-        } else {
-            self.minor - (r * (r - 2.0 * rho) + dot(v, v)).sqrt()
-        }
-    }
-    pub(crate) fn gradient(&self, p: V3) -> V3 {
-        let (v, para, perp, rho) = self.split(p);
-        let r = self.major;
-        let (dir, len) = if rho == 0.0 {
-            (para, (dot(para, para) + r * r).sqrt())
-        } else {
-            let q = sub(v, scale(perp, r / rho));
-            (q, norm(q))
-        };
-        if len == 0.0 {
-            [0.0; 3]
-        } else {
-            scale(dir, -1.0 / len)
-        }
-    }
-    pub(crate) fn bounds(&self, lo: V3, hi: V3) -> Interval {
-        // `minor - distance to the core circle` is 1-Lipschitz. eval's
-        // formula cancels near the core circle (rounding.rs): first the
-        // error bound valid everywhere, then, when that proves the box away
-        // from the core circle, the much smaller one it allows there.
-        let a = box_mag(lo, hi);
-        let f = |p| self.eval(p);
-        let wide = lipschitz(f, 1.0, lo, hi, self.eval_error(a, 0.0));
-        let s_min = self.minor - wide.hi;
-        if s_min > 0.0 {
-            let narrow = lipschitz(f, 1.0, lo, hi, self.eval_error(a, s_min));
-            return Interval::new(wide.lo.max(narrow.lo), wide.hi.min(narrow.hi));
-        }
-        wide
-    }
-}
-
 /// Weighted point set: `max_i (w_i - |p - x_i|)`, the negated distance to
 /// the nearest point when all weights are 0 (additive weights give the
 /// Apollonius diagram's distance).

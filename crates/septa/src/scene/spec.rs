@@ -15,6 +15,7 @@ use super::mesh::{read_tri_mesh, TriMesh};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
 use super::shapes::*;
+use super::torus::Torus;
 use super::vec3::{normalize, sub, V3};
 
 /// Every primitive `type` name accepted (hyphens may replace underscores).
@@ -204,12 +205,14 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             axis: o.dir("axis_vector")?,
             major: o.nonneg("major_radius")?,
             minor: o.nonneg("minor_radius")?,
+            squared,
         }),
         "circle" => Primitive::Torus(Torus {
             center: o.vec3("center")?,
             axis: o.dir("axis_vector")?,
             major: o.nonneg("radius")?,
             minor: 0.0,
+            squared,
         }),
         "cone" => Primitive::Cone(Cone {
             apex: o.vec3("apex")?,

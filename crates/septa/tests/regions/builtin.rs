@@ -169,3 +169,33 @@ fn box_minus_cylinder_volume_converges() {
     eprintln!("relative volume errors {errors:?}");
     assert!(errors[1] < errors[0] && errors[2] < errors[1] && errors[2] < 5e-3, "{errors:?}");
 }
+
+/// `network.json` (what the viewer and `septa.load` read) says per polygon
+/// what every other format says: `face_cells` index its `cells` (the
+/// regions, ascending), `face_label` are the regions of the two sides,
+/// lesser (the positive side) first; never the network's internal cells.
+#[test]
+fn region_json_ids_are_the_result_models() {
+    for name in ["cad-part", "sphere-plane-hole"] {
+        let r = run(name);
+        let doc = septa::io::regions_document(&r);
+        let view = septa::io::ResultView::of_regions(&r);
+        let cells = doc["cells"].as_array().unwrap();
+        let region: Vec<i64> = cells.iter().map(|c| c["label"][0].as_i64().unwrap()).collect();
+        assert!(region.windows(2).all(|w| w[0] < w[1]), "{name}: regions ascending");
+        let face_cells = doc["face_cells"].as_array().unwrap();
+        let face_label = doc["face_label"].as_array().unwrap();
+        assert_eq!(face_cells.len(), r.faces.len());
+        assert_eq!(face_label.len(), r.faces.len());
+        for (i, &f) in r.faces.iter().enumerate() {
+            let ids: Vec<i64> = face_cells[i].as_array().unwrap().iter().map(|x| x.as_i64().unwrap()).collect();
+            let labels: Vec<i64> = face_label[i].as_array().unwrap().iter().map(|x| x.as_i64().unwrap()).collect();
+            assert_eq!(ids, view.cells[i].map(i64::from).to_vec(), "{name} face {i}");
+            assert_eq!(labels, view.labels[i].map(i64::from).to_vec(), "{name} face {i}");
+            // the ids name the regions of the polygon's two network cells
+            let [cp, cn] = r.network.face_cells[f as usize];
+            let (a, b) = (r.cell_region[cp as usize], r.cell_region[cn as usize]);
+            assert_eq!([region[ids[0] as usize], region[ids[1] as usize]], [a.min(b), a.max(b)], "{name} face {i}");
+        }
+    }
+}

@@ -20,6 +20,7 @@ const ALL: &str = include_str!("../common/all_primitives.json");
 /// formula's rounding near the centre circle, and a nearly singular transform.
 const EXTREME: &str = r#"[
  {"type": "torus", "center": [0, 0, 0.1], "axis_vector": [0.1, 0, 1], "major_radius": 0.5, "minor_radius": 0.0005},
+ {"type": "torus", "center": [0, 0, 0.1], "axis_vector": [0.1, 0, 1], "major_radius": 0.5, "minor_radius": 0.0005, "squared": true},
  {"type": "transform", "matrix": [[1000, 999, 0], [0, 0.001, 0], [0, 0, 1]], "of": {"type": "sphere", "center": [0, 0, 0], "radius": 0.3}}
 ]"#;
 

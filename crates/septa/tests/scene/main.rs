@@ -2,6 +2,7 @@
 
 mod bounds_float;
 mod files;
+mod gradients;
 mod network;
 mod primitives;
 mod print;
