@@ -86,8 +86,10 @@ fn winding(c: &Ctx, out: &CutCellMesh, face: usize, t: u32) -> i32 {
     for l in &out.faces[face].loops {
         let n = l.len();
         // `above`: A_z > g_z + eps^2, i.e. A_z > g_z
-        let above: Vec<bool> =
-            l.iter().map(|&v| sign(c, &CoordCmp { a: out.vertex_defs[v as usize], t, k: 2 }) == Sign::Positive).collect();
+        let above: Vec<bool> = l
+            .iter()
+            .map(|&v| sign(c, &CoordCmp { a: out.vertex_defs[v as usize], t, k: 2 }) == Sign::Positive)
+            .collect();
         for i in 0..n {
             let j = (i + 1) % n;
             if above[i] == above[j] {
@@ -204,8 +206,9 @@ pub(crate) fn enclosing_cell(
         if f.loops.len() != 1 || f.loops[0].len() != 3 {
             return None;
         }
-        let whole =
-            f.loops[0].iter().all(|&v| matches!(out.vertex_defs[v as usize], Def::V(x) if c.tris[t as usize].contains(&x)));
+        let whole = f.loops[0]
+            .iter()
+            .all(|&v| matches!(out.vertex_defs[v as usize], Def::V(x) if c.tris[t as usize].contains(&x)));
         let nx = sign(c, &NormalX(t));
         (whole && nx != Sign::Zero).then_some((fi, t, nx))
     });

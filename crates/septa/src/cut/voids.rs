@@ -8,8 +8,8 @@
 //! void finds the enclosing cell (`void_rays.rs`).
 
 use super::geom::{Ctx, Def};
-use super::{CutCellMesh, Support};
 use super::void_rays::{enclosing_cell, Enclosing};
+use super::{CutCellMesh, Support};
 use septa_exact::{Interval, Sign};
 
 /// Attaches voids; returns `(attached, left unresolved)`.
