@@ -341,6 +341,41 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
 mod tests {
     use super::*;
 
+    fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    }
+
+    /// Two holes whose nearest outer corner is the same: the second bridge
+    /// goes into the copy of the corner whose angle holds it, and the
+    /// triangles cover the face once (every triangle counter-clockwise,
+    /// their areas summing to the face's).
+    #[test]
+    fn two_holes_bridged_to_one_corner() {
+        let x = [
+            [0.0, 0.0, 0.0],
+            [8.0, 0.0, 0.0],
+            [8.0, 4.0, 0.0],
+            [8.0, 8.0, 0.0],
+            [0.0, 8.0, 0.0],
+            // holes below and above y = 4, their rightmost corners (7, 3)
+            // and (7, 5) both nearest to the outer corner (8, 4)
+            [1.0, 1.0, 0.0],
+            [1.0, 3.0, 0.0],
+            [7.0, 3.0, 0.0],
+            [6.0, 1.0, 0.0],
+            [1.0, 5.0, 0.0],
+            [1.0, 7.0, 0.0],
+            [6.0, 7.0, 0.0],
+            [7.0, 5.0, 0.0],
+        ];
+        let loops = [vec![0, 1, 2, 3, 4], vec![5, 6, 7, 8], vec![9, 10, 11, 12]];
+        let t = triangulate(&x, &loops, [0.0, 0.0, 1.0]);
+        let p = |v: u32| [x[v as usize][0], x[v as usize][1]];
+        let area: f64 = t.iter().map(|f| cross(p(f[0]), p(f[1]), p(f[2])) / 2.0).sum();
+        assert_eq!(area, 64.0 - 11.0 - 11.0);
+        assert!(t.iter().all(|f| cross(p(f[0]), p(f[1]), p(f[2])) > 0.0), "{t:?}");
+    }
+
     #[test]
     fn square_with_square_hole() {
         let x = [
