@@ -43,6 +43,11 @@ class Network:
         chains: list of ``int64`` point-id arrays; corners: ``int64`` point ids.
         shells: list of half-patch id arrays (2p / 2p+1 = positive / negative side of p).
         cells: list of dicts ``{"shells", "label"}``.
+        embedding: what the exact check of the written doubles found and
+            what its repairs changed (``{"before", "after", "snapped",
+            "rotated", "nudged", ...}``; ``after`` counts ``coincident_points``,
+            ``degenerate_triangles``, ``intersecting_pairs``), or None when
+            not certified.
     """
 
     @classmethod
@@ -62,6 +67,7 @@ class Network:
         net.seconds = dict(d["seconds"])
         net._counts = dict(d["counts"])
         net._counts["cells_method"] = d.get("cells_method")
+        net.embedding = json.loads(d["embedding"]) if d.get("embedding") else None
         return net
 
     @property
@@ -138,6 +144,7 @@ class Network:
         self.shells = [np.asarray(s, dtype=np.int64) for s in data.get("shells", [])]
         self.cells = list(data.get("cells", []))
         self.seconds = dict(data.get("seconds", {}))
+        self.embedding = data.get("embedding", self._counts.get("embedding"))
 
     def __len__(self) -> int:
         return len(self.offsets) - 1

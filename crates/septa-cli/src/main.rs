@@ -14,6 +14,7 @@ mod output;
 mod progress;
 mod regions;
 mod stress;
+mod summary;
 mod view;
 
 /// Septa: exact surface networks, non-manifold implicit shapes and planar cut-cell meshes.

@@ -76,7 +76,11 @@ pub fn run(a: Args) -> CliResult {
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    let r = r??;
+    let mut r = r??;
+    if !a.out.no_certify {
+        let grid = scene.grid.box_grid()?;
+        a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
+    }
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
         write_regions_formats(&r, dir, &a.out.format.0)
@@ -88,22 +92,8 @@ pub fn run(a: Args) -> CliResult {
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
-        println!("{path}: {} polygons in {} surfaces, {} curves", r.faces.len(), r.surfaces.len(), r.curves.len());
-        for s in &r.surfaces {
-            println!(
-                "  surface {:?}: {} polygons, Euler characteristic {}, {} boundary loop(s)",
-                s.regions, s.faces, s.euler, s.boundary_loops
-            );
-        }
-        for c in &r.curves {
-            println!(
-                "  curve {:?}: {} vertices, {}, length {:.4}",
-                c.regions,
-                c.vertices.len(),
-                if c.closed { "closed" } else { "open" },
-                c.length
-            );
-        }
+        print!("{}", crate::summary::regions_text(&path, &r));
+        a.out.tell_embedding(r.embedding.as_ref());
         println!("wrote {}", dir.display());
     }
     Ok(())

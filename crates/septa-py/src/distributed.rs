@@ -120,8 +120,9 @@ fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, Sp
 /// --
 ///
 /// Step 3: merges the block results (in block order, whatever order they
-/// come in), finds the topology and returns the network dict (as
-/// `network`), with the sparse statistics in `counts["blocks"]`.
+/// come in), finds the topology, certifies the written doubles (as
+/// `network` does by default) and returns the network dict (as `network`),
+/// with the sparse statistics in `counts["blocks"]`.
 #[pyfunction]
 pub fn sparse_finish<'py>(
     py: Python<'py>,
@@ -132,7 +133,9 @@ pub fn sparse_finish<'py>(
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let r = py.detach(|| -> Result<_, Failure> {
         let j = parse_job(job)?;
-        finish(&j, plan_of(plan), &slices)
+        let (mut net, stats) = finish(&j, plan_of(plan), &slices)?;
+        septa::mesh::certify_network(&mut net, Some(&j.grid));
+        Ok((net, stats))
     });
     let (net, stats) = r?;
     network_dict(py, &net, Some(&stats))
@@ -161,9 +164,11 @@ pub fn sparse_finish_regions<'py>(
             j.scene.as_ref().ok_or_else(|| "region surfaces need a scene (with its region rule)".to_string())?;
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
+        out.names = scene.result_names();
         if normals {
             septa::regions::add_normals(&mut out, &scene.functions);
         }
+        septa::mesh::certify_regions(&mut out, Some(&j.grid), Some(j.grid.bounds));
         out.sparse = Some(stats);
         Ok(out)
     });
@@ -198,7 +203,9 @@ pub fn sparse_network<'py>(
                 compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
             }
         };
-        crate::on_threads(threads, run)
+        let (mut net, stats) = crate::on_threads(threads, run)?;
+        septa::mesh::certify_network(&mut net, Some(&j.grid));
+        Ok((net, stats))
     })?;
     let (net, stats) = r?;
     network_dict(py, &net, stats.as_ref())

@@ -16,6 +16,7 @@ mod mesh_off;
 mod mesh_ply;
 mod mesh_stl;
 mod msh;
+mod names;
 mod network_out;
 mod npy_labels;
 mod npz;
@@ -43,6 +44,7 @@ pub use mesh_off::parse_off;
 pub use mesh_ply::parse_ply;
 pub use mesh_stl::parse_stl;
 pub use msh::{parse_msh, read_msh, MshError};
+pub use names::{name_token, Names};
 pub use network_out::{
     network_meta, write_network, write_network_formats, write_network_json, write_network_obj, write_network_ply,
     write_network_vtu,

@@ -32,9 +32,12 @@ pub fn regions_summary(r: &RegionSurfaces) -> Value {
         "faces": r.faces.len(),
         "surfaces": r.surfaces.iter().map(|s| json!({"regions": s.regions, "faces": s.faces, "euler": s.euler,
             "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
-        "curves": r.curves.iter().map(|c| json!({"regions": c.regions, "closed": c.closed, "length": c.length,
-            "vertices": c.vertices.len()})).collect::<Vec<_>>(),
+        "curves": r.curves.iter().map(|c| json!({"kind": c.kind.as_str(), "regions": c.regions, "functions": c.functions,
+            "function_names": c.functions.iter().map(|&f| r.names.function(f as usize)).collect::<Vec<_>>(),
+            "closed": c.closed, "length": c.length, "vertices": c.vertices.len()})).collect::<Vec<_>>(),
+        "names": r.names.to_json(),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "embedding": r.embedding,
         "clean": r.clean.map(|c| json!({"triangles_before": c.triangles_before, "triangles_after": c.triangles_after,
             "collapsed": c.collapsed, "refused": c.refused, "flipped": c.flipped,
             "min_angle_degrees": {"before": c.min_angle[0], "after": c.min_angle[1]}})),
@@ -86,7 +89,8 @@ pub fn regions_document(r: &RegionSurfaces) -> Value {
         "face_cells": view.cells,
         "patches": r.surfaces.iter().map(|s| json!({"label": s.regions, "faces": s.faces, "euler": s.euler, "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
         "chains": view.chains,
-        "chain_regions": r.curves.iter().map(|c| c.regions).collect::<Vec<_>>(),
+        "chain_regions": r.curves.iter().map(|c| &c.regions).collect::<Vec<_>>(),
+        "chain_kind": r.curves.iter().map(|c| c.kind.as_str()).collect::<Vec<_>>(),
         "corners": view.corners,
         "shells": view.shells,
         "cells": view.cell_labels.iter().map(|l| json!({"shells": [], "label": l})).collect::<Vec<_>>(),
@@ -156,7 +160,8 @@ pub fn write_regions_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format])
         }
     }
     for (i, c) in r.curves.iter().enumerate() {
-        writeln!(obj, "g curve_{i}_regions_{}_{}_{}", c.regions[0], c.regions[1], c.regions[2]).unwrap();
+        let regions: Vec<String> = c.regions.iter().map(|x| x.to_string()).collect();
+        writeln!(obj, "g curve_{i}_regions_{}", regions.join("_")).unwrap();
         let ids: Vec<String> = c.vertices.iter().map(|v| (v + 1).to_string()).collect();
         writeln!(obj, "l {}", ids.join(" ")).unwrap();
     }

@@ -1,16 +1,44 @@
 //! Curves of interest: network edges around which the three regions of a
-//! triple of interest meet, joined into polylines.
+//! triple of interest meet, joined into polylines (feature curves are
+//! `features.rs`).
 
 use rustc_hash::FxHashMap;
 
 use crate::network::Network;
 use crate::scene::{Interest, RegionId};
 
-/// A curve where three regions of interest meet.
+/// What made a curve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum CurveKind {
+    /// Three regions of a triple of interest meet along it (Bloomenthal 4.2).
+    Junction,
+    /// A kept surface between two regions changes the function it lies on
+    /// (a sharp edge of a CSG solid; `features.rs`).
+    Feature,
+}
+
+impl CurveKind {
+    /// `"junction"` or `"feature"` (the name in every output).
+    pub fn as_str(self) -> &'static str {
+        match self {
+            CurveKind::Junction => "junction",
+            CurveKind::Feature => "feature",
+        }
+    }
+}
+
+/// A curve of interest: where three regions meet, or a feature curve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
-    /// The region triple, ascending.
-    pub regions: [RegionId; 3],
+    /// Junction or feature.
+    pub kind: CurveKind,
+    /// The regions, ascending: the triple of a junction, the pair on
+    /// either side of a feature.
+    pub regions: Vec<RegionId>,
+    /// A feature's functions (ascending): those whose zero sets (IA) or
+    /// material pairs (MI) hold the polygons meeting along it; empty for a
+    /// junction.
+    pub functions: Vec<u32>,
     /// Network vertices in order (a closed curve repeats its first vertex).
     pub vertices: Vec<u32>,
     /// Whether the curve is a loop.
@@ -19,11 +47,24 @@ pub struct Curve {
     pub length: f64,
 }
 
+/// Length of a vertex path.
+pub(crate) fn path_length(points: &[[f64; 3]], vertices: &[u32]) -> f64 {
+    vertices
+        .windows(2)
+        .map(|w| {
+            let (p, q) = (points[w[0] as usize], points[w[1] as usize]);
+            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
+        })
+        .sum()
+}
+
 pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -> Vec<Curve> {
-    if interest.curves.is_empty() {
+    if interest.curves.as_ref().is_some_and(|l| l.is_empty()) {
         return Vec::new();
     }
-    extract_with(net, region, 0, &|around: &[RegionId]| interest.curve(around))
+    // A triple needs three regions around an edge: edges with fewer are
+    // not looked at.
+    extract_with(net, region, 3, &|around: &[RegionId]| interest.curve(around))
 }
 
 /// [`extract`] with the triple of each edge chosen by `pick` from the sorted
@@ -110,14 +151,15 @@ pub(crate) fn extract_with(
     let mut out = Vec::new();
     for t in triples {
         for (vertices, closed) in polylines(&curve_edges[&t]) {
-            let length = vertices
-                .windows(2)
-                .map(|w| {
-                    let (p, q) = (net.points[w[0] as usize], net.points[w[1] as usize]);
-                    ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-                })
-                .sum();
-            out.push(Curve { regions: t, vertices, closed, length });
+            let length = path_length(&net.points, &vertices);
+            out.push(Curve {
+                kind: CurveKind::Junction,
+                regions: t.to_vec(),
+                functions: Vec::new(),
+                vertices,
+                closed,
+                length,
+            });
         }
     }
     out
@@ -125,7 +167,7 @@ pub(crate) fn extract_with(
 
 /// Splits an edge set into maximal paths between vertices of degree != 2,
 /// and loops; deterministic for a sorted input.
-fn polylines(edges: &[(u32, u32)]) -> Vec<(Vec<u32>, bool)> {
+pub(crate) fn polylines(edges: &[(u32, u32)]) -> Vec<(Vec<u32>, bool)> {
     let mut adj: FxHashMap<u32, Vec<(u32, usize)>> = FxHashMap::default();
     for (i, &(a, b)) in edges.iter().enumerate() {
         adj.entry(a).or_default().push((b, i));

@@ -115,7 +115,7 @@ fn regions_of(net: crate::network::Network, ids: &[i64], list_triples: bool) -> 
                 }
             }
         }
-        return from_network(net, &rule, &Interest::new(None, &triples));
+        return from_network(net, &rule, &Interest { features: false, ..Interest::new(None, &triples) });
     }
     // Every triple is of interest, listed in ascending order, and an edge's
     // curve is the first listed triple among the regions around it: its
@@ -129,7 +129,10 @@ fn regions_of(net: crate::network::Network, ids: &[i64], list_triples: bool) -> 
         }
         super::curves::extract_with(net, region, 3, &pick)
     };
-    from_network_with(net, &rule, &Interest::all(), &curves)
+    // A label pair's polygons all lie on that pair's indicator difference:
+    // a label volume has no feature curves (no pass over its polygons' edges).
+    let interest = Interest { features: false, ..Interest::all() };
+    from_network_with(net, &rule, &interest, &curves)
 }
 
 /// The label indicators as functions: grid vertex `(i, j, k)` is voxel

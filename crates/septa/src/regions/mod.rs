@@ -27,6 +27,7 @@
 
 mod clean;
 mod curves;
+mod features;
 mod labels;
 mod surfaces;
 
@@ -40,7 +41,7 @@ use crate::scene::{sample_grid, Interest, Primitive, RegionId, RegionRule, Scene
 use crate::Progress;
 
 pub use clean::{clean, CleanStats};
-pub use curves::Curve;
+pub use curves::{Curve, CurveKind};
 #[doc(hidden)]
 pub use labels::label_surfaces_listing_triples;
 pub use labels::{label_surfaces, label_surfaces_with_progress};
@@ -102,6 +103,11 @@ pub struct RegionSurfaces {
     pub sparse: Option<SparseStats>,
     /// What the clean-up did (`None`: not asked for).
     pub clean: Option<CleanStats>,
+    /// What the certification of the kept polygons' written doubles found
+    /// and changed (`septa::mesh::certify_regions`; `None`: not certified).
+    pub embedding: Option<crate::network::embedding::Embedding>,
+    /// The scene's function and region names (or a label table's).
+    pub names: crate::io::Names,
 }
 
 impl RegionSurfaces {
@@ -218,7 +224,10 @@ pub(crate) fn from_network_with(
     let t0 = Instant::now();
     let cell_region: Vec<RegionId> = (0..network.cells.len()).map(|c| cell_region(&network, rule, c)).collect();
     let s = surfaces::extract(&network, &cell_region, interest);
-    let curves = curves(&network, &cell_region);
+    let mut curves = curves(&network, &cell_region);
+    if interest.features {
+        curves.extend(features::extract(&network, &cell_region, &s.faces, &s.loop_start, &s.loops));
+    }
     let t1 = Instant::now();
     let mut seconds = network.seconds.clone();
     seconds.push(("regions", (t1 - t0).as_secs_f64()));
@@ -235,12 +244,15 @@ pub(crate) fn from_network_with(
         seconds,
         sparse: None,
         clean: None,
+        embedding: None,
+        names: Default::default(),
     }
 }
 
 /// The optional steps after extraction: clean-up, then normals (of the
 /// cleaned triangles).
 fn finish(mut out: RegionSurfaces, scene: &Scene, options: &RegionOptions) -> RegionSurfaces {
+    out.names = scene.result_names();
     if let Some(factor) = options.clean {
         let g = &scene.grid;
         let h =

@@ -141,7 +141,14 @@ fn build(
         names: names.iter().map(|s| s.to_string()).collect(),
         functions: funcs.into_iter().map(|(_, f)| f).collect(),
         interest,
+        region_names: Default::default(),
     }
+}
+
+/// `s` with regions 0 and 1 named `outside` and `name` (a solid).
+fn solid_named(mut s: Scene, name: &str) -> Scene {
+    s.region_names = [(0, "outside".to_string()), (1, name.to_string())].into_iter().collect();
+    s
 }
 
 /// `height * W(dist / radius) - |f|`: positive inside a lens blended
@@ -280,26 +287,27 @@ pub fn patch_blend() -> Scene {
 pub fn cad_part() -> Scene {
     let (x, y) = ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
     let neg = |v: V3| [-v[0], -v[1], -v[2]];
-    build(
-        45,
-        Mode::Ia,
-        vec![
-            ("xlo", Primitive::half_space([-0.7, 0.0, 0.0], neg(x))),
-            ("xhi", Primitive::half_space([0.7, 0.0, 0.0], x)),
-            ("ylo", Primitive::half_space([0.0, -0.45, 0.0], neg(y))),
-            ("yhi", Primitive::half_space([0.0, 0.45, 0.0], y)),
-            ("zlo", Primitive::half_space([0.0, 0.0, -0.32], neg(Z))),
-            ("zhi", Primitive::half_space([0.0, 0.0, -0.08], Z)),
-            ("corner", Primitive::half_space([0.5, 0.45, 0.0], [1.0, 1.0, 0.0])),
-            ("boss", Primitive::cylinder([0.0; 3], Z, 0.3)),
-            ("boss_top", Primitive::half_space([0.0, 0.0, 0.35], Z)),
-            ("boss_bottom", Primitive::half_space([0.0, 0.0, -0.15], neg(Z))),
-            ("bore", Primitive::cylinder([0.0; 3], Z, 0.14)),
-            ("hole1", Primitive::cylinder([-0.5, 0.0, 0.0], Z, 0.09)),
-            ("hole2", Primitive::cylinder([0.5, 0.05, 0.0], Z, 0.09)),
-        ],
-        |n| {
-            rules(
+    solid_named(
+        build(
+            45,
+            Mode::Ia,
+            vec![
+                ("xlo", Primitive::half_space([-0.7, 0.0, 0.0], neg(x))),
+                ("xhi", Primitive::half_space([0.7, 0.0, 0.0], x)),
+                ("ylo", Primitive::half_space([0.0, -0.45, 0.0], neg(y))),
+                ("yhi", Primitive::half_space([0.0, 0.45, 0.0], y)),
+                ("zlo", Primitive::half_space([0.0, 0.0, -0.32], neg(Z))),
+                ("zhi", Primitive::half_space([0.0, 0.0, -0.08], Z)),
+                ("corner", Primitive::half_space([0.5, 0.45, 0.0], [1.0, 1.0, 0.0])),
+                ("boss", Primitive::cylinder([0.0; 3], Z, 0.3)),
+                ("boss_top", Primitive::half_space([0.0, 0.0, 0.35], Z)),
+                ("boss_bottom", Primitive::half_space([0.0, 0.0, -0.15], neg(Z))),
+                ("bore", Primitive::cylinder([0.0; 3], Z, 0.14)),
+                ("hole1", Primitive::cylinder([-0.5, 0.0, 0.0], Z, 0.09)),
+                ("hole2", Primitive::cylinder([0.5, 0.05, 0.0], Z, 0.09)),
+            ],
+            |n| {
+                rules(
                 n,
                 &[(
                     "((xlo & xhi & ylo & yhi & zlo & zhi & corner) | (boss & boss_top & boss_bottom)) - bore - hole1 - hole2",
@@ -307,8 +315,10 @@ pub fn cad_part() -> Scene {
                 )],
                 0,
             )
-        },
-        Interest::all(),
+            },
+            Interest::all(),
+        ),
+        "part",
     )
 }
 
@@ -402,20 +412,23 @@ pub fn voronoi_lines_5() -> Scene {
 /// measured errors 0.0184, 0.0048, 0.0012 at 11^3, 21^3, 41^3 (second order).
 pub fn box_minus_cylinder() -> Scene {
     let h = 0.5;
-    build(
-        33,
-        Mode::Ia,
-        vec![
-            ("xlo", Primitive::half_space([-h, 0.0, 0.0], [-1.0, 0.0, 0.0])),
-            ("xhi", Primitive::half_space([h, 0.0, 0.0], [1.0, 0.0, 0.0])),
-            ("ylo", Primitive::half_space([0.0, -h, 0.0], [0.0, -1.0, 0.0])),
-            ("yhi", Primitive::half_space([0.0, h, 0.0], [0.0, 1.0, 0.0])),
-            ("zlo", Primitive::half_space([0.0, 0.0, -h], [0.0, 0.0, -1.0])),
-            ("zhi", Primitive::half_space([0.0, 0.0, h], Z)),
-            ("hole", Primitive::cylinder([0.05, -0.03, 0.0], Z, 0.25)),
-        ],
-        |n| rules(n, &[("xlo & xhi & ylo & yhi & zlo & zhi - hole", 1)], 0),
-        Interest::all(),
+    solid_named(
+        build(
+            33,
+            Mode::Ia,
+            vec![
+                ("xlo", Primitive::half_space([-h, 0.0, 0.0], [-1.0, 0.0, 0.0])),
+                ("xhi", Primitive::half_space([h, 0.0, 0.0], [1.0, 0.0, 0.0])),
+                ("ylo", Primitive::half_space([0.0, -h, 0.0], [0.0, -1.0, 0.0])),
+                ("yhi", Primitive::half_space([0.0, h, 0.0], [0.0, 1.0, 0.0])),
+                ("zlo", Primitive::half_space([0.0, 0.0, -h], [0.0, 0.0, -1.0])),
+                ("zhi", Primitive::half_space([0.0, 0.0, h], Z)),
+                ("hole", Primitive::cylinder([0.05, -0.03, 0.0], Z, 0.25)),
+            ],
+            |n| rules(n, &[("xlo & xhi & ylo & yhi & zlo & zhi - hole", 1)], 0),
+            Interest::all(),
+        ),
+        "solid",
     )
 }
 

@@ -43,8 +43,15 @@ pub fn scene_json(s: &Scene) -> Result<Value, String> {
     if let Some(pairs) = &s.interest.surfaces {
         doc.insert("surfaces".into(), json!(pairs.iter().map(|&(a, b)| [a, b]).collect::<Vec<_>>()));
     }
-    if !s.interest.curves.is_empty() {
-        doc.insert("curves".into(), json!(s.interest.curves));
+    if let Some(triples) = &s.interest.curves {
+        doc.insert("curves".into(), json!(triples));
+    }
+    if !s.region_names.is_empty() {
+        let m: Map<String, Value> = s.region_names.iter().map(|(k, v)| (k.to_string(), json!(v))).collect();
+        doc.insert("region_names".into(), Value::Object(m));
+    }
+    if !s.interest.features {
+        doc.insert("features".into(), json!(false));
     }
     Ok(Value::Object(doc))
 }
@@ -113,6 +120,15 @@ pub fn primitive_json(p: &Primitive) -> Result<Value, String> {
         Primitive::Points(s) => json!({"type": "points", "points": s.points, "weights": s.weights}),
         Primitive::Mesh(_) => return Err("a triangle mesh has no printed form; give it as a file (`path`)".into()),
         Primitive::Patch(p) => json!({"type": "patch", "origin": p.origin, "size": p.size, "heights": p.heights}),
+        Primitive::ClosedForm(c) => json!({"type": c.name()}),
+        Primitive::Rbf(r) => {
+            let n = r.len();
+            let mut coeffs = r.a.clone();
+            for j in 0..3 {
+                coeffs.extend((0..n).map(|i| r.b[i][j]));
+            }
+            json!({"type": "rbf", "centers": r.centers, "coefficients": coeffs, "polynomial": r.poly})
+        }
         Primitive::Wyvill(w) => {
             let mut v = json!({"type": "wyvill", "center": w.center, "radius": w.radius, "height": w.height});
             if let Some(a) = w.axis {
@@ -135,7 +151,7 @@ pub fn primitive_json(p: &Primitive) -> Result<Value, String> {
 pub fn scene_text(s: &Scene) -> Result<String, String> {
     let doc = scene_json(s)?;
     let mut out = String::from("{\n");
-    let keys = ["grid", "mode", "functions", "regions", "surfaces", "curves"];
+    let keys = ["grid", "mode", "functions", "regions", "region_names", "surfaces", "curves", "features"];
     let present: Vec<&str> = keys.iter().copied().filter(|k| doc.get(*k).is_some()).collect();
     for (i, k) in present.iter().enumerate() {
         let v = &doc[*k];

@@ -249,35 +249,51 @@ impl RegionRule {
     }
 }
 
-/// Region pairs and triples of interest (Bloomenthal 4.2, 4.8).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+/// Region pairs and triples of interest (Bloomenthal 4.2, 4.8), and
+/// whether feature curves (sharp edges) are wanted.
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Interest {
     /// Region pairs whose separating surfaces are wanted, each sorted;
     /// `None` means every pair.
     pub surfaces: Option<BTreeSet<(RegionId, RegionId)>>,
     /// Region triples whose meeting curves are wanted, each sorted, in
-    /// the order given.
-    pub curves: Vec<[RegionId; 3]>,
+    /// the order given; `None` means every triple (an edge's curve is then
+    /// that of the three least regions around it).
+    pub curves: Option<Vec<[RegionId; 3]>>,
+    /// Feature curves: where a kept surface between two regions changes the
+    /// function it lies on (the sharp edges of a CSG solid; `regions/features.rs`).
+    pub features: bool,
+}
+
+impl Default for Interest {
+    /// Every surface, every triple's curve and the feature curves.
+    fn default() -> Interest {
+        Interest { surfaces: None, curves: None, features: true }
+    }
 }
 
 impl Interest {
-    /// Every surface, no curve.
+    /// Every surface, every triple's curve and the feature curves.
     pub fn all() -> Interest {
         Interest::default()
     }
 
-    /// From lists of pairs and triples (order inside each does not matter).
+    /// From lists of pairs and triples (order inside each does not matter);
+    /// feature curves too.
     pub fn new(surfaces: Option<&[[RegionId; 2]]>, curves: &[[RegionId; 3]]) -> Interest {
         Interest {
             surfaces: surfaces.map(|s| s.iter().map(|&[a, b]| (a.min(b), a.max(b))).collect()),
-            curves: curves
-                .iter()
-                .map(|c| {
-                    let mut c = *c;
-                    c.sort();
-                    c
-                })
-                .collect(),
+            curves: Some(
+                curves
+                    .iter()
+                    .map(|c| {
+                        let mut c = *c;
+                        c.sort();
+                        c
+                    })
+                    .collect(),
+            ),
+            features: true,
         }
     }
 
@@ -293,9 +309,13 @@ impl Interest {
     }
 
     /// The first triple of interest whose three regions all occur among
-    /// `around` (the regions of the cells around a chain), if any.
+    /// `around` (the regions of the cells around a chain, sorted), if any.
+    /// With every triple of interest, the three least of `around` (sorted).
     pub fn curve(&self, around: &[RegionId]) -> Option<[RegionId; 3]> {
-        self.curves.iter().find(|t| t.iter().all(|r| around.contains(r))).copied()
+        match &self.curves {
+            None => (around.len() >= 3).then(|| [around[0], around[1], around[2]]),
+            Some(list) => list.iter().find(|t| t.iter().all(|r| around.contains(r))).copied(),
+        }
     }
 }
 

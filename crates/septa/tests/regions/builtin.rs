@@ -9,7 +9,7 @@ fn run(name: &str) -> RegionSurfaces {
     let r = region_surfaces(&scene, &RegionOptions::default()).unwrap();
     let mut s: Vec<_> = r.surfaces.iter().map(|s| (s.regions, s.euler, s.boundary_loops, s.faces)).collect();
     s.sort();
-    let c: Vec<_> = r.curves.iter().map(|c| (c.regions, c.closed, c.vertices.len())).collect();
+    let c: Vec<_> = r.curves.iter().map(|c| (c.regions.clone(), c.closed, c.vertices.len())).collect();
     eprintln!("{name}: surfaces {s:?}\n  curves {c:?}");
     r
 }
@@ -22,8 +22,8 @@ fn topology(r: &RegionSurfaces) -> Vec<([i64; 2], i64, usize)> {
 }
 
 /// (regions, closed) of every curve, sorted.
-fn curves(r: &RegionSurfaces) -> Vec<([i64; 3], bool)> {
-    let mut c: Vec<_> = r.curves.iter().map(|c| (c.regions.map(|x| x as i64), c.closed)).collect();
+fn curves(r: &RegionSurfaces) -> Vec<(Vec<i64>, bool)> {
+    let mut c: Vec<_> = r.curves.iter().map(|c| (c.regions.clone(), c.closed)).collect();
     c.sort();
     c
 }
@@ -32,7 +32,7 @@ fn curves(r: &RegionSurfaces) -> Vec<([i64; 3], bool)> {
 fn sphere_with_hole_is_a_disk() {
     let r = run("sphere-with-hole");
     assert_eq!(topology(&r), vec![([0, 2], 1, 1)]);
-    assert_eq!(curves(&r), vec![([0, 1, 2], true)]);
+    assert_eq!(curves(&r), vec![(vec![0, 1, 2], true)]);
 }
 
 #[test]
@@ -41,7 +41,13 @@ fn sphere_plane_hole() {
     assert_eq!(topology(&r), vec![([0, 2], 1, 1), ([0, 3], 1, 1), ([2, 3], 0, 2)]);
     assert_eq!(
         curves(&r),
-        vec![([0, 1, 2], false), ([0, 1, 3], false), ([0, 2, 3], false), ([1, 2, 3], false), ([2, 3, 4], true)]
+        vec![
+            (vec![0, 1, 2], false),
+            (vec![0, 1, 3], false),
+            (vec![0, 2, 3], false),
+            (vec![1, 2, 3], false),
+            (vec![2, 3, 4], true)
+        ]
     );
     // The four arcs all end at the same two corners (hole, sphere and plane meet there).
     let mut ends: Vec<[u32; 2]> = r
@@ -112,7 +118,7 @@ fn normals_point_into_the_lesser_region() {
 fn saucer_square() {
     let r = run("saucer-square");
     assert_eq!(topology(&r), vec![([1, 2], 1, 1), ([1, 3], 1, 1), ([2, 3], 0, 2)]);
-    assert_eq!(curves(&r), vec![([0, 2, 3], true), ([1, 2, 3], true)]);
+    assert_eq!(curves(&r), vec![(vec![0, 2, 3], true), (vec![1, 2, 3], true)]);
 }
 
 #[test]
@@ -121,16 +127,60 @@ fn patch_blend() {
     assert_eq!(topology(&r), vec![([1, 2], 1, 1), ([1, 3], 1, 1), ([2, 3], 0, 2)]);
 }
 
+/// (open, closed) feature curves, each between regions 0 and 1 on two
+/// functions, and the corners where the open ones end.
+fn features(r: &RegionSurfaces) -> (usize, usize, usize) {
+    use septa::regions::CurveKind;
+    assert!(r.curves.iter().all(|c| c.kind == CurveKind::Feature && c.regions == [0, 1] && c.functions.len() == 2));
+    let open = r.curves.iter().filter(|c| !c.closed).count();
+    let corners = septa::io::ResultView::of_regions(r).corners.len();
+    (open, r.curves.len() - open, corners)
+}
+
 #[test]
 fn box_minus_cylinder_is_a_torus() {
     let r = run("box-minus-cylinder");
     assert_eq!(topology(&r), vec![([0, 1], 0, 0)]);
+    // Its sharp edges: the 12 box edges between the 8 box corners, and the
+    // 2 circles where the cylinder meets top and bottom.
+    assert_eq!(features(&r), (12, 2, 8));
+    let names = |c: &septa::regions::Curve| c.functions.clone();
+    // A box edge lies on two of the six half-spaces; a circle on the hole (6) and zlo (4) or zhi (5).
+    let mut circles: Vec<Vec<u32>> = r.curves.iter().filter(|c| c.closed).map(names).collect();
+    circles.sort();
+    assert_eq!(circles, vec![vec![4, 6], vec![5, 6]]);
+    // Each box edge is straight and 1 long.
+    for c in r.curves.iter().filter(|c| !c.closed) {
+        assert!((c.length - 1.0).abs() < 1e-12, "box edge of length {}", c.length);
+    }
 }
 
 #[test]
 fn cad_part_has_genus_3() {
     let r = run("cad-part");
     assert_eq!(topology(&r), vec![([0, 1], -4, 0)]);
+    // The plate's pentagonal prism: 15 edges between 10 corners; closed:
+    // the boss where it leaves the plate and at its top, the bore at the
+    // boss top and the plate bottom, each hole at the plate's top and bottom.
+    assert_eq!(features(&r), (15, 8, 10));
+}
+
+#[test]
+fn features_follow_the_scene() {
+    // `"features": false` drops them; an explicit empty `curves` list keeps them.
+    let mut scene = Scene::load("builtin:box-minus-cylinder").unwrap();
+    scene.interest.features = false;
+    assert!(region_surfaces(&scene, &RegionOptions::default()).unwrap().curves.is_empty());
+    let text = septa::scene::scene_text(&Scene::load("builtin:box-minus-cylinder").unwrap()).unwrap();
+    let doc: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(doc.get("features").is_none() && doc.get("curves").is_none());
+    let mut doc2 = doc.clone();
+    doc2["features"] = serde_json::json!(false);
+    let s = Scene::from_json(&doc2.to_string(), "<test>", None).unwrap();
+    assert!(!s.interest.features);
+    doc2["features"] = serde_json::json!("yes");
+    let e = Scene::from_json(&doc2.to_string(), "<test>", None).unwrap_err().to_string();
+    assert!(e.contains("features"), "{e}");
 }
 
 #[test]
@@ -148,7 +198,7 @@ fn two_boxes_in_a_label_volume() {
     for sigma in [0.0, 0.7] {
         let r = septa::regions::label_surfaces(&labels, [n, n, n], sigma).unwrap();
         assert_eq!(topology(&r), vec![([0, 1], 1, 1), ([0, 2], 1, 1), ([1, 2], 1, 1)], "sigma {sigma}");
-        assert_eq!(curves(&r), vec![([0, 1, 2], true)], "sigma {sigma}");
+        assert_eq!(curves(&r), vec![(vec![0, 1, 2], true)], "sigma {sigma}");
     }
     let bad = septa::regions::label_surfaces(&labels, [n, n, n + 1], 0.0);
     assert!(bad.is_err());

@@ -55,7 +55,7 @@ fn clean_up_keeps_the_combinatorics() {
             assert_eq!(topology(&c), topology(&r), "{what}: surfaces");
             assert_eq!(c.curves.len(), r.curves.len(), "{what}");
             for (a, b) in c.curves.iter().zip(&r.curves) {
-                assert_eq!((a.regions, a.closed), (b.regions, b.closed), "{what}");
+                assert_eq!((&a.regions, a.closed), (&b.regions, b.closed), "{what}");
                 if !b.closed {
                     assert!(is_subsequence(&a.vertices, &b.vertices), "{what}: curve order");
                     assert_eq!((a.vertices[0], a.vertices.last()), (b.vertices[0], b.vertices.last()), "{what}: ends");

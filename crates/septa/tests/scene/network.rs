@@ -118,7 +118,7 @@ fn measure(s: &Scene, net: &Network) -> Measured {
         surfaces.insert(pair, (comps, euler, graph(&boundary).0));
     }
     let mut curves = BTreeMap::new();
-    for t in &s.interest.curves {
+    for t in s.interest.curves.iter().flatten() {
         let edges: Vec<[u32; 2]> =
             edge_regions.iter().filter(|(_, r)| t.iter().all(|x| r.contains(x))).map(|(e, _)| *e).collect();
         curves.insert(*t, graph(&edges));

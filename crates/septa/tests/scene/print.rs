@@ -30,7 +30,7 @@ fn printed_scenes_give_the_same_shapes() {
         let topo = |r: &septa::regions::RegionSurfaces| {
             (
                 r.surfaces.iter().map(|s| (s.regions, s.faces, s.euler, s.boundary_loops)).collect::<Vec<_>>(),
-                r.curves.iter().map(|c| (c.regions, c.vertices.len(), c.closed)).collect::<Vec<_>>(),
+                r.curves.iter().map(|c| (c.regions.clone(), c.vertices.len(), c.closed)).collect::<Vec<_>>(),
             )
         };
         assert_eq!(topo(&a), topo(&b), "{name}");

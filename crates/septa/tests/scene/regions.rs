@@ -70,7 +70,12 @@ fn interest_pairs_and_triples() {
     assert_eq!(i.curve(&[1, 3]), None);
     let all = Interest::all();
     assert!(all.surface(4, 9) && !all.surface(4, 4));
-    assert_eq!(all.curve(&[0, 1, 2]), None);
+    // Every triple by default: an edge's curve is its three least regions.
+    assert_eq!(all.curve(&[0, 1, 2, 5]), Some([0, 1, 2]));
+    assert_eq!(all.curve(&[0, 1]), None);
+    assert!(all.features && i.features);
+    let none = Interest::new(None, &[]);
+    assert_eq!(none.curve(&[0, 1, 2]), None);
     // Counter-clockwise seen from the lesser region: normal into it.
     assert!(!must_flip(0, 2) && must_flip(2, 0));
 }
