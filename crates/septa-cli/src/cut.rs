@@ -164,7 +164,7 @@ pub fn run(a: Args) -> CliResult {
     // of the pool's: each parallel stage of the cut used to be handed from
     // here to a worker and back, and between stages the idle worker spun
     // (yields before sleeping) while this thread did the serial ones, about
-    // 1-4 ms of CPU on a 20-90 ms cut (docs/performance.md, "Thirteenth
+    // 1-4 ms of CPU on a 20-90 ms cut (docs/history/performance-log.md, "Thirteenth
     // round"). With `--threads 1` there is now no other thread at all.
     // (`num_threads(0)` is rayon's default: all cores.)
     let global = rayon::ThreadPoolBuilder::new().num_threads(a.threads).use_current_thread().build_global().is_ok();
@@ -235,7 +235,11 @@ pub fn run(a: Args) -> CliResult {
     } else if !wants(MeshFormat::Vtu) {
         Some(out.verify())
     } else {
-        let (points, cells) = septa::io::read_polyhedra(&dir.staged_path("cells.vtu"))?;
+        // errors name cells.vtu, the file the user will look at, not its staged name
+        let staged = dir.staged_path("cells.vtu");
+        let (points, cells) = septa::io::read_polyhedra(&staged).map_err(|e| {
+            e.replace(&staged.display().to_string(), &dir.path().join("cells.vtu").display().to_string())
+        })?;
         Some(septa::cut::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();

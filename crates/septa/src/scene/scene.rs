@@ -6,58 +6,12 @@ use std::path::Path;
 use serde_json::Value;
 
 use super::error::{err, locate, JsonPath, Located, SceneError};
+use super::grid_spec::{grid, GridSpec};
 use super::primitive::Primitive;
 use super::region_rule::{Expr, Interest, RegionId, RegionRule, Rule};
-use super::spec::{array, num, primitive, vec3, Ctx, Obj};
-use super::vec3::V3;
-use crate::grid::{BoxGrid, Split};
+use super::spec::{array, primitive, vec3, Ctx, Obj};
 
 pub use crate::complex::Mode;
-
-/// A box grid split into tetrahedra.
-#[derive(Clone, Debug, PartialEq)]
-pub struct GridSpec {
-    /// Number of cubes along x, y, z (each >= 1).
-    pub resolution: [usize; 3],
-    /// Min and max corners.
-    pub bounds: [V3; 2],
-    /// Tets per cube: 5 (alternating, as the reference) or 6.
-    pub split: u8,
-}
-
-impl GridSpec {
-    /// `n^3` cubes over `[lo, hi]`, 5 tets per cube.
-    pub fn cube(n: usize, lo: f64, hi: f64) -> GridSpec {
-        GridSpec { resolution: [n; 3], bounds: [[lo; 3], [hi; 3]], split: 5 }
-    }
-
-    /// Position of grid vertex `(i, j, k)`, as [`BoxGrid::vertex`] places it
-    /// ([`crate::grid::grid_coordinate`] per axis).
-    pub fn vertex(&self, ijk: [usize; 3]) -> V3 {
-        let [lo, hi] = self.bounds;
-        [0, 1, 2].map(|a| crate::grid::grid_coordinate(lo[a], hi[a], ijk[a], self.resolution[a]))
-    }
-
-    /// The box grid this spec describes (the one builder every front end uses).
-    pub fn box_grid(&self) -> Result<BoxGrid, crate::grid::GridError> {
-        BoxGrid::new(self.resolution, self.bounds, Split::try_from(self.split)?)
-    }
-
-    /// All vertices, vertex `(i, j, k)` at index
-    /// `(i * (ny + 1) + j) * (nz + 1) + k` (the reference's order).
-    pub fn vertices(&self) -> Vec<V3> {
-        let [nx, ny, nz] = self.resolution;
-        let mut v = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
-        for i in 0..=nx {
-            for j in 0..=ny {
-                for k in 0..=nz {
-                    v.push(self.vertex([i, j, k]));
-                }
-            }
-        }
-        v
-    }
-}
 
 /// A scene: what to partition and which walls to return: a grid, named
 /// functions, a mode, region rules and the surfaces and curves of interest
@@ -124,7 +78,7 @@ impl Scene {
                 ),
             });
         }
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let text = crate::io::read_input_text(Path::new(path)).map_err(|e| SceneError {
             file: path.to_string(),
             line: 0,
             column: 0,
@@ -187,7 +141,7 @@ impl Scene {
     /// assert!(e.to_string().starts_with("s.json:2:"));
     /// ```
     pub fn from_json(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
-        let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+        let v: Value = super::strict_json::parse(text).map_err(|e| SceneError {
             file: file.to_string(),
             line: e.line(),
             column: e.column(),
@@ -203,20 +157,39 @@ impl Scene {
 
 /// Read a reference implementation function file (a JSON list of
 /// primitives, or `{"input": [...]}`), with the reference's meaning of a
-/// negative sphere radius (unsigned distance).
+/// negative sphere radius (unsigned distance). A key the reader does not
+/// use (`"negate": true`: the reference program ignores it too) is a
+/// warning printed to standard error ([`load_function_list_warnings`]
+/// returns them instead); a key given twice is an error.
 pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Vec<Primitive>, SceneError> {
-    let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+    let (functions, warnings) = load_function_list_warnings(text, file, base_dir)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(functions)
+}
+
+/// [`load_function_list`] with its warnings (keys not used, each naming
+/// the file, line and key) returned instead of printed.
+pub fn load_function_list_warnings(
+    text: &str,
+    file: &str,
+    base_dir: Option<&Path>,
+) -> Result<(Vec<Primitive>, Vec<SceneError>), SceneError> {
+    let v: Value = super::strict_json::parse(text).map_err(|e| SceneError {
         file: file.to_string(),
         line: e.line(),
         column: e.column(),
         path: JsonPath::default(),
         message: e.to_string(),
     })?;
-    let ctx = Ctx { base_dir, compat: true };
-    function_list(&v, &JsonPath::default(), &ctx).map_err(|l| {
+    let ctx = Ctx::new(base_dir, true);
+    let located = |l: Located| {
         let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
         SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
-    })
+    };
+    let functions = function_list(&v, &JsonPath::default(), &ctx).map_err(located)?;
+    Ok((functions, ctx.warnings.into_inner().into_iter().map(located).collect()))
 }
 
 fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>, Located> {
@@ -230,88 +203,6 @@ fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>
 
 fn resolve(names: &[String], name: &str) -> Option<usize> {
     names.iter().position(|n| n == name).or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
-}
-
-fn grid(v: &Value, path: &JsonPath, base_dir: Option<&Path>) -> Result<GridSpec, Located> {
-    if let Value::String(file) = v {
-        // A grid file of the adaptive-grid paper (`grid_1.json`).
-        let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-        let text =
-            std::fs::read_to_string(&full).or_else(|e| err(path, format!("cannot read {}: {e}", full.display())))?;
-        let g: Value = serde_json::from_str(&text).or_else(|e| err(path, format!("{}: {e}", full.display())))?;
-        if !g.is_object() || g.get("bbox_min").is_none() {
-            return err(path, format!("{}: not a grid file (resolution, bbox_min, bbox_max)", full.display()));
-        }
-        return grid(&g, path, None).or_else(|e| err(path, format!("{}: {}: {}", full.display(), e.path, e.message)));
-    }
-    if v.get("bbox_min").is_some() {
-        return anchor_grid(v, path);
-    }
-    let o = Obj::new(v, path)?;
-    let rp = path.key("resolution");
-    let r = o.get("resolution")?;
-    let res: Vec<&Value> = match r {
-        Value::Array(a) => a.iter().collect(),
-        _ => vec![r; 3],
-    };
-    if res.len() != 3 {
-        return err(&rp, "expected n or [nx, ny, nz]");
-    }
-    let mut resolution = [0usize; 3];
-    for (i, x) in res.iter().enumerate() {
-        match x.as_i64() {
-            Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
-            Some(n) => return err(&rp, format!("empty grid: resolution {n} (needs at least 1 cube per axis)")),
-            None => return err(&rp, "resolution must be a whole number"),
-        }
-    }
-    let bp = path.key("bounds");
-    let b = array(o.get("bounds")?, &bp)?;
-    if b.len() != 2 {
-        return err(&bp, "expected [[x0,y0,z0],[x1,y1,z1]]");
-    }
-    let bounds = [vec3(&b[0], &bp.index(0))?, vec3(&b[1], &bp.index(1))?];
-    if (0..3).any(|i| bounds[1][i] <= bounds[0][i] || bounds[1][i].is_nan()) {
-        return err(&bp, "empty grid: each max must exceed its min");
-    }
-    let vertices: u128 = resolution.iter().map(|&n| n as u128 + 1).product();
-    if vertices > u32::MAX as u128 {
-        return err(&rp, format!("grid too large: {vertices} vertices (at most {})", u32::MAX));
-    }
-    let split = if o.has("split") { num(o.get("split")?, &path.key("split"))? } else { 5.0 };
-    if split != 5.0 && split != 6.0 {
-        return err(&path.key("split"), "split must be 5 or 6");
-    }
-    Ok(GridSpec { resolution, bounds, split: split as u8 })
-}
-
-/// The adaptive-grid paper's grid (`{"resolution": [n], "bbox_min": [..],
-/// "bbox_max": [..]}`): `n` cubes per axis (or `[nx, ny, nz]`), 6 tets per
-/// cube as that program splits them.
-fn anchor_grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
-    let o = Obj::new(v, path)?;
-    let rp = path.key("resolution");
-    let r = o.get("resolution")?;
-    let res: Vec<&Value> = match r {
-        Value::Array(a) if a.len() == 1 => vec![&a[0]; 3],
-        Value::Array(a) => a.iter().collect(),
-        _ => vec![r; 3],
-    };
-    if res.len() != 3 {
-        return err(&rp, "expected [n] or [nx, ny, nz]");
-    }
-    let mut resolution = [0usize; 3];
-    for (i, x) in res.iter().enumerate() {
-        match x.as_i64() {
-            Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
-            _ => return err(&rp, "resolution must be a whole number of at least 1"),
-        }
-    }
-    let bounds = [o.vec3("bbox_min")?, o.vec3("bbox_max")?];
-    if (0..3).any(|i| bounds[1][i] <= bounds[0][i]) {
-        return err(&path.key("bbox_max"), "empty grid: each max must exceed its min");
-    }
-    Ok(GridSpec { resolution, bounds, split: 6 })
 }
 
 /// `"solid": {"csg_tree": FILE or [nodes], "inside": "positive" |
@@ -332,7 +223,7 @@ fn solid_tree(s: &Value, path: &JsonPath, n: usize, base_dir: Option<&Path>) -> 
     Some(match t {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            std::fs::read_to_string(&full)
+            crate::io::read_input_text(&full)
                 .or_else(|e| err(&p, format!("cannot read {}: {e}", full.display())))
                 .and_then(|text| {
                     super::csg_tree::load_csg_tree(&text, &full.display().to_string(), n, negative)
@@ -363,7 +254,7 @@ fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
                 "difference" => {
                     let mut l = list(inner)?;
                     let first = l.remove(0);
-                    Ok(l.into_iter().fold(first, |a, b| Expr::Diff(Box::new(a), Box::new(b))))
+                    Ok(super::region_rule::difference(first, l))
                 }
                 "function" => match inner.as_str().and_then(|n| resolve(names, n)) {
                     Some(i) => Ok(Expr::Func(i)),
@@ -387,6 +278,8 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
     let (list, lp, mut otherwise) = match v {
         Value::Object(_) => {
             let o = Obj::new(v, path)?;
+            o.mark_all(&["rules", "otherwise"]);
+            o.finish()?;
             let other =
                 if o.has("otherwise") { Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?) } else { None };
             (o.get("rules")?, path.key("rules"), other)
@@ -396,6 +289,8 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
     let mut out = Vec::new();
     for (i, r) in array(list, &lp)?.iter().enumerate() {
         let o = Obj::new(r, &lp.index(i))?;
+        o.mark_all(&["region", "when"]);
+        o.finish()?;
         let region = region_id(o.get("region")?, &o.path.key("region"))?;
         if !o.has("when") {
             // A catch-all ends the list (later rules could never match).
@@ -444,18 +339,21 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         return reference_config(&o, base_dir);
     }
     let grid = grid(o.get("grid")?, &root.key("grid"), base_dir)?;
-    let mode = match o.map.get("mode").map(|m| m.as_str()) {
+    // a scene's keys: anything else (a misspelt `surface`) is an error
+    o.mark_all(&["grid", "mode", "functions", "regions", "solid", "surfaces", "curves", "features", "region_names"]);
+    o.finish()?;
+    let mode = match o.opt("mode").map(|m| m.as_str()) {
         None | Some(Some("ia")) => Mode::Ia,
         Some(Some("mi")) => Mode::Mi,
         _ => return err(&root.key("mode"), "mode must be \"ia\" or \"mi\""),
     };
     let fp = root.key("functions");
-    let ctx = Ctx { base_dir, compat: false };
+    let ctx = Ctx::new(base_dir, false);
     let (functions, names) = match o.get("functions")? {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            let text =
-                std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+            let text = crate::io::read_input_text(&full)
+                .or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
             let f = load_function_list(&text, &full.display().to_string(), full.parent())
                 .or_else(|e| err(&fp, e.to_string()))?;
             let names = (0..f.len()).map(|i| i.to_string()).collect();
@@ -490,7 +388,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
     if functions.is_empty() {
         return err(&fp, "no functions");
     }
-    let regions = match (o.map.get("regions"), o.map.get("solid")) {
+    let regions = match (o.opt("regions"), o.opt("solid")) {
         (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
         (Some(r), None) => rules(r, &root.key("regions"), &names)?,
         (None, Some(s)) => match solid_tree(s, &root.key("solid"), functions.len(), base_dir) {
@@ -508,17 +406,17 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         (RegionRule::Identity, Mode::Mi) => (0..functions.len() as RegionId).collect(),
         _ => regions.regions(),
     };
-    let surfaces = match o.map.get("surfaces") {
+    let surfaces = match o.opt("surfaces") {
         None => None,
         Some(Value::String(s)) if s == "all" => None,
         Some(s) => Some(tuples::<2>(s, &root.key("surfaces"), &known)?),
     };
-    let curves = match o.map.get("curves") {
+    let curves = match o.opt("curves") {
         None => None,
         Some(Value::String(s)) if s == "all" => None,
         Some(c) => Some(tuples::<3>(c, &root.key("curves"), &known)?),
     };
-    let features = match o.map.get("features") {
+    let features = match o.opt("features") {
         None => true,
         Some(Value::Bool(b)) => *b,
         Some(_) => return err(&root.key("features"), "`features` is true or false"),
@@ -533,7 +431,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         region_names.insert(0, "outside".to_string());
         region_names.insert(1, "inside".to_string());
     }
-    if let Some(v) = o.map.get("region_names") {
+    if let Some(v) = o.opt("region_names") {
         let p = root.key("region_names");
         let Some(map) = v.as_object() else {
             return err(&p, "`region_names` is an object: {\"1\": \"part\", \"0\": \"air\"}");
@@ -585,7 +483,8 @@ fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> 
     let file = o.str("funcFile")?;
     let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
     let fp = root.key("funcFile");
-    let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+    let text =
+        crate::io::read_input_text(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
     let functions =
         load_function_list(&text, &full.display().to_string(), full.parent()).or_else(|e| err(&fp, e.to_string()))?;
     if functions.is_empty() {
