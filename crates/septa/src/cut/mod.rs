@@ -47,7 +47,10 @@
 //! filters with stated bounds).
 //!
 //! Voids (a mesh component inside one open arrangement cell) are attached
-//! to their enclosing cell by exact plane-side signatures (`voids.rs`).
+//! to their enclosing cell by exact plane-side signatures (`voids.rs`), or,
+//! when nested shells leave several candidates (an island in the cavity),
+//! by an exact ray from the void (`void_rays.rs`). TopoCut counts each such
+//! void as a cell of its own: its count is `cut_cells + voids_attached`.
 
 #[cfg(feature = "tools")]
 pub mod bench;
@@ -89,6 +92,7 @@ mod triangulate;
 mod validate;
 mod verify;
 mod verify_volume;
+mod void_rays;
 mod voids;
 mod volume;
 mod volume_filter;
@@ -182,8 +186,9 @@ pub struct CutStats {
     pub line_order_violations: usize,
     /// Void shells attached to their enclosing cell.
     pub voids_attached: usize,
-    /// Void shells whose enclosing cell was not unique by plane sides
-    /// (left as separate, negative-volume cells).
+    /// Void shells whose enclosing cell neither the plane sides nor the
+    /// exact ray decided (left as separate, negative-volume cells, which
+    /// `validate` reports; not expected for valid input).
     pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
@@ -227,6 +232,13 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// The sum of the cell volumes and the mesh volume at the scale the cut
+    /// ran at (`scale.rs`: the input times `2^k`): the same as the sum of
+    /// `cell_volumes` and `mesh_volume` for inputs within `[2^-64, 2^64]`;
+    /// for others those overflow or underflow (a cube of side 1e300 has
+    /// volume 1e900), and [`CutCellMesh::validate`] compares these instead
+    /// (the relative error does not change under scaling by `2^3k`).
+    pub volume_sums_at_cut_scale: [f64; 2],
     /// The cut planes used (after dropping duplicates); `Support::Plane(p)`
     /// indexes this list.
     pub planes: Vec<[f64; 4]>,
@@ -533,7 +545,7 @@ fn cut_impl(
     // ones (a page fault is about 1.4 us here, ~10% of a run; armadillo
     // R20's loops alone were 38 MB).
     drop((faces, cells, bnd, pedges));
-    let (attached, unresolved) = voids::attach_voids(&c, &mut out);
+    let (attached, unresolved) = voids::attach_voids(&c, &mut out, &boxes);
     stats.voids_attached = attached;
     stats.voids_unresolved = unresolved;
     lap("faces", &mut stats);
