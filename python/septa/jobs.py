@@ -222,19 +222,14 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
         raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
     _check_progress(progress)
     t0 = time.perf_counter()
-    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma), progress=progress)
     # Placing the grid in space moves no combinatorics: points only. The
     # full affine (direction cosines, shears, flips) maps voxel indices to
-    # world points, as nibabel's apply_affine and NRRD's space directions do.
-    pts = np.asarray(data["points"], dtype=np.float64).reshape(-1, 3)
-    data["points"] = pts @ m[:, :3].T + m[:, 3]
-    if np.linalg.det(m[:, :3]) < 0:
-        # A mirror turns counter-clockwise loops clockwise: reverse each
-        # polygon so it stays counter-clockwise seen from the lesser region.
-        off = np.asarray(data["offsets"], dtype=np.int64)
-        idx = np.asarray(data["indices"], dtype=np.int64)
-        face = np.repeat(np.arange(len(off) - 1), np.diff(off))
-        data["indices"] = idx[off[face] + off[face + 1] - 1 - np.arange(len(idx))]
+    # world points, as nibabel's apply_affine and NRRD's space directions
+    # do; the library places points, box and measures as `septa labels`
+    # does (a mirror reverses each polygon, so it stays counter-clockwise
+    # seen from the lesser region).
+    data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma), progress=progress,
+                         affine=m.tolist())
     net = _region_network(data)
     _log_done("label_surfaces", net, t0)
     return net

@@ -84,7 +84,11 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
         septa::scene::Mode::Mi => septa::complex::Mode::Mi,
     };
     let net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
-    septa::io::write_network(&net, dir, &[])?;
+    let notes = septa::io::Annotations {
+        names: scene.result_names(),
+        measures: septa::measure::network_measures(&net, Some(&septa::measure::BoxDomain::of_box(&scene.grid.box_grid()?))),
+    };
+    septa::io::write_network(&net, &notes, dir, &[])?;
     Ok(JobRow { counts: counts(&net), viewer: true })
 }
 

@@ -10,6 +10,7 @@
 //! unless given. `"base_dir"` resolves relative mesh paths.
 use crate::{failure, Failure, InputError};
 use pyo3::prelude::*;
+use septa::io::Annotations;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
 use septa::complex::Mode;
@@ -60,8 +61,21 @@ pub(crate) fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Boun
     Ok(d)
 }
 
-fn network_dict<'py>(py: Python<'py>, net: &Network, stats: Option<&SparseStats>) -> PyResult<Bound<'py, PyDict>> {
-    let d = crate::network::to_dict(py, net)?;
+/// A job's network's names and measures (its box grid is the domain).
+fn notes_of(j: &Job, net: &Network) -> Annotations {
+    Annotations {
+        names: j.scene.as_ref().map(|s| s.result_names()).unwrap_or_default(),
+        measures: septa::measure::network_measures(net, Some(&septa::measure::BoxDomain::of_box(&j.grid))),
+    }
+}
+
+fn network_dict<'py>(
+    py: Python<'py>,
+    net: &Network,
+    stats: Option<&SparseStats>,
+    notes: &Annotations,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = crate::network::to_dict(py, net, notes)?;
     if let (Some(s), Some(counts)) = (stats, d.get_item("counts")?) {
         counts.set_item("blocks", stats_dict(py, s)?)?;
     }
@@ -132,10 +146,12 @@ pub fn sparse_finish<'py>(
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let r = py.detach(|| -> Result<_, Failure> {
         let j = parse_job(job)?;
-        finish(&j, plan_of(plan), &slices)
+        let (net, stats) = finish(&j, plan_of(plan), &slices)?;
+        let notes = notes_of(&j, &net);
+        Ok((net, stats, notes))
     });
-    let (net, stats) = r?;
-    network_dict(py, &net, Some(&stats))
+    let (net, stats, notes) = r?;
+    network_dict(py, &net, Some(&stats), &notes)
 }
 
 /// sparse_finish_regions(job, plan, results, normals=False)
@@ -162,10 +178,12 @@ pub fn sparse_finish_regions<'py>(
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
         out.names = scene.result_names();
+        out.domain = Some(septa::measure::BoxDomain::of_box(&j.grid));
         if normals {
             septa::regions::add_normals(&mut out, &scene.functions);
         }
         out.sparse = Some(stats);
+        out.measure();
         Ok(out)
     });
     crate::regions::region_dict(py, &r?)
@@ -186,7 +204,7 @@ pub fn sparse_network<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let r: Result<(Network, Option<SparseStats>), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
+    let r: Result<(Network, Option<SparseStats>, Annotations), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let mut j = parse_job(job)?;
         j.options.cancel = Some(cancel.clone());
         let run = || -> Result<(Network, Option<SparseStats>), Failure> {
@@ -199,8 +217,11 @@ pub fn sparse_network<'py>(
                 compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
             }
         };
-        crate::on_threads(threads, run)
+        crate::on_threads(threads, run).map(|(net, stats)| {
+            let notes = notes_of(&j, &net);
+            (net, stats, notes)
+        })
     })?;
-    let (net, stats) = r?;
-    network_dict(py, &net, stats.as_ref())
+    let (net, stats, notes) = r?;
+    network_dict(py, &net, stats.as_ref(), &notes)
 }

@@ -63,22 +63,26 @@ pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<
     Ok(d)
 }
 
-/// labels(volume, sigma=0.0, progress=None)
+/// labels(volume, sigma=0.0, progress=None, affine=None, names=None)
 /// --
 ///
 /// Exact surfaces between the labels of a segmented volume (`septa labels`):
 /// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
 /// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
 /// functions in voxels, `progress(done, total)` called as blocks of the
-/// network finish. Returns the arrays of `regions`; the GIL is released
-/// while it is computed.
+/// network finish, `affine` the voxel-to-world map (3 rows `[M | t]`; the
+/// points, the box and so the measures are placed by it, as `septa labels`
+/// does), `names` a dict label -> name. Returns the arrays of `regions`; the
+/// GIL is released while it is computed.
 #[pyfunction]
-#[pyo3(signature = (volume, sigma = 0.0, progress = None))]
+#[pyo3(signature = (volume, sigma = 0.0, progress = None, affine = None, names = None))]
 pub fn labels<'py>(
     py: Python<'py>,
     volume: numpy::PyReadonlyArray3<'_, i64>,
     sigma: f64,
     progress: Option<Py<PyAny>>,
+    affine: Option<[[f64; 4]; 3]>,
+    names: Option<std::collections::BTreeMap<i64, String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     use numpy::PyUntypedArrayMethods;
     let shape = volume.shape();
@@ -86,7 +90,13 @@ pub fn labels<'py>(
     let data: Vec<i64> = volume.as_array().iter().copied().collect();
     let progress = progress.map(crate::network::py_progress);
     let result = py.detach(|| {
-        septa::regions::label_surfaces_with_progress(&data, shape, sigma, progress).map_err(|e| e.to_string())
+        let mut r =
+            septa::regions::label_surfaces_with_progress(&data, shape, sigma, progress).map_err(|e| e.to_string())?;
+        if let Some(a) = affine {
+            septa::io::place_surfaces(&mut r, &a)?;
+        }
+        r.names.regions = names.unwrap_or_default();
+        Ok::<_, String>(r)
     });
     region_dict(py, &result.map_err(InputError::new_err)?)
 }

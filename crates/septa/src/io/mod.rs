@@ -54,7 +54,7 @@ pub use outdir::OutputDir;
 pub use planes::{grid_planes, parse_planes, random_planes, read_planes};
 pub use ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
-pub use result::{write_file, Format, ResultView};
+pub use result::{write_file, Annotations, Format, ResultView};
 pub use summary_out::write_summary_json;
 pub use viewer::{
     folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,

@@ -23,7 +23,7 @@ fn outputs_round_trip() {
         let net = compute(&grid, &values, 3, &NetworkOptions::new(mode)).unwrap();
         let dir: PathBuf = std::env::temp_dir().join(format!("septa-out-test-{}-{mode:?}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        write_network(&net, &dir, &[("read", 0.0)]).unwrap();
+        write_network(&net, &Default::default(), &dir, &[("read", 0.0)]).unwrap();
         let names: Vec<String> =
             std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
         // The five results (json npz ply obj vtu), the manifest written last
