@@ -56,6 +56,8 @@ impl Primitive {
             Mesh(m) => m.grad_bounds()?,
             Patch(s) => s.grad_bounds(lo, hi),
             Wyvill(s) => s.grad_bounds(lo, hi),
+            ClosedForm(s) => s.grad_bounds(lo, hi),
+            Rbf(s) => s.grad_bounds(lo, hi),
             Transform(t) => t.grad_bounds(lo, hi)?,
             Sum(ts) => {
                 let mut acc = point3([0.0; 3]);

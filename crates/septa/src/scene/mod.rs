@@ -63,8 +63,11 @@
 //! assert!(scene.interest.surface(2, 0) && !scene.interest.surface(1, 2));
 //! ```
 
+mod arith;
 pub mod builtin;
+mod closed_form;
 mod composite;
+mod csg_tree;
 mod error;
 mod field;
 mod gradbound;
@@ -78,6 +81,8 @@ mod normals;
 mod patch;
 mod primitive;
 mod print;
+mod rbf;
+mod rbf_bounds;
 mod region_rule;
 mod rounding;
 mod sample;
@@ -88,7 +93,9 @@ mod spec;
 mod torus;
 pub(crate) mod vec3;
 
+pub use closed_form::ClosedForm;
 pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
+pub use csg_tree::load_csg_tree;
 pub use error::{JsonPath, SceneError, Seg};
 pub use field::Primitives;
 pub use interval::Interval;
@@ -96,6 +103,7 @@ pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use print::{primitive_json, scene_json, scene_text};
+pub use rbf::{read_hermite_rbf, HermiteRbf};
 pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
 pub use scene::{load_function_list, GridSpec, Mode, Scene};

@@ -3,10 +3,12 @@
 
 use std::sync::Arc;
 
+use super::closed_form::ClosedForm;
 use super::composite::{self, Mat3, Transform, Wyvill};
 use super::interval::Interval;
 use super::mesh::TriMesh;
 use super::patch::BicubicPatch;
+use super::rbf::HermiteRbf;
 use super::shapes::*;
 use super::torus::Torus;
 use super::vec3::{normalize, V3};
@@ -58,6 +60,10 @@ pub enum Primitive {
     Patch(Box<BicubicPatch>),
     /// Wyvill blend bump.
     Wyvill(Wyvill),
+    /// A closed-form test function of the adaptive-grid paper.
+    ClosedForm(ClosedForm),
+    /// Hermite RBF with the cubic kernel (shared: large).
+    Rbf(Arc<HermiteRbf>),
     /// Affine transform of another primitive.
     Transform(Box<Transform>),
     /// Sum of primitives.
@@ -143,6 +149,8 @@ impl Primitive {
             Mesh(s) => s.eval(p),
             Patch(s) => s.eval(p),
             Wyvill(s) => s.eval(p),
+            ClosedForm(s) => s.eval(p),
+            Rbf(s) => s.eval(p),
             Transform(s) => s.eval(p),
             Sum(t) => composite::sum_eval(t, p),
             Scale(k, t) => k * t.eval(p),
@@ -172,6 +180,8 @@ impl Primitive {
             Mesh(s) => s.gradient(p),
             Patch(s) => s.gradient(p),
             Wyvill(s) => s.gradient(p),
+            ClosedForm(s) => s.gradient(p),
+            Rbf(s) => s.gradient(p),
             Transform(s) => s.gradient(p),
             Sum(t) => composite::sum_gradient(t, p),
             Scale(k, t) => t.gradient(p).map(|x| k * x),
@@ -216,6 +226,8 @@ impl Primitive {
             Mesh(s) => s.bounds(lo, hi),
             Patch(s) => s.bounds(lo, hi),
             Wyvill(s) => s.bounds(lo, hi),
+            ClosedForm(s) => s.bounds(lo, hi),
+            Rbf(s) => s.bounds(lo, hi),
             Transform(s) => s.bounds(lo, hi),
             Sum(t) => composite::sum_bounds(t, lo, hi),
             Scale(k, t) => t.bounds_interval(lo, hi).scale(*k),

@@ -120,6 +120,15 @@ pub fn primitive_json(p: &Primitive) -> Result<Value, String> {
         Primitive::Points(s) => json!({"type": "points", "points": s.points, "weights": s.weights}),
         Primitive::Mesh(_) => return Err("a triangle mesh has no printed form; give it as a file (`path`)".into()),
         Primitive::Patch(p) => json!({"type": "patch", "origin": p.origin, "size": p.size, "heights": p.heights}),
+        Primitive::ClosedForm(c) => json!({"type": c.name()}),
+        Primitive::Rbf(r) => {
+            let n = r.len();
+            let mut coeffs = r.a.clone();
+            for j in 0..3 {
+                coeffs.extend((0..n).map(|i| r.b[i][j]));
+            }
+            json!({"type": "rbf", "centers": r.centers, "coefficients": coeffs, "polynomial": r.poly})
+        }
         Primitive::Wyvill(w) => {
             let mut v = json!({"type": "wyvill", "center": w.center, "radius": w.radius, "height": w.height});
             if let Some(a) = w.axis {

@@ -194,6 +194,8 @@ impl Primitive {
             Primitive::Cone(c) => Some(c.eval_error(a)),
             Primitive::Torus(t) => Some(t.eval_error(a, 0.0)),
             Primitive::Mesh(m) => Some(super::mesh::mesh_error(m, a)),
+            Primitive::ClosedForm(c) => Some(c.eval_error(lo, hi)),
+            Primitive::Rbf(r) => Some(r.eval_error(lo, hi)),
             _ => None,
         }
     }

@@ -232,7 +232,21 @@ fn resolve(names: &[String], name: &str) -> Option<usize> {
     names.iter().position(|n| n == name).or_else(|| name.parse::<usize>().ok().filter(|&i| i < names.len()))
 }
 
-fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
+fn grid(v: &Value, path: &JsonPath, base_dir: Option<&Path>) -> Result<GridSpec, Located> {
+    if let Value::String(file) = v {
+        // A grid file of the adaptive-grid paper (`grid_1.json`).
+        let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
+        let text =
+            std::fs::read_to_string(&full).or_else(|e| err(path, format!("cannot read {}: {e}", full.display())))?;
+        let g: Value = serde_json::from_str(&text).or_else(|e| err(path, format!("{}: {e}", full.display())))?;
+        if !g.is_object() || g.get("bbox_min").is_none() {
+            return err(path, format!("{}: not a grid file (resolution, bbox_min, bbox_max)", full.display()));
+        }
+        return grid(&g, path, None).or_else(|e| err(path, format!("{}: {}: {}", full.display(), e.path, e.message)));
+    }
+    if v.get("bbox_min").is_some() {
+        return anchor_grid(v, path);
+    }
     let o = Obj::new(v, path)?;
     let rp = path.key("resolution");
     let r = o.get("resolution")?;
@@ -269,6 +283,64 @@ fn grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
         return err(&path.key("split"), "split must be 5 or 6");
     }
     Ok(GridSpec { resolution, bounds, split: split as u8 })
+}
+
+/// The adaptive-grid paper's grid (`{"resolution": [n], "bbox_min": [..],
+/// "bbox_max": [..]}`): `n` cubes per axis (or `[nx, ny, nz]`), 6 tets per
+/// cube as that program splits them.
+fn anchor_grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
+    let o = Obj::new(v, path)?;
+    let rp = path.key("resolution");
+    let r = o.get("resolution")?;
+    let res: Vec<&Value> = match r {
+        Value::Array(a) if a.len() == 1 => vec![&a[0]; 3],
+        Value::Array(a) => a.iter().collect(),
+        _ => vec![r; 3],
+    };
+    if res.len() != 3 {
+        return err(&rp, "expected [n] or [nx, ny, nz]");
+    }
+    let mut resolution = [0usize; 3];
+    for (i, x) in res.iter().enumerate() {
+        match x.as_i64() {
+            Some(n) if (1..=1 << 20).contains(&n) => resolution[i] = n as usize,
+            _ => return err(&rp, "resolution must be a whole number of at least 1"),
+        }
+    }
+    let bounds = [o.vec3("bbox_min")?, o.vec3("bbox_max")?];
+    if (0..3).any(|i| bounds[1][i] <= bounds[0][i]) {
+        return err(&path.key("bbox_max"), "empty grid: each max must exceed its min");
+    }
+    Ok(GridSpec { resolution, bounds, split: 6 })
+}
+
+/// `"solid": {"csg_tree": FILE or [nodes], "inside": "positive" |
+/// "negative"}`: a CSG tree of the adaptive-grid paper (`csg_tree.rs`; the
+/// paper's own figures read with `"inside": "negative"`).
+fn solid_tree(s: &Value, path: &JsonPath, n: usize, base_dir: Option<&Path>) -> Option<Result<Expr, Located>> {
+    let m = s.as_object()?;
+    let t = m.get("csg_tree")?;
+    let p = path.key("csg_tree");
+    if let Some(k) = m.keys().find(|k| *k != "csg_tree" && *k != "inside") {
+        return Some(err(&path.key(k), format!("unknown key `{k}` (csg_tree, inside)")));
+    }
+    let negative = match m.get("inside").map(|v| v.as_str()) {
+        None | Some(Some("positive")) => false,
+        Some(Some("negative")) => true,
+        _ => return Some(err(&path.key("inside"), "inside is `positive` or `negative`")),
+    };
+    Some(match t {
+        Value::String(file) => {
+            let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
+            std::fs::read_to_string(&full)
+                .or_else(|e| err(&p, format!("cannot read {}: {e}", full.display())))
+                .and_then(|text| {
+                    super::csg_tree::load_csg_tree(&text, &full.display().to_string(), n, negative)
+                        .or_else(|e| err(&p, e.to_string()))
+                })
+        }
+        tree => super::csg_tree::csg_tree(tree, &p, n, negative),
+    })
 }
 
 fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
@@ -371,7 +443,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
     if o.has("funcFile") {
         return reference_config(&o, base_dir);
     }
-    let grid = grid(o.get("grid")?, &root.key("grid"))?;
+    let grid = grid(o.get("grid")?, &root.key("grid"), base_dir)?;
     let mode = match o.map.get("mode").map(|m| m.as_str()) {
         None | Some(Some("ia")) => Mode::Ia,
         Some(Some("mi")) => Mode::Mi,
@@ -421,7 +493,10 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
     let regions = match (o.map.get("regions"), o.map.get("solid")) {
         (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
         (Some(r), None) => rules(r, &root.key("regions"), &names)?,
-        (None, Some(s)) => RegionRule::solid(expr(s, &root.key("solid"), &names)?),
+        (None, Some(s)) => match solid_tree(s, &root.key("solid"), functions.len(), base_dir) {
+            Some(tree) => RegionRule::solid(tree?),
+            None => RegionRule::solid(expr(s, &root.key("solid"), &names)?),
+        },
         (None, None) => {
             if mode == Mode::Ia && functions.len() > 62 {
                 return err(&fp, "more than 62 functions need a `regions` rule");

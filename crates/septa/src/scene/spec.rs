@@ -9,11 +9,13 @@ use std::sync::Arc;
 
 use serde_json::{Map, Value};
 
+use super::closed_form::ClosedForm;
 use super::composite::{rotation, Mat3, Transform, Wyvill};
 use super::error::{err, JsonPath, Located};
 use super::mesh::{read_tri_mesh, TriMesh};
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
+use super::rbf::{read_hermite_rbf, HermiteRbf};
 use super::shapes::*;
 use super::torus::Torus;
 use super::vec3::{normalize, sub, V3};
@@ -39,6 +41,12 @@ pub const PRIMITIVE_TYPES: &[&str] = &[
     "mesh",
     "patch",
     "wyvill",
+    "Gaussian",
+    "smile",
+    "cyclide",
+    "wave",
+    "teardrop",
+    "rbf",
     "transform",
     "sum",
     "scale",
@@ -307,6 +315,10 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             }
             Primitive::Patch(Box::new(BicubicPatch { origin, size: sz, heights }))
         }
+        "Gaussian" | "gaussian" | "smile" | "cyclide" | "wave" | "teardrop" => {
+            Primitive::ClosedForm(ClosedForm::from_name(if ty == "gaussian" { "Gaussian" } else { &ty }).unwrap())
+        }
+        "rbf" => Primitive::Rbf(Arc::new(rbf(&o, ctx)?)),
         "wyvill" => Primitive::Wyvill(Wyvill {
             center: o.vec3("center")?,
             axis: if o.has("axis") { Some(o.dir("axis")?) } else { None },
@@ -332,6 +344,39 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             )
         }
     })
+}
+
+/// A Hermite RBF: the reference's `points` (`.xyz`) and `rbf_coeffs`
+/// files, relative to the function file, or inline `centers`,
+/// `coefficients` (4N) and `polynomial` (4). The reference's display
+/// fields `color` and `samples` are not used.
+fn rbf(o: &Obj, ctx: &Ctx) -> Result<HermiteRbf, Located> {
+    if o.has("points") || o.has("rbf_coeffs") {
+        let full = |k: &str| -> Result<std::path::PathBuf, Located> {
+            let rel = o.str(k)?;
+            Ok(ctx.base_dir.map_or_else(|| Path::new(rel).to_path_buf(), |d| d.join(rel)))
+        };
+        let (points, coeffs) = (full("points")?, full("rbf_coeffs")?);
+        return read_hermite_rbf(&points, &coeffs).or_else(|e| err(&o.path.key("points"), e));
+    }
+    let cp = o.path.key("centers");
+    let cs = array(o.get("centers")?, &cp)?;
+    let centers: Vec<V3> = cs.iter().enumerate().map(|(i, v)| vec3(v, &cp.index(i))).collect::<Result<_, _>>()?;
+    let kp = o.path.key("coefficients");
+    let ks = array(o.get("coefficients")?, &kp)?;
+    let coeffs: Vec<f64> = ks.iter().enumerate().map(|(i, v)| num(v, &kp.index(i))).collect::<Result<_, _>>()?;
+    let pp = o.path.key("polynomial");
+    let ps = array(o.get("polynomial")?, &pp)?;
+    if ps.len() != 4 {
+        return err(&pp, "the polynomial needs 4 numbers (c0, cx, cy, cz)");
+    }
+    let poly = [
+        num(&ps[0], &pp.index(0))?,
+        num(&ps[1], &pp.index(1))?,
+        num(&ps[2], &pp.index(2))?,
+        num(&ps[3], &pp.index(3))?,
+    ];
+    HermiteRbf::new(centers, &coeffs, poly).or_else(|e| err(&kp, e))
 }
 
 fn mesh(o: &Obj, ctx: &Ctx) -> Result<TriMesh, Located> {

@@ -94,7 +94,7 @@ fn primitives() -> Vec<(String, Primitive)> {
 /// Checks `eval` at the corners, at vertices of an `n`-grid laid on the box
 /// by the grid's own formula (`lo + (hi - lo) i / n`, `hi` at `n`) and at
 /// random points. Returns whether the bound excludes zero.
-fn check_box(name: &str, f: &Primitive, lo: [f64; 3], hi: [f64; 3], rng: &mut ChaCha8Rng) -> bool {
+pub(crate) fn check_box(name: &str, f: &Primitive, lo: [f64; 3], hi: [f64; 3], rng: &mut ChaCha8Rng) -> bool {
     let (blo, bhi) = f.bounds(lo, hi);
     assert!(!blo.is_nan() && !bhi.is_nan() && blo <= bhi, "{name}: bound [{blo}, {bhi}]");
     let at = |p: [f64; 3]| {
@@ -125,7 +125,7 @@ fn check_box(name: &str, f: &Primitive, lo: [f64; 3], hi: [f64; 3], rng: &mut Ch
 /// A point where the computed `f` changes sign (or is exactly 0) between
 /// two neighbouring floats of a random segment, by bisection; `None` when
 /// the segment's ends have the same sign.
-fn sign_change(f: &Primitive, mut a: [f64; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
+pub(crate) fn sign_change(f: &Primitive, mut a: [f64; 3], mut b: [f64; 3]) -> Option<[f64; 3]> {
     let (fa, fb) = (f.eval(a), f.eval(b));
     if fa == 0.0 {
         return Some(a);

@@ -1,5 +1,10 @@
 //! The scene tests as one test binary (one link step per area).
 
+#[path = "../common/mod.rs"]
+mod common;
+
+mod anchor_csg;
+mod anchor_types;
 mod bounds_float;
 mod files;
 mod gradients;
