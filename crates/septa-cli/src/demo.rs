@@ -86,7 +86,10 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
     let net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
     let notes = septa::io::Annotations {
         names: scene.result_names(),
-        measures: septa::measure::network_measures(&net, Some(&septa::measure::BoxDomain::of_box(&scene.grid.box_grid()?))),
+        measures: septa::measure::network_measures(
+            &net,
+            Some(&septa::measure::BoxDomain::of_box(&scene.grid.box_grid()?)),
+        ),
     };
     septa::io::write_network(&net, &notes, dir, &[])?;
     Ok(JobRow { counts: counts(&net), viewer: true })

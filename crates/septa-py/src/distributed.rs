@@ -10,11 +10,11 @@
 //! unless given. `"base_dir"` resolves relative mesh paths.
 use crate::{failure, Failure, InputError};
 use pyo3::prelude::*;
-use septa::io::Annotations;
 use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
 use septa::complex::Mode;
 use septa::grid::BoxGrid;
+use septa::io::Annotations;
 use septa::network::{
     compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Network, NetworkOptions, SparsePlan,
     SparseStats,
@@ -204,24 +204,25 @@ pub fn sparse_network<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let r: Result<(Network, Option<SparseStats>, Annotations), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
-        let mut j = parse_job(job)?;
-        j.options.cancel = Some(cancel.clone());
-        let run = || -> Result<(Network, Option<SparseStats>), Failure> {
-            if dense {
-                let g = septa::grid::Grid::Box(j.grid.clone());
-                let values = sample_grid(&j.functions, &g.vertices());
-                let net = compute(&g, &values, j.functions.len(), &j.options).map_err(failure)?;
-                Ok((net, None))
-            } else {
-                compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
-            }
-        };
-        crate::on_threads(threads, run).map(|(net, stats)| {
-            let notes = notes_of(&j, &net);
-            (net, stats, notes)
-        })
-    })?;
+    let r: Result<(Network, Option<SparseStats>, Annotations), Failure> =
+        crate::interrupt::run_interruptible(py, &cancel, || {
+            let mut j = parse_job(job)?;
+            j.options.cancel = Some(cancel.clone());
+            let run = || -> Result<(Network, Option<SparseStats>), Failure> {
+                if dense {
+                    let g = septa::grid::Grid::Box(j.grid.clone());
+                    let values = sample_grid(&j.functions, &g.vertices());
+                    let net = compute(&g, &values, j.functions.len(), &j.options).map_err(failure)?;
+                    Ok((net, None))
+                } else {
+                    compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
+                }
+            };
+            crate::on_threads(threads, run).map(|(net, stats)| {
+                let notes = notes_of(&j, &net);
+                (net, stats, notes)
+            })
+        })?;
     let (net, stats, notes) = r?;
     network_dict(py, &net, stats.as_ref(), &notes)
 }

@@ -166,7 +166,11 @@ impl<'a> ResultView<'a> {
 
     /// The view of a grid network with its names and measures.
     pub fn of_annotated(net: &'a Network, notes: &'a Annotations) -> ResultView<'a> {
-        ResultView { names: Cow::Borrowed(&notes.names), measures: Cow::Borrowed(&notes.measures), ..Self::of_network(net) }
+        ResultView {
+            names: Cow::Borrowed(&notes.names),
+            measures: Cow::Borrowed(&notes.measures),
+            ..Self::of_network(net)
+        }
     }
 
     /// The view of region surfaces: the kept polygons, oriented from the

@@ -202,9 +202,8 @@ fn far_corner_owner(
     traces: &[Vec<Trace>; 3],
     network_part: &[f64],
 ) -> Option<usize> {
-    let argmin = |xs: &[f64]| -> Option<usize> {
-        xs.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).map(|(i, _)| i)
-    };
+    let argmin =
+        |xs: &[f64]| -> Option<usize> { xs.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).map(|(i, _)| i) };
     if nc == 0 {
         return None;
     }

@@ -54,11 +54,7 @@ impl BoxDomain {
             std::array::from_fn(|r| affine[r][0] * v[0] + affine[r][1] * v[1] + affine[r][2] * v[2])
         };
         let o = lin(self.origin);
-        BoxDomain {
-            res: self.res,
-            origin: std::array::from_fn(|r| o[r] + affine[r][3]),
-            edges: self.edges.map(lin),
-        }
+        BoxDomain { res: self.res, origin: std::array::from_fn(|r| o[r] + affine[r][3]), edges: self.edges.map(lin) }
     }
 
     /// The domain's volume.

@@ -175,7 +175,8 @@ fn network_cells_of_two_planes() {
     use septa::network::{compute, NetworkOptions};
     use septa::scene::{sample_grid, Primitive};
     let g = BoxGrid::new([7, 6, 5], [[-1.0, -1.0, 0.0], [1.0, 2.0, 1.0]], Split::Five).unwrap();
-    let planes = [Primitive::plane([0.3, 0.0, 0.0], [1.0, 0.0, 0.0]), Primitive::plane([0.0, 0.25, 0.0], [0.0, 1.0, 0.0])];
+    let planes =
+        [Primitive::plane([0.3, 0.0, 0.0], [1.0, 0.0, 0.0]), Primitive::plane([0.0, 0.25, 0.0], [0.0, 1.0, 0.0])];
     let grid = Grid::Box(g.clone());
     let values = sample_grid(&planes, &grid.vertices());
     let net = compute(&grid, &values, 2, &NetworkOptions::new(septa::complex::Mode::Ia)).unwrap();
