@@ -20,13 +20,15 @@ def network(
     raytrace: bool = True,
     threads: int | None = None,
     progress: object | None = None,
+    certify: bool = True,
 ) -> dict: ...
 
 def regions(scene: str, normals: bool = False, clean: float | None = None,
-            progress: object | None = None) -> dict:
+            progress: object | None = None, certify: bool = True) -> dict:
     """Region surfaces of a scene (path, ``builtin:NAME`` or JSON text) as numpy arrays (``septa.Network``'s names)."""
 
-def labels(volume: np.ndarray, sigma: float = 0.0) -> dict:
+def labels(volume: np.ndarray, sigma: float = 0.0, progress: object | None = None,
+           affine: list[list[float]] | None = None, certify: bool = True) -> dict:
     """Surfaces between the labels of an int64 ``(nx, ny, nz)`` volume as numpy arrays (as ``regions``)."""
 
 def write_result(path: str, format: str, mode: str, functions: int, points: np.ndarray, offsets: np.ndarray,

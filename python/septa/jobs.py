@@ -59,7 +59,7 @@ def _check_progress(progress):
         raise _septa.InputError("progress: expected a function progress(done, total)")
 
 
-def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progress=None):
+def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progress=None, certify=True):
     v, t, f = _grid_inputs(grid_or_vertices, tets, values)
     if cells not in ("raytrace", "grouping"):
         raise _septa.InputError(f'cells must be "raytrace" or "grouping", not {cells!r}')
@@ -70,7 +70,7 @@ def _network(mode, grid_or_vertices, tets, values, threads, lookup, cells, progr
     _check_progress(progress)
     t0 = time.perf_counter()
     d = _septa.network(mode, v, t, f, box, lookup=lookup, raytrace=(cells == "raytrace"),
-                       threads=_inputs.threads(threads), progress=progress)
+                       threads=_inputs.threads(threads), progress=progress, certify=bool(certify))
     net = Network._from_core(d)
     _log_done(mode, net, t0)
     return net
@@ -84,7 +84,8 @@ def _log_done(what, net, t0):
                  ", ".join(f"{k} {v:.3f}" for k, v in net.seconds.items()))
 
 
-def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace", progress=None):
+def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace", progress=None,
+                certify=True):
     """Implicit arrangement of the zero sets of k functions sampled on a tet grid.
 
     ``arrangement(grid, values)`` or ``arrangement(vertices, tets, values)``
@@ -93,7 +94,11 @@ def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=Tru
     look-up tables; ``cells``: ``"raytrace"`` or ``"grouping"``;
     ``progress``: a function ``progress(done, total)`` called as blocks of
     the grid finish (e.g. to drive a tqdm bar). Counts and stage seconds are
-    logged at INFO on the ``septa`` logger.
+    logged at INFO on the ``septa`` logger. ``certify``: check the written
+    doubles exactly (no two vertices at one point, no degenerate triangle,
+    no two triangles crossing) and repair them without changing any count;
+    ``net.embedding`` says what was found and changed (``False``: the
+    doubles as computed, ``net.embedding`` is None).
     Returns a :class:`septa.Network`; the same as ``septa ia``.
 
     >>> import septa
@@ -104,18 +109,18 @@ def arrangement(grid_or_vertices, tets, values=None, *, threads=None, lookup=Tru
     >>> s["patches"], s["chains"], s["cells"]
     (4, 1, 4)
     """
-    return _network("ia", grid_or_vertices, tets, values, threads, lookup, cells, progress)
+    return _network("ia", grid_or_vertices, tets, values, threads, lookup, cells, progress, certify)
 
 
 def material_interface(grid_or_vertices, tets, values=None, *, threads=None, lookup=True, cells="raytrace",
-                       progress=None):
+                       progress=None, certify=True):
     """Material interface (argmax partition) of k functions on a tet grid;
     the same arguments as :func:`arrangement`, the same result as ``septa mi``."""
-    return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells, progress)
+    return _network("mi", grid_or_vertices, tets, values, threads, lookup, cells, progress, certify)
 
 
 def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False,
-                    clean=None, progress=None):
+                    clean=None, progress=None, certify=True):
     """Non-manifold implicit shape: the surfaces and curves of interest of a region rule.
 
     ``scene_or_functions`` is a scene (a dict in the scene-file form, a path,
@@ -141,7 +146,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     how many edges were collapsed and refused.
     ``progress``: a function ``progress(done, total)`` called as blocks of
     the network finish (as in :func:`arrangement`); the ``septa`` logger
-    says what was computed, at INFO.
+    says what was computed, at INFO. ``certify``: as in :func:`arrangement`.
 
     >>> import septa
     >>> net = septa.region_surfaces("builtin:sphere-with-hole")
@@ -166,12 +171,13 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
     _check_progress(progress)
     t0 = time.perf_counter()
-    net = _region_network(_septa.regions(text, normals=normals, clean=clean, progress=progress))
+    net = _region_network(_septa.regions(text, normals=normals, clean=clean, progress=progress, certify=bool(certify)))
     _log_done("region_surfaces", net, t0)
     return net
 
 
-def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), progress=None) -> Network:
+def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), progress=None,
+                   certify=True) -> Network:
     """Exact surfaces between the labels of a segmented volume (``septa labels``).
 
     ``volume``: a 3-axis integer array (any integer dtype; what nibabel,
@@ -189,6 +195,7 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     :class:`septa.Network` with ``surfaces`` and ``curves`` as
     :func:`region_surfaces`. ``progress``: a function ``progress(done,
     total)`` called as blocks of the network finish (as in :func:`arrangement`).
+    ``certify``: as in :func:`arrangement`, on the placed points.
 
     >>> import numpy as np, septa
     >>> v = np.zeros((8, 8, 8), dtype=np.int32)
@@ -222,14 +229,11 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
         raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
     _check_progress(progress)
     t0 = time.perf_counter()
-    # Placing the grid in space moves no combinatorics: points only. The
-    # full affine (direction cosines, shears, flips) maps voxel indices to
-    # world points, as nibabel's apply_affine and NRRD's space directions
-    # do; the library places points, box and measures as `septa labels`
-    # does (a mirror reverses each polygon, so it stays counter-clockwise
-    # seen from the lesser region).
+    # Placed in the core as the command line places them (the full affine:
+    # direction cosines, shears, flips; a mirror reverses each polygon so it
+    # stays counter-clockwise seen from the lesser region), then certified.
     data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma), progress=progress,
-                         affine=m.tolist())
+                         affine=m.tolist(), certify=bool(certify))
     net = _region_network(data)
     _log_done("label_surfaces", net, t0)
     return net
@@ -280,6 +284,7 @@ def _region_network(data: dict) -> Network:
         data["counts"], data["seconds"] = summary, summary.get("seconds", {})
         net = Network._from_core(data)
         net.surfaces, net.curves = summary["surfaces"], summary["curves"]
+        net.embedding = summary.get("embedding")
         net.normals = net.indices_normal = None
         if "normal_vertex" in data:
             net.normals = {"vertex": data["normal_vertex"], "regions": data["normal_regions"],

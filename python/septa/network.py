@@ -48,6 +48,11 @@ class Network:
             patch_area ``(#P,)``; chain_length ``(#chains,)``. Empty when
             the result carries no measures.
         names: ``{"functions": [...], "regions": {region: name}}``.
+        embedding: what the exact check of the written doubles found and
+            what its repairs changed (``{"before", "after", "snapped",
+            "rotated", "nudged", ...}``; ``after`` counts ``coincident_points``,
+            ``degenerate_triangles``, ``intersecting_pairs``), or None when
+            not certified.
     """
 
     @classmethod
@@ -68,6 +73,7 @@ class Network:
         net._counts = dict(d["counts"])
         net._counts["cells_method"] = d.get("cells_method")
         net._set_notes(d.get("names"), d.get("cell_volume"), d.get("patch_area"), d.get("chain_length"))
+        net.embedding = json.loads(d["embedding"]) if d.get("embedding") else None
         return net
 
     def _set_notes(self, names, cell_volume, patch_area, chain_length):
@@ -169,6 +175,7 @@ class Network:
         self.seconds = dict(data.get("seconds", {}))
         m = data.get("measures") or {}
         self._set_notes(data.get("names"), m.get("cell_volume"), m.get("patch_area"), m.get("chain_length"))
+        self.embedding = data.get("embedding", self._counts.get("embedding"))
 
     def __len__(self) -> int:
         return len(self.offsets) - 1

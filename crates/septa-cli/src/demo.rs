@@ -83,7 +83,10 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
         septa::scene::Mode::Ia => septa::complex::Mode::Ia,
         septa::scene::Mode::Mi => septa::complex::Mode::Mi,
     };
-    let net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
+    let mut net = compute(&g, &values, scene.functions.len(), &NetworkOptions::new(mode))?;
+    if let septa::grid::Grid::Box(b) = &g {
+        septa::mesh::certify_network(&mut net, Some(b));
+    }
     let notes = septa::io::Annotations {
         names: scene.result_names(),
         measures: septa::measure::network_measures(
@@ -133,7 +136,9 @@ fn sphere_plane_hole(dir: &Path, _: &Args) -> JobResult {
 /// the vertices and polygons written.
 fn region_job(name: &str, dir: &Path) -> JobResult {
     let scene = septa::scene::Scene::load(name)?;
-    let r = septa::regions::region_surfaces(&scene, &Default::default())?;
+    let mut r = septa::regions::region_surfaces(&scene, &Default::default())?;
+    let grid = scene.grid.box_grid()?;
+    septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds));
     septa::io::write_regions(&r, dir)?;
     let mut c = counts(&r.network);
     c["vertices"] = septa::io::regions_summary(&r)["vertices"].clone();

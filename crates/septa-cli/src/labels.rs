@@ -2,7 +2,7 @@
 use std::path::PathBuf;
 
 use crate::CliResult;
-use septa::io::{diagonal_affine, place_surfaces, read_label_volume};
+use septa::io::{diagonal_affine, read_label_volume};
 use septa::io::{regions_summary, write_regions_formats};
 use septa::regions::label_surfaces_with_progress;
 
@@ -50,7 +50,9 @@ pub fn run(a: Args) -> CliResult {
         bar.finish_and_clear();
     }
     let mut r = r?.map_err(|e| format!("{file}: {e}"))?;
-    place_surfaces(&mut r, &affine).map_err(|e| format!("{file}: {e}"))?;
+    a.out
+        .install(|| septa::mesh::place_labels(&mut r, vol.shape, &affine, !a.out.no_certify))?
+        .map_err(|e| format!("{file}: {e}"))?;
     crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
         write_regions_formats(&r, &a.out.output, &a.out.format.0)
     })?;
@@ -59,6 +61,7 @@ pub fn run(a: Args) -> CliResult {
         println!("{summary}");
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&file, &r));
+        a.out.tell_embedding(r.embedding.as_ref());
     }
     Ok(())
 }

@@ -139,8 +139,15 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     // output is identical on both paths.
     let job = job(&args)?;
     let t_read = t0.elapsed().as_secs_f64();
-    let (net, stats) = pool.install(|| job.run(&opts, args.dense))?;
+    let (mut net, stats) = pool.install(|| job.run(&opts, args.dense))?;
     let tets = job.grid.num_tets();
+    if !args.out.no_certify {
+        let grid = match &job.grid {
+            septa::grid::Grid::Box(b) => Some(b),
+            septa::grid::Grid::Mesh(_) => None,
+        };
+        pool.install(|| septa::mesh::certify_network(&mut net, grid));
+    }
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -171,6 +178,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         if !notes.names.is_empty() {
             obj.insert("names".into(), notes.names.to_json());
         }
+        if let Some(e) = &net.embedding {
+            obj.insert("embedding".into(), serde_json::to_value(e)?);
+        }
         let mut secs = serde_json::Map::new();
         for (k, v) in net.seconds.iter().chain(extra.iter()) {
             secs.insert((*k).into(), (*v).into());
@@ -182,6 +192,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
         print!("{}", crate::summary::network_text(&net, &notes));
+        args.out.tell_embedding(net.embedding.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));
         }

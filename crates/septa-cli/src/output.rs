@@ -27,6 +27,12 @@ pub struct Output {
     /// Print nothing but errors (and the `--json` object if asked for).
     #[arg(short, long)]
     pub quiet: bool,
+    /// Write the doubles as computed, without the exact check of the written
+    /// triangles and its repairs (by default no two vertices share a point,
+    /// no triangle is degenerate and no two triangles cross, proven by exact
+    /// signs; `embedding` in network.json and --json says what was changed).
+    #[arg(long)]
+    pub no_certify: bool,
 }
 
 /// The parsed `--format` list.
@@ -45,6 +51,28 @@ impl Output {
             pool = pool.num_threads(t.max(1));
         }
         Ok(pool.build()?.install(work))
+    }
+
+    /// Prints what certification did (human-readable mode only).
+    pub fn tell_embedding(&self, e: Option<&septa::mesh::Embedding>) {
+        if let (true, Some(e)) = (self.talk(), e) {
+            let (b, a) = (&e.before, &e.after);
+            println!(
+                "embedding: {} violations as computed ({} coincident points, {} degenerate triangles, {} crossing \
+                 pairs), {} written; {} vertices put on the grid, {} polygons re-fanned, {} vertices nudged; {} of {} \
+                 closed cells proven positive",
+                b.violations(),
+                b.coincident_points,
+                b.degenerate_triangles,
+                b.intersecting_pairs,
+                a.violations(),
+                e.snapped,
+                e.rotated,
+                e.nudged,
+                a.cells_positive,
+                a.cells_checked
+            );
+        }
     }
 
     /// Whether to print human-readable lines.

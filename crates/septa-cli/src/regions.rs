@@ -76,7 +76,11 @@ pub fn run(a: Args) -> CliResult {
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
-    let r = r??;
+    let mut r = r??;
+    if !a.out.no_certify {
+        let grid = scene.grid.box_grid()?;
+        a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
+    }
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
         write_regions_formats(&r, dir, &a.out.format.0)
@@ -89,6 +93,7 @@ pub fn run(a: Args) -> CliResult {
         println!("{summary}");
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&path, &r));
+        a.out.tell_embedding(r.embedding.as_ref());
         println!("wrote {}", dir.display());
     }
     Ok(())

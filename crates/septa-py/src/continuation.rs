@@ -123,7 +123,9 @@ pub fn continuation<'py>(
                     .map(|(n, s)| (n, Some(s)))
                     .map_err(|e| e.to_string())
             };
-            crate::on_threads(threads, run)
+            let (mut net, stats) = crate::on_threads(threads, run)?;
+            septa::mesh::certify_network(&mut net, Some(&grid));
+            Ok((net, stats))
         })?;
     let (net, stats) = r.map_err(InputError::new_err)?;
     let notes = py.detach(|| crate::network::box_notes(&net, &grid));
@@ -230,7 +232,8 @@ pub fn continuation_finish<'py>(
             .enumerate()
             .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
             .collect::<Result<Vec<_>, _>>()?;
-        let (net, s) = finish_continuation(&grid, &field, &options, blocks).map_err(|e| e.to_string())?;
+        let (mut net, s) = finish_continuation(&grid, &field, &options, blocks).map_err(|e| e.to_string())?;
+        septa::mesh::certify_network(&mut net, Some(&grid));
         let notes = crate::network::box_notes(&net, &grid);
         Ok((net, s, notes))
     });

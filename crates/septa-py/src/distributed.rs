@@ -134,8 +134,9 @@ fn finish(job: &Job, plan: SparsePlan, results: &[&[u8]]) -> Result<(Network, Sp
 /// --
 ///
 /// Step 3: merges the block results (in block order, whatever order they
-/// come in), finds the topology and returns the network dict (as
-/// `network`), with the sparse statistics in `counts["blocks"]`.
+/// come in), finds the topology, certifies the written doubles (as
+/// `network` does by default) and returns the network dict (as `network`),
+/// with the sparse statistics in `counts["blocks"]`.
 #[pyfunction]
 pub fn sparse_finish<'py>(
     py: Python<'py>,
@@ -146,7 +147,8 @@ pub fn sparse_finish<'py>(
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let r = py.detach(|| -> Result<_, Failure> {
         let j = parse_job(job)?;
-        let (net, stats) = finish(&j, plan_of(plan), &slices)?;
+        let (mut net, stats) = finish(&j, plan_of(plan), &slices)?;
+        septa::mesh::certify_network(&mut net, Some(&j.grid));
         let notes = notes_of(&j, &net);
         Ok((net, stats, notes))
     });
@@ -182,8 +184,8 @@ pub fn sparse_finish_regions<'py>(
         if normals {
             septa::regions::add_normals(&mut out, &scene.functions);
         }
+        septa::mesh::certify_regions(&mut out, Some(&j.grid), Some(j.grid.bounds));
         out.sparse = Some(stats);
-        out.measure();
         Ok(out)
     });
     crate::regions::region_dict(py, &r?)
@@ -218,10 +220,10 @@ pub fn sparse_network<'py>(
                     compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
                 }
             };
-            crate::on_threads(threads, run).map(|(net, stats)| {
-                let notes = notes_of(&j, &net);
-                (net, stats, notes)
-            })
+            let (mut net, stats) = crate::on_threads(threads, run)?;
+            septa::mesh::certify_network(&mut net, Some(&j.grid));
+            let notes = notes_of(&j, &net);
+            Ok((net, stats, notes))
         })?;
     let (net, stats, notes) = r?;
     network_dict(py, &net, stats.as_ref(), &notes)

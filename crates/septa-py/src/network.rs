@@ -19,7 +19,7 @@ fn id(x: u32) -> i64 {
     }
 }
 
-/// network(mode, vertices, tets, values, box=None, lookup=True, raytrace=True, threads=None, progress=None)
+/// network(mode, vertices, tets, values, box=None, lookup=True, raytrace=True, threads=None, progress=None, certify=True)
 /// --
 ///
 /// Computes the IA (`mode="ia"`) or MI (`mode="mi"`) network of the `k`
@@ -29,9 +29,11 @@ fn id(x: u32) -> i64 {
 /// vertices and tets must be the ones given). The GIL is released while the
 /// network is computed. `progress(done, total)` is called as blocks finish
 /// (from worker threads, with the GIL taken for the call; an exception in it
-/// is printed and ignored). Returns a dict of arrays (see `septa.Network`).
+/// is printed and ignored). With `certify` the written doubles are checked
+/// exactly and repaired (`septa::mesh::certify_network`; `embedding` holds
+/// the report as JSON text). Returns a dict of arrays (see `septa.Network`).
 #[pyfunction]
-#[pyo3(signature = (mode, vertices, tets, values, r#box = None, lookup = true, raytrace = true, threads = None, progress = None))]
+#[pyo3(signature = (mode, vertices, tets, values, r#box = None, lookup = true, raytrace = true, threads = None, progress = None, certify = true))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 pub fn network<'py>(
     py: Python<'py>,
@@ -44,6 +46,7 @@ pub fn network<'py>(
     raytrace: bool,
     threads: Option<usize>,
     progress: Option<Py<PyAny>>,
+    certify: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let mode = crate::parse_mode(mode).map_err(InputError::new_err)?;
     let k = values.shape()[1];
@@ -72,7 +75,17 @@ pub fn network<'py>(
                 Grid::Mesh(TetMesh::new(pts, &tt).map_err(failure)?)
             }
         };
-        let run = || compute(&grid, fs, k, &options).map_err(failure);
+        let run = || {
+            let mut net = compute(&grid, fs, k, &options).map_err(failure)?;
+            if certify {
+                let b = match &grid {
+                    Grid::Box(b) => Some(b),
+                    Grid::Mesh(_) => None,
+                };
+                septa::mesh::certify_network(&mut net, b);
+            }
+            Ok::<_, Failure>(net)
+        };
         let net = crate::on_threads(threads, run)?;
         let domain = match &grid {
             Grid::Box(g) => Some(BoxDomain::of_box(g)),
@@ -142,6 +155,9 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network, notes: &Annotations) 
     counts.set_item("active_tets", net.active_tets)?;
     d.set_item("counts", counts)?;
     d.set_item("cells_method", net.cells_method.as_str())?;
+    if let Some(e) = &net.embedding {
+        d.set_item("embedding", serde_json::to_string(e).map_err(|e| InputError::new_err(e.to_string()))?)?;
+    }
     let seconds = PyDict::new(py);
     for (k, v) in &net.seconds {
         seconds.set_item(*k, *v)?;

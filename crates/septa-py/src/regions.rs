@@ -8,7 +8,7 @@ use septa::io::ResultView;
 use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
 use septa::scene::Scene;
 
-/// regions(scene, normals=False, clean=None, progress=None)
+/// regions(scene, normals=False, clean=None, progress=None, certify=True)
 /// --
 ///
 /// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
@@ -17,15 +17,18 @@ use septa::scene::Scene;
 /// curves, `cells` the regions) with `summary` (JSON text: counts, surfaces,
 /// curves) and, with normals, `normal_vertex`, `normal_regions`,
 /// `normal_vectors` and `indices_normal`; the GIL is released while it is
-/// computed.
+/// computed. With `certify` the kept polygons' written doubles are checked
+/// exactly and repaired (`septa::mesh::certify_regions`; `embedding` in the
+/// summary).
 #[pyfunction]
-#[pyo3(signature = (scene, normals = false, clean = None, progress = None))]
+#[pyo3(signature = (scene, normals = false, clean = None, progress = None, certify = true))]
 pub fn regions<'py>(
     py: Python<'py>,
     scene: &str,
     normals: bool,
     clean: Option<f64>,
     progress: Option<Py<PyAny>>,
+    certify: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     if let Some(f) = clean {
         if !(f.is_finite() && f >= 0.0) {
@@ -40,8 +43,13 @@ pub fn regions<'py>(
         }
         .map_err(|e| e.to_string())?;
         let progress = progress.map(crate::network::py_progress);
-        region_surfaces(&s, &RegionOptions { normals, clean, progress, ..Default::default() })
-            .map_err(|e| e.to_string())
+        let mut r = region_surfaces(&s, &RegionOptions { normals, clean, progress, ..Default::default() })
+            .map_err(|e| e.to_string())?;
+        if certify {
+            let grid = s.grid.box_grid().map_err(|e| e.to_string())?;
+            septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds));
+        }
+        Ok(r)
     });
     region_dict(py, &result.map_err(InputError::new_err)?)
 }
@@ -63,19 +71,20 @@ pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<
     Ok(d)
 }
 
-/// labels(volume, sigma=0.0, progress=None, affine=None, names=None)
+/// labels(volume, sigma=0.0, progress=None, affine=None, names=None, certify=True)
 /// --
 ///
 /// Exact surfaces between the labels of a segmented volume (`septa labels`):
 /// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
 /// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
 /// functions in voxels, `progress(done, total)` called as blocks of the
-/// network finish, `affine` the voxel-to-world map (3 rows `[M | t]`; the
-/// points, the box and so the measures are placed by it, as `septa labels`
-/// does), `names` a dict label -> name. Returns the arrays of `regions`; the
-/// GIL is released while it is computed.
+/// network finish, `affine` the voxel-to-world map (3 rows `[M | t]`; default
+/// the identity; the points, the box and so the measures are placed by it, as
+/// `septa labels` does), `names` a dict label -> name, `certify` the exact
+/// check and repair of the placed doubles (`septa::mesh::place_labels`).
+/// Returns the arrays of `regions`; the GIL is released while it is computed.
 #[pyfunction]
-#[pyo3(signature = (volume, sigma = 0.0, progress = None, affine = None, names = None))]
+#[pyo3(signature = (volume, sigma = 0.0, progress = None, affine = None, names = None, certify = true))]
 pub fn labels<'py>(
     py: Python<'py>,
     volume: numpy::PyReadonlyArray3<'_, i64>,
@@ -83,18 +92,18 @@ pub fn labels<'py>(
     progress: Option<Py<PyAny>>,
     affine: Option<[[f64; 4]; 3]>,
     names: Option<std::collections::BTreeMap<i64, String>>,
+    certify: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     use numpy::PyUntypedArrayMethods;
     let shape = volume.shape();
     let shape = [shape[0], shape[1], shape[2]];
     let data: Vec<i64> = volume.as_array().iter().copied().collect();
     let progress = progress.map(crate::network::py_progress);
+    let affine = affine.unwrap_or([[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]]);
     let result = py.detach(|| {
         let mut r =
             septa::regions::label_surfaces_with_progress(&data, shape, sigma, progress).map_err(|e| e.to_string())?;
-        if let Some(a) = affine {
-            septa::io::place_surfaces(&mut r, &a)?;
-        }
+        septa::mesh::place_labels(&mut r, shape, &affine, certify)?;
         r.names.regions = names.unwrap_or_default();
         Ok::<_, String>(r)
     });

@@ -99,6 +99,12 @@ pub use rational::{exact_coordinates, fraction_string};
 pub use repair::RepairStats;
 pub use validate::Validation;
 pub use verify::{polygon_planar, verify_cells, verify_cells_since, CellPolygons, VerifyReport};
+// The exact triangle machinery the embedding check of grid networks and
+// region surfaces shares (`crate::mesh`, a layer above both `cut` and
+// `network`, so no import cycle).
+pub(crate) use selfx::intersecting_pairs;
+pub(crate) use tri_pair::pair_intersects;
+pub(crate) use verify::collinear;
 
 use cells::FaceLoop;
 use clip::EdgeLine;

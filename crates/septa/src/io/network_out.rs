@@ -105,6 +105,10 @@ pub fn write_network_json(
             },
         )?;
         write_notes(w, notes)?;
+        if let Some(e) = &net.embedding {
+            w.write_all(b",\n\"embedding\":")?;
+            serde_json::to_writer(&mut *w, e)?;
+        }
         let seconds: Vec<(&str, f64)> = net.seconds.iter().chain(extra_seconds.iter()).copied().collect();
         write_counts_seconds(w, &net.counts(), &seconds)
     })
@@ -225,7 +229,11 @@ pub fn network_meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json:
     counts.insert("active_tets".into(), net.active_tets.into());
     let seconds: serde_json::Map<String, serde_json::Value> =
         net.seconds.iter().chain(extra_seconds.iter()).map(|(k, v)| (k.to_string(), (*v).into())).collect();
-    serde_json::json!({"counts": counts, "seconds": seconds, "cells_method": net.cells_method.as_str()})
+    let mut meta = serde_json::json!({"counts": counts, "seconds": seconds, "cells_method": net.cells_method.as_str()});
+    if let Some(e) = &net.embedding {
+        meta["embedding"] = serde_json::json!(e);
+    }
+    meta
 }
 
 /// Writes `network.json`, `network.npz`, `network.ply`, `network.obj` and

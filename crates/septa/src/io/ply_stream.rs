@@ -53,6 +53,10 @@ pub struct PlyStreamSink {
     /// Write each polygon as a fan of triangles (for readers that need one
     /// polygon size, such as trimesh).
     triangles: bool,
+    /// Points are written on the grid's lines and planes where the exact
+    /// vertex is (`network::embedding::snap_point`), as the in-memory
+    /// certified network has them.
+    grid: BoxGrid,
 }
 
 /// What a finished PLY holds.
@@ -110,6 +114,7 @@ impl PlyStreamSink {
             faces_written: 0,
             polygons: 0,
             triangles: false,
+            grid: grid.clone(),
         };
         let mut main = BufWriter::with_capacity(1 << 20, File::create(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?);
         main.write_all(header(&sink.comment, 0, 0).as_bytes())?;
@@ -140,7 +145,9 @@ impl PlyStreamSink {
                     return Err(std::io::Error::other("more than 2^31 - 1 vertices: PLY int indices overflow"));
                 }
                 if id == self.vertices {
-                    for x in b.points[v as usize] {
+                    let p =
+                        crate::network::embedding::snap_point(b.points[v as usize], &b.keys[v as usize], &self.grid);
+                    for x in p {
                         main.write_all(&x.to_le_bytes())?;
                     }
                     self.vertices += 1;

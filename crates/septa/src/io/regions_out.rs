@@ -45,6 +45,7 @@ pub fn regions_summary(r: &RegionSurfaces) -> Value {
             "closed": c.closed, "length": c.length, "vertices": c.vertices.len()})).collect::<Vec<_>>(),
         "names": r.names.to_json(),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
+        "embedding": r.embedding,
         "clean": r.clean.map(|c| json!({"triangles_before": c.triangles_before, "triangles_after": c.triangles_after,
             "collapsed": c.collapsed, "refused": c.refused, "flipped": c.flipped,
             "min_angle_degrees": {"before": c.min_angle[0], "after": c.min_angle[1]}})),

@@ -43,6 +43,9 @@ pub struct VtuStreamSink {
     vertices: u64,
     polygons: u64,
     corners: u64,
+    /// With a grid, points are written where `network::embedding::snap_point`
+    /// puts them (as the in-memory certified network has them).
+    grid: Option<BoxGrid>,
 }
 
 fn with_path(path: &Path, e: std::io::Error) -> std::io::Error {
@@ -62,6 +65,7 @@ impl VtuStreamSink {
             vertices: 0,
             polygons: 0,
             corners: 0,
+            grid: None,
         };
         for s in SPOOLS {
             let p = sink.temp(s);
@@ -87,7 +91,11 @@ impl VtuStreamSink {
                     return Err(std::io::Error::other("more than 2^31 - 1 vertices: VTU Int32 indices overflow"));
                 }
                 if id == self.vertices {
-                    for x in b.points[v as usize] {
+                    let mut p = b.points[v as usize];
+                    if let Some(g) = &self.grid {
+                        p = crate::network::embedding::snap_point(p, &b.keys[v as usize], g);
+                    }
+                    for x in p {
                         points.write_all(&x.to_le_bytes())?;
                     }
                     self.vertices += 1;
@@ -238,7 +246,9 @@ impl StreamFile {
                     format!("{}: triangle fans are for a PLY stream (a .vtu holds polygons)", path.display()),
                 ));
             }
-            return Ok(StreamFile::Vtu(VtuStreamSink::create(path)?));
+            let mut sink = VtuStreamSink::create(path)?;
+            sink.grid = Some(grid.clone());
+            return Ok(StreamFile::Vtu(sink));
         }
         Ok(StreamFile::Ply(PlyStreamSink::create(path, grid, mode, functions)?.triangulated(triangles)))
     }

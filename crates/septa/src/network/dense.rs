@@ -191,5 +191,6 @@ pub(crate) fn assemble(mode: Mode, k: usize, m: Merged, topo: Topology, stages: 
             ("merge", stages[1].as_secs_f64()),
             ("topology", stages[2].as_secs_f64()),
         ],
+        embedding: None,
     }
 }

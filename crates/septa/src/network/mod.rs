@@ -10,6 +10,7 @@
 
 mod block;
 mod dense;
+pub mod embedding;
 mod field;
 mod sparse;
 mod stream;
@@ -421,6 +422,9 @@ pub struct Network {
     pub cells_method: CellMethod,
     /// Seconds per stage.
     pub seconds: Vec<(&'static str, f64)>,
+    /// What the certification of the written doubles found and changed
+    /// (`septa::mesh::certify_network`; `None`: not certified).
+    pub embedding: Option<embedding::Embedding>,
 }
 
 impl Network {

@@ -104,6 +104,9 @@ pub struct RegionSurfaces {
     pub sparse: Option<SparseStats>,
     /// What the clean-up did (`None`: not asked for).
     pub clean: Option<CleanStats>,
+    /// What the certification of the kept polygons' written doubles found
+    /// and changed (`septa::mesh::certify_regions`; `None`: not certified).
+    pub embedding: Option<crate::network::embedding::Embedding>,
     /// The scene's function and region names (or a label table's).
     pub names: crate::io::Names,
     /// The box the network was computed in (`None`: unknown), for the
@@ -248,6 +251,7 @@ pub(crate) fn from_network_with(
         seconds,
         sparse: None,
         clean: None,
+        embedding: None,
         names: Default::default(),
         domain: None,
         measures: Default::default(),

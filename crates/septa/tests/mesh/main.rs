@@ -1,0 +1,7 @@
+//! The mesh layer's tests as one test binary: certification of the written
+//! doubles (`septa::mesh`).
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod certify;
