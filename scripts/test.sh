@@ -18,6 +18,14 @@ python3 scripts/check_layers.py > /dev/null || python3 scripts/check_layers.py
 step "Rust: cargo test --workspace --release (all 57 TopoCut reference cases)"
 SEPTA_FULL=1 cargo test --workspace --release
 
+step "Reproduce scripts of the seed tables at tiny sizes (scripts/reproduce/)"
+cargo build --release -q -p septa-cli
+R="$ROOT/target/release/septa"
+python3 scripts/reproduce/du_table1_stress.py "$R" --count 50 > /dev/null
+python3 scripts/reproduce/du_table2_shifted.py "$R" --inputs 1 --res 6 --eps 1e-6 > /dev/null
+python3 scripts/reproduce/du_table3_per_tet.py "$R" --count 200 > /dev/null
+python3 scripts/reproduce/du_figures13_15.py "$R" --res 6,8 --functions 2,3 --repeat 1 > /dev/null
+
 step "Rust: septa-exact and septa with debug assertions and overflow checks (profile ci)"
 # Release code with `debug_assert!` and integer overflow checks on: the
 # library tests once more (the CLI and Python front ends add no arithmetic).

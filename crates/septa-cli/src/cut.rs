@@ -164,7 +164,7 @@ pub fn run(a: Args) -> CliResult {
     // of the pool's: each parallel stage of the cut used to be handed from
     // here to a worker and back, and between stages the idle worker spun
     // (yields before sleeping) while this thread did the serial ones, about
-    // 1-4 ms of CPU on a 20-90 ms cut (docs/performance.md, "Thirteenth
+    // 1-4 ms of CPU on a 20-90 ms cut (docs/history/performance-log.md, "Thirteenth
     // round"). With `--threads 1` there is now no other thread at all.
     // (`num_threads(0)` is rayon's default: all cores.)
     let global = rayon::ThreadPoolBuilder::new().num_threads(a.threads).use_current_thread().build_global().is_ok();

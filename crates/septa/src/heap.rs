@@ -5,7 +5,7 @@
 //! merged; the merged network and the topology that follows are large
 //! arrays with pages of their own, so they never reuse that freed room, and
 //! it would stay resident through the run's peak (the topology stage). On
-//! IA 18 spheres at 64^3 it was 4 MB of a 65 MB peak (docs/performance.md,
+//! IA 18 spheres at 64^3 it was 4 MB of a 65 MB peak (docs/history/performance-log.md,
 //! "Tenth round on the grid").
 //!
 //! A program that keeps freed memory on purpose (`septa labels` trades

@@ -13,10 +13,11 @@
 //! cross-checks it independently on voxels.
 
 use super::composite::{rotation, Wyvill};
+use super::grid_spec::GridSpec;
 use super::patch::BicubicPatch;
 use super::primitive::Primitive;
 use super::region_rule::{Expr, Interest, RegionId, RegionRule, Rule};
-use super::scene::{GridSpec, Mode, Scene};
+use super::scene::{Mode, Scene};
 use super::vec3::{normalize, V3};
 
 /// Names and one-line descriptions of the built-in scenes.

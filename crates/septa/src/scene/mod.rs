@@ -73,6 +73,7 @@ mod field;
 mod gradbound;
 mod gradbound_composite;
 mod gradbound_shapes;
+mod grid_spec;
 mod interval;
 mod interval_vec;
 mod mesh;
@@ -98,6 +99,7 @@ pub use composite::{rotation, wyvill, Mat3, Transform, Wyvill};
 pub use csg_tree::load_csg_tree;
 pub use error::{JsonPath, SceneError, Seg};
 pub use field::Primitives;
+pub use grid_spec::GridSpec;
 pub use interval::Interval;
 pub use mesh::{read_tri_mesh, TriMesh};
 pub use patch::BicubicPatch;
@@ -106,7 +108,7 @@ pub use print::{primitive_json, scene_json, scene_text};
 pub use rbf::{read_hermite_rbf, HermiteRbf};
 pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
-pub use scene::{load_function_list, GridSpec, Mode, Scene};
+pub use scene::{load_function_list, Mode, Scene};
 pub use shapes::{
     BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind,
 };

@@ -1,9 +1,10 @@
 //! Per-vertex normals from analytic gradients (Bloomenthal 4.6 and
 //! 4.5.3.2), and the scene-level block test of sparse evaluation.
 
+use super::grid_spec::GridSpec;
 use super::region_rule::RegionId;
 use super::sample::{block_may_be_active_ia, block_may_be_active_mi};
-use super::scene::{GridSpec, Mode, Scene};
+use super::scene::{Mode, Scene};
 use super::vec3::{normalize, sub, V3};
 
 impl Scene {

@@ -12,9 +12,10 @@ use smallvec::SmallVec;
 
 use super::mask::NO_ROW;
 use super::simple::CubeCorners;
+use super::state::{contact, face_key, State};
 use super::types::{copy_label, Label};
 use super::values::Ctx;
-use super::worker::{contact, face_key, State, Worker};
+use super::worker::Worker;
 use crate::complex::{Mode, NONE};
 use crate::grid::{grid_coordinate, BoxGrid};
 use crate::network::NetworkError;

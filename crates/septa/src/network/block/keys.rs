@@ -2,8 +2,8 @@
 //! the grid element it lies in and the functions defining it, so the same
 //! vertex met in different tets and blocks gets the same key exactly.
 
+use super::state::State;
 use super::values::Ctx;
-use super::worker::State;
 use crate::complex::{Complex, Mode};
 use crate::grid::Grid;
 use crate::network::VKey;

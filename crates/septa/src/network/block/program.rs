@@ -20,9 +20,9 @@ use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
 use super::keys::{edge_and_functions, edge_vertex_id, key_of, position_on, vertex_id_by_key};
+use super::state::State;
 use super::types::{copy_label, BlockOut, Label, SRef};
 use super::values::Ctx;
-use super::worker::State;
 use crate::complex::{Complex, Mode};
 
 /// A complex vertex: tet element and local functions.

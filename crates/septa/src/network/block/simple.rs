@@ -21,9 +21,9 @@ use std::sync::OnceLock;
 use smallvec::SmallVec;
 
 use super::keys::{edge_and_functions, edge_vertex_id, position_on, vertex_id_with};
+use super::state::State;
 use super::types::Label;
 use super::values::Ctx;
-use super::worker::State;
 use crate::complex::{barycentric, Complex, Mode, Options, Plane};
 use crate::network::VKey;
 

@@ -1,7 +1,8 @@
 //! The per-tet worker of a block: active functions, the tet's complex
 //! (Du et al. Sec. 4-6), its polygons with global keys, region contacts,
-//! shell unions and wedges; fast paths (`simple`, `program`, `boxfast`)
-//! slot in before the general construction.
+//! shell unions and wedges; fast paths (`simple`, `program`) slot in before
+//! the general construction. The block's run (`run.rs`) and the box fast
+//! paths (`boxfast`, `voxels`) sit above and call `process_tet`.
 
 use std::sync::Arc;
 
@@ -10,12 +11,11 @@ use smallvec::SmallVec;
 
 use super::active::{active_functions_with, ia_base_label};
 use super::keys::{vertex_id_by_key, vertex_key};
-use super::types::{copy_label, BlockOut, FaceKey, HalfPoly, Label, OpenT, SRef};
+use super::state::{contact, face_key, Lengths, State, FACE_OF};
+use super::types::{copy_label, HalfPoly, Label, SRef};
 use super::values::Ctx;
 use crate::complex::{Complex, Mode, Plane, NONE};
-use crate::grid::{Block, Grid};
 use crate::network::{NetworkError, VKey};
-use crate::uf::UnionFind;
 
 /// Per-thread reusable state.
 #[derive(Default)]
@@ -25,7 +25,7 @@ pub(crate) struct Worker {
     active: Vec<u16>,
     vid: Vec<u32>,
     fref: Vec<Option<SRef>>,
-    tets: Vec<usize>,
+    pub(super) tets: Vec<usize>,
     pairs: Vec<(u32, u32)>,
     edge_net: Vec<u32>,
     /// IA: the active functions of the next tet as a bit mask, if known.
@@ -48,133 +48,17 @@ pub(crate) struct Worker {
     base_label: Label,
     /// The block's vertex maps (full and packed keys, `keys::packed`), kept
     /// between blocks so their tables are allocated once per thread.
-    vmap: FxHashMap<VKey, u32>,
-    emap: FxHashMap<u64, u32>,
+    pub(super) vmap: FxHashMap<VKey, u32>,
+    pub(super) emap: FxHashMap<u64, u32>,
     /// Tet programs by look-up table template (`None`: not programmable).
     programs: FxHashMap<u64, Option<Arc<super::program::Program>>>,
     /// The lengths of the previous block's output arrays (`Lengths`).
-    last: Lengths,
+    pub(super) last: Lengths,
     /// Label volumes: complexes by their corner values (`voxels::build_complex`).
     indicator_complexes: FxHashMap<Vec<u64>, Complex>,
 }
 
-/// The lengths of a block's growing output arrays. The next block of a
-/// worker (a neighbour, with about as much surface) reserves them and half
-/// again up front, so its arrays do not grow by doubling and copying (a
-/// tenth of the block stage's instructions went to reallocations on 18
-/// spheres); the spare room is given back when the block is finished, and
-/// the heap's free pages after the merge (`crate::heap`).
-#[derive(Clone, Copy, Default)]
-struct Lengths {
-    keys: usize,
-    poly_start: usize,
-    poly_verts: usize,
-    unions: usize,
-    wedges: usize,
-    nodes: usize,
-}
-
-impl Lengths {
-    fn of(st: &State) -> Lengths {
-        Lengths {
-            keys: st.out.keys.len(),
-            poly_start: st.out.poly_start.len(),
-            poly_verts: st.out.poly_verts.len(),
-            unions: st.out.unions.len(),
-            wedges: st.out.wedges.len(),
-            nodes: st.node_label.len(),
-        }
-    }
-
-    fn reserve(&self, st: &mut State) {
-        let o = &mut st.out;
-        let room = |n: usize| n + n / 2;
-        o.keys.reserve(room(self.keys));
-        o.shared.reserve(room(self.keys));
-        o.points.reserve(room(self.keys));
-        o.poly_start.reserve(room(self.poly_start));
-        o.poly_verts.reserve(room(self.poly_verts));
-        o.poly_label.reserve(room(self.poly_start));
-        o.poly_cells.reserve(room(self.poly_start));
-        o.unions.reserve(room(self.unions));
-        o.wedges.reserve(room(self.wedges));
-        st.uf.reserve(room(self.nodes));
-        st.node_label.reserve(room(self.nodes));
-        st.node_volume.reserve(room(self.nodes));
-    }
-}
-
-/// Block-local maps, dropped with the block.
-#[derive(Default)]
-pub(crate) struct State {
-    pub out: BlockOut,
-    pub(crate) vmap: FxHashMap<VKey, u32>,
-    /// Edge vertices by packed key (`keys::packed`).
-    pub(crate) emap: FxHashMap<u64, u32>,
-    contacts: FxHashMap<(FaceKey, Label), u32>,
-    tmap: FxHashMap<(FaceKey, Label, u32, u32), u32>,
-    pub uf: UnionFind,
-    pub node_label: Vec<Label>,
-    pub node_volume: Vec<f64>,
-    /// Whether regions are joined across tet faces (cell grouping).
-    pub grouping: bool,
-    /// The cube range of a box block (`None`: a range of mesh tets).
-    pub block_box: Option<([usize; 3], [usize; 3])>,
-}
-
-pub(crate) const FACE_OF: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
-
-/// The sorted grid vertices of face `i` (opposite corner `i`) of `tet`.
-pub(super) fn face_key(tet: &[u32; 4], i: usize) -> FaceKey {
-    let mut f = FACE_OF[i].map(|j| tet[j]);
-    f.sort_unstable();
-    f
-}
-
 impl Worker {
-    /// Processes one block.
-    pub fn run(&mut self, ctx: &Ctx, block: &Block) -> Result<BlockOut, NetworkError> {
-        let mut st = State {
-            grouping: ctx.grouping,
-            block_box: match block {
-                Block::Cubes { lo, hi } => Some((*lo, *hi)),
-                Block::Tets(_) => None,
-            },
-            vmap: std::mem::take(&mut self.vmap),
-            emap: std::mem::take(&mut self.emap),
-            ..State::default()
-        };
-        self.last.reserve(&mut st);
-        if let (Grid::Box(g), Block::Cubes { lo, hi }) = (ctx.grid, block) {
-            if super::boxfast::applies(ctx) {
-                super::boxfast::run_box(self, ctx, &mut st, g, *lo, *hi)?;
-                st.out.tets = (0..3).map(|a| hi[a] - lo[a]).product::<usize>() * g.split.tets_per_cube();
-                return Ok(self.finish(st));
-            }
-        }
-        let mut tets = std::mem::take(&mut self.tets);
-        ctx.grid.block_tets(block, &mut tets);
-        for &t in &tets {
-            self.process_tet(ctx, &mut st, t)?;
-        }
-        st.out.tets = tets.len();
-        self.tets = tets;
-        Ok(self.finish(st))
-    }
-
-    /// Hands the block's vertex map back for the next block and compresses
-    /// the block's output.
-    fn finish(&mut self, mut st: State) -> BlockOut {
-        self.last = Lengths::of(&st);
-        let mut vmap = std::mem::take(&mut st.vmap);
-        vmap.clear();
-        self.vmap = vmap;
-        let mut emap = std::mem::take(&mut st.emap);
-        emap.clear();
-        self.emap = emap;
-        finish(st)
-    }
-
     /// The per-tet step (active functions, complex, extraction); look-up
     /// tables slot in at the `build` call.
     pub(crate) fn process_tet(&mut self, ctx: &Ctx, st: &mut State, t: usize) -> Result<(), NetworkError> {
@@ -259,7 +143,7 @@ impl Worker {
             }
         }
         let mark = super::program::Mark::of(st);
-        super::voxels::build_complex(&mut self.complex, &mut self.indicator_complexes, ctx, &tet, &self.vals)
+        super::voxel_complex::build_complex(&mut self.complex, &mut self.indicator_complexes, ctx, &tet, &self.vals)
             .map_err(|source| NetworkError::Tet { tet: t, source })?;
         let owned = std::mem::take(&mut self.complex);
         let c = &owned;
@@ -525,24 +409,6 @@ fn vertex_id(w: &mut Worker, c: &Complex, ctx: &Ctx, st: &mut State, tet: &[u32;
     id
 }
 
-/// Records that region `node` touches tet face `face` with `label`
-/// (cell grouping joins the two regions at a face).
-pub(super) fn contact(st: &mut State, face: FaceKey, label: &Label, node: u32) {
-    use std::collections::hash_map::Entry;
-    if !st.grouping {
-        return;
-    }
-    match st.contacts.entry((face, copy_label(label))) {
-        Entry::Occupied(o) => {
-            let other = o.remove();
-            st.uf.union(other, node)
-        }
-        Entry::Vacant(v) => {
-            v.insert(node);
-        }
-    }
-}
-
 /// The function naming the network face that a piece of tet face
 /// `corners` lies on, seen from the piece's cell of material `material`
 /// (MI, a local index; IA ignores it), or `None` if the piece is off the
@@ -587,56 +453,4 @@ fn cell_volume(c: &Complex, cell: &crate::complex::Cell, corners: &[[f64; 3]; 4]
         }
     }
     vol
-}
-
-/// Compresses block regions to components and exports the open contacts.
-fn finish(mut st: State) -> BlockOut {
-    let (comp, count) = st.uf.components();
-    let mut out = st.out;
-    // Not `vec![SmallVec::new(); count]`: that clones the empty label
-    // `count` times through `SmallVec`'s `extend`.
-    out.comp_label = std::iter::repeat_with(SmallVec::new).take(count).collect();
-    out.comp_volume = vec![0.0; count];
-    for (n, label) in st.node_label.into_iter().enumerate() {
-        let c = comp[n] as usize;
-        out.comp_volume[c] += st.node_volume[n];
-        if out.comp_label[c].is_empty() {
-            out.comp_label[c] = label;
-        }
-    }
-    for cells in &mut out.poly_cells {
-        *cells = cells.map(|x| comp[x as usize]);
-    }
-    for h in &mut out.halves {
-        h.cell = comp[h.cell as usize];
-    }
-    let mut contacts: Vec<(FaceKey, Label, u32)> =
-        st.contacts.into_iter().map(|((f, l), n)| (f, l, comp[n as usize])).collect();
-    contacts.sort_unstable();
-    out.contacts = contacts;
-    let mut open: Vec<(OpenT, u32)> = st
-        .tmap
-        .into_iter()
-        .map(|((f, l, a, b), t)| {
-            let (ka, kb) = (out.keys[a as usize], out.keys[b as usize]);
-            ((f, l, ka.min(kb), ka.max(kb)), t)
-        })
-        .collect();
-    open.sort_unstable();
-    out.open_t = open;
-    if out.poly_start.is_empty() {
-        out.poly_start.push(0);
-    }
-    // The room reserved from the previous block (`Lengths`) that this one
-    // did not use: shrinking keeps the chunk in place (no copy).
-    out.keys.shrink_to_fit();
-    out.shared.shrink_to_fit();
-    out.points.shrink_to_fit();
-    out.poly_start.shrink_to_fit();
-    out.poly_verts.shrink_to_fit();
-    out.poly_label.shrink_to_fit();
-    out.poly_cells.shrink_to_fit();
-    out.unions.shrink_to_fit();
-    out.wedges.shrink_to_fit();
-    out
 }

@@ -10,11 +10,12 @@
 //! feeds them the same way, so the stream and its topology are the same
 //! wherever the blocks ran.
 
-use super::assembly::{Assembler, NetworkSummary};
-use super::halves::{pair, pair_in_block, OpenHalf};
+use super::assembly::Assembler;
+use super::halves::{pair, OpenHalf};
 use super::numbering::VertexNumbering;
+use super::prepare::{prepare, Prepared};
 use super::sink::{StreamBlock, StreamError, StreamSink, StreamStats};
-use super::summary::{summarize, BlockSummary};
+use super::summary_result::NetworkSummary;
 use crate::complex::{Mode, NONE};
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{FaceKey, Label, PointValues};
@@ -42,32 +43,6 @@ pub struct StreamFeeder<'a> {
     /// (x index) left of which none can come any more.
     halves: FxHashMap<HalfKey, StoredHalf>,
     half_slab: usize,
-}
-
-/// A block's output made ready for the in-order half: its halves paired
-/// inside the block (`halves.rs`) and, for topology, its summary. A pure
-/// function of the block, made in parallel.
-pub(crate) struct Prepared {
-    /// Halves left open at the block's boundary.
-    pub open: Vec<OpenHalf>,
-    pub summary: Option<BlockSummary>,
-}
-
-/// Prepares block result `r` of a job on `grid` with `options` (see [`Prepared`]).
-pub(crate) fn prepare(
-    grid: &BoxGrid,
-    options: &NetworkOptions,
-    r: &mut BlockResult,
-    topology: bool,
-) -> Result<Prepared, NetworkError> {
-    let b = block_at(grid, options.block, r.index).ok_or_else(|| {
-        let size = options.block.max(1);
-        NetworkError::NoSuchBlock { index: r.index, blocks: grid.res.iter().map(|&n| n.div_ceil(size)).product() }
-    })?;
-    let (lo, hi) = cubes(&b);
-    let open = pair_in_block(&mut r.out, options.mode, grid, lo, hi);
-    let summary = topology.then(|| summarize(grid, &r.out, &open));
-    Ok(Prepared { open, summary })
 }
 
 /// A half kept until the block across its tet face comes (`halves.rs`).

@@ -44,12 +44,14 @@ mod assembly;
 mod feeder;
 mod halves;
 mod numbering;
+mod prepare;
 mod rerun;
 mod run;
 mod sink;
 mod summary;
+mod summary_result;
 
-pub use assembly::NetworkSummary;
 pub use feeder::StreamFeeder;
 pub use run::{stream_sparse, stream_topology};
 pub use sink::{StreamBlock, StreamError, StreamSink, StreamStats};
+pub use summary_result::NetworkSummary;

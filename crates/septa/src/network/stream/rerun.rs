@@ -230,7 +230,7 @@ impl<'a> RerunIndex<'a> {
         let base = self.block_pieces[at].1;
         let mut r = run_block_with(&mut self.worker, self.g, self.grid, self.functions, self.options, index).ok()?;
         self.reruns += 1;
-        let prepared = super::feeder::prepare(self.grid, self.options, &mut r, true).ok()?;
+        let prepared = super::prepare::prepare(self.grid, self.options, &mut r, true).ok()?;
         let out = r.out;
         let s = prepared.summary?;
         let piece = s.poly_piece.iter().map(|&p| base + p).collect();

@@ -6,9 +6,10 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use super::assembly::NetworkSummary;
-use super::feeder::{prepare, Prepared, StreamFeeder};
+use super::feeder::StreamFeeder;
+use super::prepare::{prepare, Prepared};
 use super::sink::{StreamError, StreamSink, StreamStats};
+use super::summary_result::NetworkSummary;
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::Worker;
 use crate::network::field::{BoundedField, ByRef};

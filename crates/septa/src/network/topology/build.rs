@@ -172,7 +172,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
     // may only seem to touch at points: cells are grouped there.
     let contacts = if sheets == components { Vec::new() } else { contact_points(m, &face_sheet) };
     let rays = ray.filter(|_| sheets == components || !cracked).and_then(|ctx| {
-        let inp = super::raytrace::RayInput {
+        let inp = super::ray_index::RayInput {
             keys: &m.keys,
             face_start: &m.face_start,
             face_verts: &m.face_verts,
@@ -183,7 +183,7 @@ pub(crate) fn topology(m: &mut Merged, ray: Option<&Ctx>) -> Topology {
             num_comps: components,
         };
         let starts = inp.starts()?;
-        let mut index = super::raytrace::MergedIndex::new(&inp);
+        let mut index = super::ray_index::MergedIndex::new(&inp);
         let mut links = Vec::new();
         for &v in &contacts {
             links.extend(super::contact::contact_links(ctx, &mut index, &m.keys[v as usize])?);

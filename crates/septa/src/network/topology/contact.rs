@@ -25,7 +25,8 @@
 use rustc_hash::FxHashMap;
 use smallvec::SmallVec;
 
-use super::raytrace::{face_side, for_tets_at, shell_of_face, view_of, RayIndex, TetView};
+use super::ray_index::RayIndex;
+use super::raytrace::{face_side, for_tets_at, shell_of_face, view_of, TetView};
 use crate::complex::{Mode, Plane};
 use crate::grid::{BoxGrid, Grid};
 use crate::network::block::{vertex_key, Ctx};
