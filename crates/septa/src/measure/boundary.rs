@@ -24,7 +24,7 @@
 //! box edge) are left out of the traces; the footprints next to them are
 //! then off by the area they bound.
 
-use super::{area_vector, cross, dot, norm, oriented, sub, BoxDomain};
+use super::geometry::{area_vector, cross, dot, norm, oriented, sub, BoxDomain};
 use crate::complex::NONE;
 use crate::network::Network;
 
