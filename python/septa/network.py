@@ -8,10 +8,12 @@ from __future__ import annotations
 
 import json
 import os
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from . import _septa
 from ._septa import InputError
 
 __all__ = ["Network", "load"]
@@ -213,10 +215,16 @@ class Network:
         path = Path(path)
         name = path.name.lower()
         ext = ".plain.ply" if name.endswith(".plain.ply") else path.suffix.lower()
+        # never replace a link, FIFO or device at `path` (septa.InputError
+        # naming it, whatever the format); the temporary file is made new
+        # (O_EXCL), never opened through a planted link
+        _septa.check_output_file(str(path))
         if ext in _RUST_FORMATS:
             self._write_rust(path, _RUST_FORMATS[ext])
             return path
-        tmp = path.with_name(path.name + ".tmp")
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+        os.close(fd)
+        tmp = Path(tmp)
         try:
             if ext == ".json":
                 tmp.write_text(json.dumps(self.data, separators=(",", ":")))
@@ -228,6 +236,7 @@ class Network:
                 meshio.write(str(tmp), mesh, file_format="gmsh22", binary=True)
             else:
                 raise InputError(f"save: unknown extension {ext!r} (use {' '.join(sorted(_RUST_FORMATS))} .json .msh)")
+            _septa.check_output_file(str(path))
             os.replace(tmp, path)
         finally:
             if tmp.exists():
@@ -337,24 +346,14 @@ _RUST_FORMATS = {".npz": "npz", ".ply": "ply", ".plain.ply": "plain.ply", ".obj"
 
 
 def _from_npz(p: Path) -> Network:
-    """A :class:`Network` from ``network.npz`` (``numpy.load`` only: no JSON
-    parsing but the small ``meta``)."""
-    try:
-        z = np.load(p, allow_pickle=False)
-        a = {k: z[k] for k in z.files}
-    except (OSError, ValueError) as e:
-        raise InputError(f"{p}: not a readable .npz ({e})") from e
-    need = ("meta", "points", "offsets", "indices", "patch", "labels", "cells")
-    missing = [k for k in need if k not in a]
-    if missing:
-        raise InputError(f"{p}: not a septa result (no {', '.join(missing)})")
-    meta = json.loads(str(a["meta"]))
+    """A :class:`Network` from ``network.npz`` (numpy's ``.npy`` reader on
+    each member, inflated no further than its header declares; every array
+    checked, ``_load_check.py``)."""
+    from . import _load_check
+
+    a, meta = _load_check.check_npz(_load_check.read_npz(p), p)
     split = lambda name: np.split(a[f"{name}_indices"], a[f"{name}_offsets"][1:-1]) if len(a[f"{name}_offsets"]) > 1 else []
     offsets, indices = a["offsets"], a["indices"]
-    if len(offsets) == 0 or offsets[0] != 0 or offsets[-1] != len(indices) or np.any(np.diff(offsets) < 3):
-        raise InputError(f"{p}: offsets do not describe polygons of 3 or more vertices")
-    if len(indices) and (indices.min() < 0 or indices.max() >= len(a["points"])):
-        raise InputError(f"{p}: a face refers to a point that does not exist")
     mode = meta.get("mode", "ia")
     cell_shells = split("cell_shell")
     cells = [{"shells": s.tolist(), "label": [bool(x) for x in l] if mode == "ia" else l.tolist()}
@@ -385,24 +384,13 @@ def load(path) -> Network:
         if (p / ".septa.lock").exists() and not (p / "manifest.json").exists():
             raise InputError(f"{p}: incomplete result: a run was interrupted or is still writing (no manifest.json)")
         p = p / "network.npz" if (p / "network.npz").exists() else p / "network.json"
+    from . import _load_check
+
     if p.suffix.lower() == ".npz":
-        if not p.exists():
-            raise InputError(f"{p}: cannot read (no such file)")
         net = _from_npz(p)
         net.source = p
         return net
-    try:
-        text = p.read_bytes().decode("utf-8")
-    except OSError as e:
-        raise InputError(f"{p}: cannot read ({e.strerror})") from e
-    except UnicodeDecodeError as e:
-        raise InputError(f"{p}: not a septa network (not UTF-8 text at byte {e.start})") from e
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError as e:
-        raise InputError(f"{p}:{e.lineno}: invalid JSON: {e.msg}") from e
-    if not isinstance(data, dict) or "points" not in data or "faces" not in data:
-        raise InputError(f"{p}: not a septa network (needs \"points\" and \"faces\")")
+    data = _load_check.read_json(p)
     net = Network(data)
     net.source = p
     return net

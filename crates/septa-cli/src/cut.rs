@@ -235,7 +235,11 @@ pub fn run(a: Args) -> CliResult {
     } else if !wants(MeshFormat::Vtu) {
         Some(out.verify())
     } else {
-        let (points, cells) = septa::io::read_polyhedra(&dir.staged_path("cells.vtu"))?;
+        // errors name cells.vtu, the file the user will look at, not its staged name
+        let staged = dir.staged_path("cells.vtu");
+        let (points, cells) = septa::io::read_polyhedra(&staged).map_err(|e| {
+            e.replace(&staged.display().to_string(), &dir.path().join("cells.vtu").display().to_string())
+        })?;
         Some(septa::cut::verify_cells(&points, &cells))
     };
     let write_s = t2.elapsed().as_secs_f64();

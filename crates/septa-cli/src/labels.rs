@@ -25,7 +25,7 @@ pub struct Args {
     #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], value_parser = crate::args::positive)]
     spacing: Option<Vec<f64>>,
     /// World position of voxel (0, 0, 0) (replaces the file's own map).
-    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], value_parser = crate::args::finite, allow_negative_numbers = true)]
+    #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], value_parser = crate::args::finite, allow_hyphen_values = true)]
     origin: Option<Vec<f64>>,
 }
 
@@ -41,6 +41,14 @@ pub fn run(a: Args) -> CliResult {
     } else {
         vol.affine
     };
+    // before the work: a map that takes the volume outside the doubles
+    septa::io::check_placement(&affine, vol.shape).map_err(|e| {
+        if a.spacing.is_some() || a.origin.is_some() {
+            format!("--spacing/--origin: {e}")
+        } else {
+            format!("{file}: {e}")
+        }
+    })?;
     let quiet = a.out.json || a.out.quiet;
     // A counted bar over the network's blocks, then a spinner naming the
     // stage after them (the surfaces of the label pairs).

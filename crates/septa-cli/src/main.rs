@@ -9,6 +9,7 @@ mod bench_stream;
 mod cut;
 mod demo;
 mod labels;
+mod memcap;
 mod network;
 mod output;
 mod progress;
@@ -52,13 +53,28 @@ enum Command {
     View(view::Args),
 }
 
+/// The system allocator, stopping cleanly (exit 2, the limit named) when
+/// memory runs out or `SEPTA_MEMORY_LIMIT` is reached (memcap.rs).
+#[global_allocator]
+static ALLOC: memcap::Capped = memcap::Capped;
+
 fn main() {
+    memcap::apply();
     // `septa ... --json | head`: a closed pipe ends the process quietly, as
     // for any Unix filter, instead of a panic in println!.
     #[cfg(unix)]
     // SAFETY: restoring the default action of SIGPIPE before any thread starts.
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+    // A file size limit (`ulimit -f`) makes a write fail with "File too
+    // large" (EFBIG), reported with the file's name and cleaned up like any
+    // write error, instead of SIGXFSZ killing the run silently and leaving
+    // a staged file.
+    #[cfg(unix)]
+    // SAFETY: ignoring a signal before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
     }
     // Arrays of 1 MiB and more get pages of their own, given back when
     // freed. glibc's default threshold rises to the largest array freed so

@@ -43,7 +43,9 @@ pub struct Args {
     #[arg(long)]
     mesh: Option<PathBuf>,
     /// Box grid bounds: xmin ymin zmin xmax ymax zmax.
-    #[arg(long, num_args = 6, allow_negative_numbers = true, value_parser = crate::args::finite)]
+    // hyphen values: `-1e-300` is a number, not a flag (clap's negative
+    // number test does not read exponents)
+    #[arg(long, num_args = 6, allow_hyphen_values = true, value_parser = crate::args::finite)]
     bounds: Option<Vec<f64>>,
     /// Tets per cube of a box grid (5 or 6; default: the file's, else 5).
     #[arg(long, value_parser = clap::value_parser!(u8).range(5..=6))]
@@ -222,6 +224,8 @@ fn run_stream(
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("--stream: cannot create the folder {}: {e}", dir.display()))?;
     }
+    // before the run: neither output may replace a link, FIFO or device
+    septa::io::check_output_file(&topology_path(out))?;
     let mut sink = septa::io::StreamFile::create(out, &g, mode, funcs.len(), args.triangles)?;
     let (stats, topology) = if args.polygons_only {
         (pool.install(|| network::stream_sparse(g, funcs, opts, args.window, &mut sink))?, None)

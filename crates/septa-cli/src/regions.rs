@@ -55,7 +55,8 @@ pub fn run(a: Args) -> CliResult {
         if to.as_os_str() == "-" {
             print!("{text}");
         } else {
-            std::fs::write(to, text).map_err(|e| format!("{}: {e}", to.display()))?;
+            // atomically, and never through a link or into a special file
+            septa::io::write_atomic(to, text.as_bytes()).map_err(|e| format!("{}: {e}", to.display()))?;
             if a.out.talk() {
                 println!("wrote {} (edit it, then: septa regions {})", to.display(), to.display());
             }

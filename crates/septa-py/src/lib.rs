@@ -13,6 +13,7 @@ mod checks;
 mod continuation;
 mod cut;
 mod distributed;
+mod files;
 mod interrupt;
 mod network;
 mod regions;
@@ -103,6 +104,9 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("InputError", m.py().get_type::<InputError>())?;
     m.add_function(wrap_pyfunction!(checks::check_values, m)?)?;
+    m.add_function(wrap_pyfunction!(files::read_input, m)?)?;
+    m.add_function(wrap_pyfunction!(files::check_input_file, m)?)?;
+    m.add_function(wrap_pyfunction!(files::check_output_file, m)?)?;
     m.add_function(wrap_pyfunction!(checks::check_tets, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::viewer_assets, m)?)?;
     m.add_function(wrap_pyfunction!(viewer::viewer_write, m)?)?;

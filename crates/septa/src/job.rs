@@ -111,11 +111,13 @@ fn value_of(text: &str, path: &Path) -> Result<Value, JobError> {
         let v: toml::Value = toml::from_str(text).map_err(|e| input(&name, format!("not TOML: {e}")))?;
         return serde_json::to_value(v).map_err(|e| input(&name, e.to_string()));
     }
-    serde_json::from_str(text).map_err(|e| input(&name, format!("not JSON: {e}")))
+    // FILE:LINE:COLUMN, as every scene error is written
+    crate::scene::parse_json_strict(text)
+        .map_err(|e| input(&format!("{name}:{}:{}", e.line(), e.column()), format!("not JSON: {e}")))
 }
 
 fn read_text(path: &Path) -> Result<String, JobError> {
-    std::fs::read_to_string(path).map_err(|source| JobError::Io { path: path.display().to_string(), source })
+    crate::io::read_input_text(path).map_err(|source| JobError::Io { path: path.display().to_string(), source })
 }
 
 /// A box grid of `n^3` cubes over `bounds` (default `[-1, 1]^3`, 5 tets per cube).
@@ -155,8 +157,14 @@ impl Job {
             return Ok(Job::on_mesh(mesh, functions));
         }
         if v.is_object() && v.get("input").is_none() {
-            // A scene or a reference config on a box grid.
-            return Job::from_scene(Scene::load(input_path)?, over);
+            // A scene or a reference config on a box grid, from the text
+            // read once (a pipe, `/dev/stdin`, cannot be read twice).
+            let scene = if path.extension().and_then(|e| e.to_str()) == Some("toml") {
+                Scene::from_toml(&text, input_path, base)?
+            } else {
+                Scene::from_json(&text, input_path, base)?
+            };
+            return Job::from_scene(scene, over);
         }
         // A function list.
         let functions = load_function_list(&text, input_path, base)?;
@@ -234,7 +242,7 @@ impl Job {
     /// edge it asks for.
     pub fn from_job_json(text: &str) -> Result<(Job, Option<usize>), JobError> {
         let file = "<job>";
-        let v: Value = serde_json::from_str(text).map_err(|e| input(file, format!("not JSON: {e}")))?;
+        let v: Value = crate::scene::parse_json_strict(text).map_err(|e| input(file, format!("not JSON: {e}")))?;
         let base = v.get("base_dir").and_then(Value::as_str).map(PathBuf::from);
         let mut job = match (v.get("scene"), v.get("functions")) {
             (Some(s), None) => {

@@ -118,6 +118,10 @@ pub enum CutError {
         /// Plane index.
         plane: usize,
     },
+    /// The input's magnitudes (or the memory it needs) are beyond what the
+    /// cut handles; the message gives the range (`scale.rs`).
+    #[error("{0}")]
+    OutOfRange(String),
     /// The result failed a consistency check (a bug, reported not hidden).
     #[error("internal consistency check failed: {0}")]
     Inconsistent(String),

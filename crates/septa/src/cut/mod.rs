@@ -73,6 +73,7 @@ mod plane_separation;
 mod radix;
 mod rational;
 mod repair;
+mod scale;
 mod selfx;
 mod shells;
 mod side_filter;
@@ -259,13 +260,18 @@ pub fn cut_mesh(
     planes: &[[f64; 4]],
     opts: &CutOptions,
 ) -> Result<CutCellMesh, CutError> {
-    if opts.threads == 0 {
-        return cut_impl(vertices, triangles, planes, opts);
-    }
-    match rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build() {
-        Ok(pool) => pool.install(|| cut_impl(vertices, triangles, planes, opts)),
-        Err(_) => cut_impl(vertices, triangles, planes, opts),
-    }
+    // up front: the memory the plane tables need, and a scale the doubles
+    // can cut at (scale.rs)
+    scale::check_memory(planes.len(), vertices.len(), triangles.len())?;
+    let s = scale::Scaled::new(vertices, planes)?;
+    let run = || cut_impl(&s.vertices, triangles, &s.planes, opts);
+    let pool = (opts.threads != 0).then(|| rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build());
+    let mut out = match pool {
+        Some(Ok(pool)) => pool.install(run),
+        _ => run(),
+    }?;
+    s.restore(&mut out, planes);
+    Ok(out)
 }
 
 /// The filters' copies of the triangle normals and of the plane-pair line

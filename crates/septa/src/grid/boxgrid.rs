@@ -60,6 +60,20 @@ pub enum GridError {
         /// The resolution asked for.
         res: [usize; 3],
     },
+    /// The grid lines of an axis are not distinct finite doubles.
+    #[error("grid bounds along axis {axis}, {lo:e} .. {hi:e} with {n} cubes: {reason}; give bounds whose width is finite and spacing representable")]
+    Spacing {
+        /// 0, 1 or 2.
+        axis: usize,
+        /// The given min.
+        lo: f64,
+        /// The given max.
+        hi: f64,
+        /// Cubes along the axis.
+        n: usize,
+        /// What goes wrong.
+        reason: String,
+    },
     /// A cube split other than 5 or 6.
     #[error("a cube splits into 5 or 6 tets, not {0}")]
     Split(u8),
@@ -143,6 +157,11 @@ impl BoxGrid {
             .filter(|&x| x < u32::MAX as usize);
         if n.is_none() {
             return Err(GridError::TooManyVertices { res });
+        }
+        for a in 0..3 {
+            let (lo, hi, n) = (bounds[0][a], bounds[1][a], res[a]);
+            super::spacing::check_axis(lo, hi, n, |i| grid_coordinate(lo, hi, i, n))
+                .map_err(|reason| GridError::Spacing { axis: a, lo, hi, n, reason })?;
         }
         Ok(BoxGrid { res, bounds, split })
     }

@@ -51,7 +51,9 @@ pub fn budget() -> (u64, &'static str) {
     (u64::MAX / 4, "is addressable")
 }
 
-fn parse_size(s: &str) -> Option<u64> {
+/// A size in bytes, or with a `K`/`M`/`G` suffix (powers of 1024), as
+/// `SEPTA_MEMORY_LIMIT` and `SEPTA_MAX_INPUT` are written.
+pub fn parse_size(s: &str) -> Option<u64> {
     let s = s.trim();
     let (num, mul) = match s.chars().last()? {
         'K' | 'k' => (&s[..s.len() - 1], 1u64 << 10),

@@ -62,6 +62,17 @@ pub enum MeshError {
         /// Number of tets.
         tets: usize,
     },
+    /// Two vertices used by tets have one position: the tets on either side
+    /// would not share their faces (a seam that splits cells).
+    #[error("vertices {first} and {second} are at the same position {point:?}: a tet mesh needs one id per point (merge them)")]
+    Coincident {
+        /// The smaller vertex id.
+        first: u32,
+        /// The other vertex id.
+        second: u32,
+        /// The position.
+        point: [f64; 3],
+    },
     /// More vertices than 32-bit ids allow.
     #[error("{count} vertices: at most 2^32 - 1 are supported")]
     TooLarge {
@@ -122,6 +133,7 @@ impl TetMesh {
             }
             out.push(ids);
         }
+        check_coincident(&vertices, &out)?;
         check_manifold(&out)?;
         if let Some((first, second)) = find_overlap(&vertices, &out) {
             return Err(MeshError::Overlap { first, second });
@@ -138,6 +150,23 @@ impl TetMesh {
     pub fn first_overlap(&self) -> Option<(usize, usize)> {
         find_overlap(&self.vertices, &self.tets)
     }
+}
+
+/// No two vertices used by tets at one position (`-0.0` and `0.0` are one).
+fn check_coincident(vertices: &[[f64; 3]], tets: &[[u32; 4]]) -> Result<(), MeshError> {
+    let mut used = vec![false; vertices.len()];
+    for &v in tets.iter().flatten() {
+        used[v as usize] = true;
+    }
+    let mut at: HashMap<[u64; 3], u32> = HashMap::new();
+    for (v, p) in vertices.iter().enumerate().filter(|&(v, _)| used[v]) {
+        let key = p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+        if let Some(&first) = at.get(&key) {
+            return Err(MeshError::Coincident { first, second: v as u32, point: *p });
+        }
+        at.insert(key, v as u32);
+    }
+    Ok(())
 }
 
 /// Each face at most twice, and with opposite orientations when twice

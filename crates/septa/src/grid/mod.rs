@@ -11,6 +11,7 @@ mod lookup;
 pub mod memory;
 mod mesh;
 mod overlap;
+mod spacing;
 
 pub use boxgrid::{grid_coordinate, BoxGrid, GridError, Split};
 pub(crate) use lookup::VertexLookup;

@@ -62,12 +62,20 @@ fn extra_tet_over_a_cube_is_refused() {
     let mut extra = t.clone();
     extra.push([0, 1, 2, 4]);
     assert_eq!(TetMesh::new(v.clone(), &extra), Err(MeshError::Overlap { first: 0, second: 5 }));
-    // A translated copy of the cube beside it (touching on x = 1): accepted.
+    // A translated copy of the cube beside it, touching on x = 1 with
+    // vertex ids of its own: a seam (the faces on x = 1 are not shared),
+    // refused naming the first pair of coincident vertices.
     let mut v2 = v.clone();
     v2.extend(v.iter().map(|p| [p[0] + 1.0, p[1], p[2]]));
     let mut t2 = t.clone();
     t2.extend(t.iter().map(|x| x.map(|i| i + 8)));
-    assert!(TetMesh::new(v2.clone(), &t2).is_ok());
+    assert!(matches!(TetMesh::new(v2.clone(), &t2), Err(MeshError::Coincident { first: 1, second: 8, .. })));
+    // The copy 2^-40 away (a gap, no shared point): accepted.
+    let mut gap = v2.clone();
+    for p in &mut gap[8..] {
+        p[0] += (2.0f64).powi(-40);
+    }
+    assert!(TetMesh::new(gap, &t2).is_ok());
     // The same copy moved back by 2^-40 overlaps, with no shared vertex.
     let mut v3 = v2.clone();
     for p in &mut v3[8..] {

@@ -15,6 +15,8 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU8, Ordering};
 
+use super::safe_write::{check_output_file, create_temp};
+
 /// 0: not decided yet (read `SEPTA_FSYNC` on first use), 1: off, 2: on.
 static DURABLE: AtomicU8 = AtomicU8::new(0);
 
@@ -49,10 +51,24 @@ pub(crate) fn sync_if_durable(file: &File) -> std::io::Result<()> {
 
 /// Writes `path` atomically: `write` fills a temporary sibling file, which
 /// is then renamed over `path`. On error the temporary file is removed.
+/// `path` must be a regular file or absent: a link, FIFO, device or folder
+/// there is refused ([`check_output_file`](super::safe_write::check_output_file)),
+/// and the temporary file is never opened through a link.
 pub fn write_atomic_with(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
+    write_atomic_shown(path, path, write)
+}
+
+/// [`write_atomic_with`] whose errors name `shown` (the file's final name
+/// when `path` is a staged name, [`super::outdir`]).
+pub(crate) fn write_atomic_shown(
+    path: &Path,
+    shown: &Path,
+    write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    check_output_file(path)?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
     let tmp: PathBuf = dir.join(format!(".{name}.tmp{}", std::process::id()));
@@ -71,15 +87,17 @@ pub fn write_atomic_with(
     }
     let mut cleanup = Cleanup(&tmp, false);
     let result = (|| {
-        let mut w = BufWriter::with_capacity(1 << 20, File::create(&tmp)?);
+        let mut w = BufWriter::with_capacity(1 << 20, create_temp(&tmp)?);
         write(&mut w)?;
         sync_if_durable(&w.into_inner().map_err(|e| e.into_error())?)?;
+        check_output_file(path)?;
         std::fs::rename(&tmp, path)
     })();
     cleanup.1 = result.is_ok();
     // The error names the file it could not write (a full disk or a size
-    // limit says nothing about which output failed).
-    result.map_err(|e| std::io::Error::new(e.kind(), format!("writing {}: {e}", path.display())))
+    // limit says nothing about which output failed) and keeps the system's
+    // words ("No space left on device").
+    result.map_err(|e| std::io::Error::new(e.kind(), format!("writing {}: {e}", shown.display())))
 }
 
 /// Temporary files being written now (by any thread), for [`remove_pending_temps`].

@@ -141,6 +141,11 @@ pub fn polyhedra_vtu(
     String::from_utf8(s).expect("a .vtu text is ASCII")
 }
 
+/// `v` as an index below `n`: a whole, non-negative number less than `n`.
+fn whole(v: f64, n: usize) -> Option<usize> {
+    (v >= 0.0 && v.fract() == 0.0 && v < n as f64).then_some(v as usize)
+}
+
 /// Points and cells (outward polygons) of a polyhedral `.vtu`.
 pub type Polyhedra = (Vec<[f64; 3]>, Vec<Vec<Vec<u32>>>);
 
@@ -149,7 +154,7 @@ pub type Polyhedra = (Vec<[f64; 3]>, Vec<Vec<Vec<u32>>>);
 /// the file and what is missing or wrong.
 pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
     let err = |m: String| format!("{}: {m}", path.display());
-    let text = std::fs::read_to_string(path).map_err(|e| err(format!("cannot read: {e}")))?;
+    let text = super::input::read_input_text(path).map_err(|e| err(format!("cannot read: {e}")))?;
     let compressed = text.contains("compressor=");
     let header64 = !text.contains("header_type=\"UInt32\"");
     // (opening tag, content) of every DataArray, in file order
@@ -233,11 +238,12 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
     };
     let types = named("types")?;
     let np = points.len();
+    // an index is a whole number in range: `nan` or `0.7` is not point 0
     let check_point = |c: usize, v: f64| -> Result<u32, String> {
-        if v < 0.0 || v as usize >= np {
-            return Err(err(format!("cell {c} refers to point {v} of {np}")));
+        match whole(v, np) {
+            Some(i) => Ok(i as u32),
+            None => Err(err(format!("cell {c} refers to point {v}, not one of the {np} points (0..{np})"))),
         }
-        Ok(v as u32)
     };
     for (c, &t) in types.iter().enumerate() {
         if t != 42.0 {
@@ -253,19 +259,17 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
         let mut start = 0usize;
         for (c, &end) in po.iter().enumerate() {
             let mut polys = Vec::new();
-            for &f in pf.get(start..end as usize).ok_or_else(|| err(format!("cell {c}: bad polyhedron_offsets")))? {
-                let f = f as usize;
-                let a = if f == 0 {
-                    0
-                } else {
-                    *fo.get(f - 1).ok_or_else(|| err(format!("cell {c}: face {f} missing")))? as usize
-                };
-                let b = *fo.get(f).ok_or_else(|| err(format!("cell {c}: face {f} missing")))? as usize;
+            let end = whole(end, pf.len() + 1).ok_or_else(|| err(format!("cell {c}: polyhedron_offsets {end}")))?;
+            for &f in pf.get(start..end).ok_or_else(|| err(format!("cell {c}: bad polyhedron_offsets")))? {
+                let f = whole(f, fo.len()).ok_or_else(|| err(format!("cell {c}: face {f} missing")))?;
+                let offset = |v: f64| whole(v, fc.len() + 1).ok_or_else(|| err(format!("cell {c}: face_offsets {v}")));
+                let a = if f == 0 { 0 } else { offset(fo[f - 1])? };
+                let b = offset(fo[f])?;
                 let ids = fc.get(a..b).ok_or_else(|| err(format!("cell {c}: face {f} out of range")))?;
                 polys.push(ids.iter().map(|&v| check_point(c, v)).collect::<Result<Vec<u32>, String>>()?);
             }
             cells.push(polys);
-            start = end as usize;
+            start = end;
         }
         if cells.len() != types.len() {
             return Err(err(format!("{} polyhedra for {} cells", cells.len(), types.len())));
@@ -279,11 +283,17 @@ pub fn read_polyhedra(path: &Path) -> Result<Polyhedra, String> {
         i += 1;
         Ok(v)
     };
+    // counts are checked against what the stream has left before anything
+    // is reserved (a face count of 1e19 was a capacity overflow)
+    let left = faces.len();
     for c in 0..types.len() {
-        let nf = next("a cell")? as usize;
+        let nf = next("a cell")?;
+        let nf = whole(nf, left + 1).ok_or_else(|| err(format!("cell {c}: face count {nf} is not possible here")))?;
         let mut polys = Vec::with_capacity(nf);
         for _ in 0..nf {
-            let nv = next("a face")? as usize;
+            let nv = next("a face")?;
+            let nv =
+                whole(nv, left + 1).ok_or_else(|| err(format!("cell {c}: face size {nv} is not possible here")))?;
             let mut p = Vec::with_capacity(nv);
             for _ in 0..nv {
                 p.push(check_point(c, next("a face")?)?);

@@ -27,7 +27,7 @@ pub enum RefError {
 
 fn read_json(path: &Path) -> Result<serde_json::Value, RefError> {
     let p = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| RefError::Io { path: p.clone(), source })?;
+    let text = super::input::read_input_text(path).map_err(|source| RefError::Io { path: p.clone(), source })?;
     serde_json::from_str(&text).map_err(|e| RefError::Format { path: p, message: format!("not JSON: {e}") })
 }
 

@@ -33,7 +33,7 @@ impl ReadError {
 /// (`.obj`, `.off`, `.ply`, `.stl`).
 pub fn read_mesh(path: &Path) -> Result<IndexedMesh, ReadError> {
     let ext = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
-    let bytes = std::fs::read(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
+    let bytes = super::input::read_input(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
     let mesh = match ext.as_str() {
         "obj" => super::mesh_obj::parse_obj(path, &bytes),
         "off" => super::mesh_off::parse_off(path, &bytes),

@@ -47,7 +47,7 @@ struct Prop {
 
 struct Elem {
     name: String,
-    count: usize,
+    count: u64,
     props: Vec<Prop>,
 }
 
@@ -155,9 +155,35 @@ pub fn parse_ply(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
         "binary_big_endian" => Src::Bin { data: &bytes[body..], pos: 0, big: true },
         f => return Err(ReadError::new(path, 2, format!("unknown PLY format '{f}'"))),
     };
+    // Counts come from the header: each is checked against the bytes left
+    // before any work (an element of no properties reads nothing, so a
+    // count of 1.8e19 would loop forever; 1e11 vertices would fill the
+    // memory with a file of a hundred bytes).
+    let mut left = bytes.len() - body;
+    for e in &elems {
+        if e.name == "vertex" {
+            for axis in ["x", "y", "z"] {
+                if !e.props.iter().any(|p| p.name == axis && p.list.is_none()) {
+                    return Err(ReadError::new(path, 0, format!("element vertex has no `{axis}` property")));
+                }
+            }
+        }
+        if e.props.is_empty() {
+            continue;
+        }
+        // at least one byte per value as text, the fixed sizes (a list's
+        // count) in binary
+        let per: usize = match &src {
+            Src::Ascii(_) => e.props.len(),
+            Src::Bin { .. } => e.props.iter().map(|p| size(p.list.unwrap_or(p.ty))).sum(),
+        };
+        let n = super::input::check_count(e.count, per as u64, left, &format!("element {}", e.name))
+            .map_err(|m| ReadError::new(path, 0, m))?;
+        left -= n * per;
+    }
     let mut mesh = IndexedMesh::default();
     let mut poly = Vec::new();
-    for e in &elems {
+    for e in elems.iter().filter(|e| !e.props.is_empty()) {
         for r in 0..e.count {
             let mut p = [0.0; 3];
             for pr in &e.props {

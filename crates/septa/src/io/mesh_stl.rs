@@ -41,7 +41,23 @@ pub fn parse_stl(path: &Path, bytes: &[u8]) -> Result<IndexedMesh, ReadError> {
             return Ok(mesh);
         }
     }
-    let text = std::str::from_utf8(bytes).map_err(|_| ReadError::new(path, 0, "neither binary STL nor ASCII text"))?;
+    let text = std::str::from_utf8(bytes).map_err(|_| {
+        if bytes.len() >= 84 {
+            // binary, but its triangle count does not match its length
+            let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
+            ReadError::new(
+                path,
+                0,
+                format!(
+                    "binary STL whose header says {n} triangles ({} bytes) but the file has {} bytes (truncated or a wrong count)",
+                    84 + 50 * n,
+                    bytes.len()
+                ),
+            )
+        } else {
+            ReadError::new(path, 0, format!("neither binary STL (at least 84 bytes) nor ASCII text ({} bytes)", bytes.len()))
+        }
+    })?;
     let mut corner = Vec::with_capacity(3);
     for (i, raw) in text.lines().enumerate() {
         let line = i + 1;

@@ -10,6 +10,7 @@ mod cut_foam;
 mod cut_out;
 mod cut_vtu;
 mod functions;
+mod input;
 mod mesh;
 mod mesh_obj;
 mod mesh_off;
@@ -28,6 +29,7 @@ mod result;
 mod result_mesh;
 mod result_npz;
 mod result_vtk;
+mod safe_write;
 mod summary_out;
 mod viewer;
 mod volume;
@@ -38,6 +40,7 @@ pub use cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
 pub use cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_cells_vtu_of};
 pub use cut_vtu::{read_polyhedra, Polyhedra};
 pub use functions::{read_tet_mesh_json, MeshData, RefError};
+pub use input::{check_count, input_limit, open_regular, read_input, read_input_text};
 pub use mesh::{read_mesh, IndexedMesh, ReadError};
 pub use mesh_obj::parse_obj;
 pub use mesh_off::parse_off;
@@ -55,10 +58,11 @@ pub use planes::{grid_planes, parse_planes, random_planes, read_planes};
 pub use ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
 pub use result::{write_file, Annotations, Format, ResultView};
+pub use safe_write::check_output_file;
 pub use summary_out::write_summary_json;
 pub use viewer::{
     folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,
     VIEWER_INDEX_HTML, VIEWER_JS,
 };
-pub use volume::{diagonal_affine, place_surfaces, read_label_volume, LabelVolume};
+pub use volume::{check_placement, diagonal_affine, place_surfaces, read_label_volume, LabelVolume};
 pub use vtu_stream::{StreamFile, VtuStreamSink};

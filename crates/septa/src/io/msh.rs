@@ -60,10 +60,19 @@ impl<'a> Lines<'a> {
     }
 }
 
+/// Records node `tag` as vertex `id`; a tag given twice is an error naming
+/// both lines' tag (before: the later node silently won).
+fn new_node(ls: &Lines, tag_to_id: &mut HashMap<i64, i64>, tag: i64, id: usize) -> Result<(), MshError> {
+    match tag_to_id.insert(tag, id as i64) {
+        Some(first) => Err(ls.err(format!("node tag {tag} is given twice (as vertex {first} and again here)"))),
+        None => Ok(()),
+    }
+}
+
 /// Reads the vertices and tets of a Gmsh `.msh` (2.2 or 4.1, ASCII).
 pub fn read_msh(path: &Path) -> Result<MeshData, MshError> {
     let p = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|source| MshError::Io { path: p.clone(), source })?;
+    let text = super::input::read_input_text(path).map_err(|source| MshError::Io { path: p.clone(), source })?;
     parse_msh(&text, &p)
 }
 
@@ -96,7 +105,10 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                     if v.len() < 4 {
                         return Err(ls.err("node line needs: tag x y z"));
                     }
-                    tag_to_id.insert(v[0] as i64, vertices.len() as i64);
+                    if v[0].fract() != 0.0 || !(1.0..9.0e15).contains(&v[0]) {
+                        return Err(ls.err(format!("node tag {} is not a positive whole number", v[0])));
+                    }
+                    new_node(&ls, &mut tag_to_id, v[0] as i64, vertices.len())?;
                     vertices.push([v[1], v[2], v[3]]);
                 }
             }
@@ -122,7 +134,7 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                         if v.len() < 3 {
                             return Err(ls.err("node coordinates need x y z"));
                         }
-                        tag_to_id.insert(tag, vertices.len() as i64);
+                        new_node(&ls, &mut tag_to_id, tag, vertices.len())?;
                         vertices.push([v[0], v[1], v[2]]);
                     }
                 }
@@ -135,8 +147,10 @@ pub fn parse_msh(text: &str, path: &str) -> Result<MeshData, MshError> {
                         return Err(ls.err("element line too short"));
                     }
                     if e[1] == 4 {
-                        let start = 3 + e[2] as usize;
-                        let nodes = e.get(start..start + 4).ok_or_else(|| ls.err("tet needs 4 nodes"))?;
+                        let nodes = usize::try_from(e[2])
+                            .ok()
+                            .and_then(|tags| e.get(3 + tags.min(e.len())..).and_then(|n| n.get(..4)))
+                            .ok_or_else(|| ls.err("tet needs 4 nodes"))?;
                         pending_tets.push(([nodes[0], nodes[1], nodes[2], nodes[3]], ls.line));
                     }
                 }

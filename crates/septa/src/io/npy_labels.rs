@@ -9,7 +9,6 @@
 //! shorter than the shape, unsigned values above `i64::MAX`, booleans not 0
 //! or 1) is left to the general reader, so its errors stay as they were.
 
-use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::Path;
 
@@ -85,7 +84,7 @@ fn each<const N: usize>(bytes: &[u8], out: &mut Vec<i64>, label: impl Fn([u8; N]
 /// (see the module doc). I/O errors also give `None`: the general reader
 /// reports them with its own words.
 pub(super) fn read(path: &Path) -> Option<([usize; 3], Vec<i64>, bool)> {
-    let file = File::open(path).ok()?;
+    let file = super::input::open_regular(path).ok()?;
     let available = file.metadata().ok()?.len();
     let mut r = BufReader::with_capacity(1 << 16, file);
     let header = NpyHeader::from_reader(&mut r).ok()?;

@@ -67,23 +67,71 @@ impl NpyArray {
 
 /// Reads every array of an `.npz` file.
 pub fn read_npz(path: &Path) -> Result<BTreeMap<String, NpyArray>, NpzError> {
+    read_npz_arrays(path, None)
+}
+
+/// Reads the arrays `wanted` (every array for `None`) of an `.npz` file.
+/// Each member is inflated only as far as its `.npy` header declares
+/// ([`read_member`]); members not wanted are not inflated at all (a 2 MB
+/// archive could otherwise inflate to gigabytes for a 5-vertex input).
+pub fn read_npz_arrays(path: &Path, wanted: Option<&[&str]>) -> Result<BTreeMap<String, NpyArray>, NpzError> {
     let p = path.display().to_string();
-    let file = std::fs::File::open(path).map_err(|source| NpzError::Io { path: p.clone(), source })?;
+    let file = super::input::open_regular(path).map_err(|source| NpzError::Io { path: p.clone(), source })?;
     let zerr = |e: zip::result::ZipError| NpzError::Zip { path: p.clone(), message: e.to_string() };
     let mut zip = zip::ZipArchive::new(std::io::BufReader::new(file)).map_err(zerr)?;
     let mut out = BTreeMap::new();
     for i in 0..zip.len() {
-        let mut member = zip.by_index(i).map_err(zerr)?;
+        let member = zip.by_index(i).map_err(zerr)?;
         let name = member.name().trim_end_matches(".npy").to_string();
-        let mut bytes = Vec::with_capacity(member.size() as usize);
-        member
-            .read_to_end(&mut bytes)
-            .map_err(|e| NpzError::Zip { path: p.clone(), message: format!("member {name}: {e}") })?;
+        if wanted.is_some_and(|w| !w.contains(&name.as_str())) {
+            continue;
+        }
+        let bytes =
+            read_member(member).map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
         let arr =
             parse_npy(&bytes).map_err(|message| NpzError::Array { path: p.clone(), array: name.clone(), message })?;
         out.insert(name, arr);
     }
     Ok(out)
+}
+
+/// The bytes of one `.npy` member, inflated no further than its header
+/// declares: the header is read from the first 64 KiB, then exactly the
+/// data its shape and dtype need (less when the member is shorter, which
+/// [`parse_npy`] then reports). The zip's own size field is not trusted.
+fn read_member(mut r: impl Read) -> Result<Vec<u8>, String> {
+    let io = |e: std::io::Error| format!("cannot inflate: {e}");
+    let mut buf = Vec::new();
+    (&mut r).take(1 << 16).read_to_end(&mut buf).map_err(io)?;
+    let mut rest: &[u8] = &buf;
+    let header = npyz::NpyHeader::from_reader(&mut rest).map_err(|e| format!("not a readable .npy array: {e}"))?;
+    let header_len = buf.len() - rest.len();
+    let npyz::DType::Plain(ts) = header.dtype() else {
+        return Err(format!("structured dtype {} is not supported (expected numbers)", header.dtype().descr()));
+    };
+    // bytes per item: `<U5` holds 5 characters of 4 bytes; an object
+    // (pickled) array has no fixed size and is refused by `parse_npy`
+    let item = ts.num_bytes().ok_or_else(|| format!("dtype {} has no fixed item size", header.dtype().descr()))?;
+    let count = header.shape().iter().try_fold(1u64, |a, &d| a.checked_mul(d));
+    let data = count.and_then(|c| c.checked_mul(item as u64));
+    let limit = super::input::input_limit();
+    let need = match data.and_then(|d| d.checked_add(header_len as u64)) {
+        Some(n) if n <= limit => n,
+        _ => {
+            return Err(format!(
+            "shape {:?} of {} declares more data than the input limit of {} (the memory budget, or SEPTA_MAX_INPUT)",
+            header.shape(),
+            header.dtype().descr(),
+            crate::grid::memory::human(limit)
+        ))
+        }
+    };
+    if (buf.len() as u64) < need {
+        let more = need - buf.len() as u64;
+        r.take(more).read_to_end(&mut buf).map_err(io)?;
+    }
+    buf.truncate(need as usize);
+    Ok(buf)
 }
 
 /// Parses one `.npy` with the maintained `npyz` reader: format versions
@@ -218,7 +266,7 @@ pub struct GridInput {
 
 /// Reads `vertices`, `tets`, `values` (and `grid_res`, `bbox` if present).
 pub fn read_grid_input(path: &Path) -> Result<GridInput, NpzError> {
-    let mut arrays = read_npz(path)?;
+    let mut arrays = read_npz_arrays(path, Some(&["vertices", "tets", "values", "grid_res", "bbox"]))?;
     let p = path.display().to_string();
     let mut take = |name: &str| arrays.remove(name).ok_or(NpzError::Missing { path: p.clone(), array: name.into() });
     let bad = |array: &str, message: String| NpzError::Array { path: p.clone(), array: array.into(), message };

@@ -21,7 +21,8 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use super::atomic::write_atomic_with;
+use super::atomic::{write_atomic_shown, write_atomic_with};
+use super::safe_write::{inside, real_dir};
 
 /// Name of the lock file.
 pub const LOCK: &str = ".septa.lock";
@@ -95,12 +96,12 @@ impl OutputDir {
         }
         std::fs::create_dir_all(dir).map_err(|e| ctx(dir, "cannot create the output folder", e))?;
         let lock_path = dir.join(LOCK);
-        let lock = std::fs::OpenOptions::new()
-            .create(true)
-            .truncate(false)
-            .write(true)
-            .open(&lock_path)
-            .map_err(|e| ctx(dir, "cannot write into the output folder", e))?;
+        let mut lock = std::fs::OpenOptions::new();
+        lock.create(true).truncate(false).write(true);
+        // a link planted at the lock's name is not followed (ELOOP)
+        #[cfg(unix)]
+        std::os::unix::fs::OpenOptionsExt::custom_flags(&mut lock, libc::O_NOFOLLOW | libc::O_CLOEXEC);
+        let lock = lock.open(&lock_path).map_err(|e| ctx(dir, "cannot write into the output folder", e))?;
         match lock.try_lock() {
             Ok(()) => {}
             Err(std::fs::TryLockError::WouldBlock) => {
@@ -121,8 +122,12 @@ impl OutputDir {
 
     /// Removes stale temporaries and staged files of killed runs.
     fn clean(&self) -> std::io::Result<()> {
-        for sub in [self.dir.clone(), self.dir.join("viewer"), self.dir.join("network")] {
-            let Ok(entries) = std::fs::read_dir(&sub) else { continue };
+        for sub in ["", "viewer", "network"] {
+            // never through a link: a linked `network/` is not this folder's
+            if !sub.is_empty() && !std::fs::symlink_metadata(self.dir.join(sub)).is_ok_and(|m| m.is_dir()) {
+                continue;
+            }
+            let Ok(entries) = std::fs::read_dir(self.dir.join(sub)) else { continue };
             for e in entries.flatten() {
                 if is_temp(&e.file_name().to_string_lossy()) {
                     let _ = std::fs::remove_file(e.path());
@@ -135,7 +140,7 @@ impl OutputDir {
     /// The old set's files: the previous manifest's and the known result names.
     fn old_set(&self) -> Vec<String> {
         let mut old: Vec<String> = RESULT_FILES.iter().map(|s| s.to_string()).collect();
-        if let Ok(text) = std::fs::read_to_string(self.dir.join(MANIFEST)) {
+        if let Ok(text) = super::input::read_input_text(&self.dir.join(MANIFEST)) {
             if let Ok(v) = serde_json::from_str::<serde_json::Value>(&text) {
                 for f in v["files"].as_array().into_iter().flatten() {
                     if let Some(name) = f["name"].as_str().filter(|n| safe_name(n)) {
@@ -160,8 +165,10 @@ impl OutputDir {
         write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
     ) -> std::io::Result<()> {
         let path = self.dir.join(staged(name));
-        self.make_parent(&path)?;
-        write_atomic_with(&path, write)?;
+        self.make_parent(name)?;
+        // the final name too: never a link or special file replaced
+        super::safe_write::check_output_file(&self.dir.join(name))?;
+        write_atomic_shown(&path, &self.dir.join(name), write)?;
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
         Ok(())
@@ -171,23 +178,29 @@ impl OutputDir {
     /// `io` writer does) for `name` and adds the file to the set.
     pub fn write_path(&mut self, name: &str, write: impl FnOnce(&Path) -> std::io::Result<()>) -> std::io::Result<()> {
         let path = self.dir.join(staged(name));
-        self.make_parent(&path)?;
+        self.make_parent(name)?;
+        // the final name too: never a link or special file replaced
+        super::safe_write::check_output_file(&self.dir.join(name))?;
+        super::safe_write::check_output_file(&path)?;
         let result = write(&path);
-        if result.is_err() {
+        if let Err(e) = result {
             let _ = std::fs::remove_file(&path);
+            // the error names the file the user will look for, not its staged name
+            let text = e.to_string().replace(&path.display().to_string(), &self.dir.join(name).display().to_string());
+            return Err(std::io::Error::new(e.kind(), text));
         }
-        result?;
         let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
         self.files.push((name.to_string(), size));
         Ok(())
     }
 
     /// Creates the sub-folder a file `a/b` of the set goes into (`viewer/`, a
-    /// multiblock's pieces).
-    fn make_parent(&self, path: &Path) -> std::io::Result<()> {
-        match path.parent() {
-            Some(p) if p != self.dir => std::fs::create_dir_all(p).map_err(|e| ctx(p, "cannot create the folder", e)),
-            _ => Ok(()),
+    /// multiblock's pieces): through real folders only, never a link that
+    /// could lead out of the output folder ([`real_dir`]).
+    fn make_parent(&self, name: &str) -> std::io::Result<()> {
+        match Path::new(name).parent().filter(|p| !p.as_os_str().is_empty()) {
+            Some(sub) => real_dir(&self.dir, sub).map(drop),
+            None => Ok(()),
         }
     }
 
@@ -215,7 +228,10 @@ impl OutputDir {
             _ => {}
         }
         for name in old.iter().filter(|o| !self.files.iter().any(|(n, _)| n == *o)) {
-            let _ = std::fs::remove_file(self.dir.join(name));
+            // a listed path through a linked folder is not this folder's file
+            if inside(&self.dir, Path::new(name)) {
+                let _ = std::fs::remove_file(self.dir.join(name));
+            }
         }
         for (name, _) in &self.files {
             let (from, to) = (self.dir.join(staged(name)), self.dir.join(name));
@@ -255,7 +271,7 @@ fn safe_name(n: &str) -> bool {
 /// manifest is unreadable.
 pub fn check_complete(dir: &Path) -> Result<Option<Vec<String>>, String> {
     let manifest = dir.join(MANIFEST);
-    match std::fs::read(&manifest) {
+    match super::input::read_input(&manifest) {
         Ok(bytes) => {
             let v: serde_json::Value = serde_json::from_slice(&bytes)
                 .map_err(|e| format!("{}: not a septa manifest: {e}", manifest.display()))?;
@@ -267,6 +283,7 @@ pub fn check_complete(dir: &Path) -> Result<Option<Vec<String>>, String> {
                 .collect();
             Ok(Some(files))
         }
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(format!("{}: cannot read: {e}", manifest.display())),
         Err(_) if dir.join(LOCK).exists() => {
             let busy = File::open(dir.join(LOCK)).ok().is_some_and(|f| f.try_lock_shared().is_err());
             if busy {

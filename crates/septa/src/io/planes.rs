@@ -9,7 +9,7 @@ use std::path::Path;
 
 /// Reads a plane file (with or without the `N 4` header line).
 pub fn read_planes(path: &Path) -> Result<Vec<[f64; 4]>, ReadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
+    let text = super::input::read_input_text(path).map_err(|e| ReadError::new(path, 0, format!("cannot read: {e}")))?;
     parse_planes(path, &text)
 }
 

@@ -116,10 +116,13 @@ impl PlyStreamSink {
             triangles: false,
             grid: grid.clone(),
         };
-        let mut main = BufWriter::with_capacity(1 << 20, File::create(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?);
+        let mut main = BufWriter::with_capacity(
+            1 << 20,
+            super::safe_write::create_temp(&sink.tmp).map_err(|e| with_path(&sink.tmp, e))?,
+        );
         main.write_all(header(&sink.comment, 0, 0).as_bytes())?;
         sink.main = Some(main);
-        let faces = File::create(&sink.tmp_faces).map_err(|e| with_path(&sink.tmp_faces, e))?;
+        let faces = super::safe_write::create_temp(&sink.tmp_faces).map_err(|e| with_path(&sink.tmp_faces, e))?;
         sink.faces = Some(BufWriter::with_capacity(1 << 20, faces));
         Ok(sink)
     }
@@ -218,6 +221,7 @@ impl PlyStreamSink {
         main.write_all(header(&self.comment, self.vertices, self.faces_written).as_bytes())?;
         super::atomic::sync_if_durable(&main).map_err(|e| with_path(&self.tmp, e))?;
         drop(main);
+        super::safe_write::check_output_file(&self.path)?;
         std::fs::rename(&self.tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         let _ = std::fs::remove_file(&self.tmp_faces);
         Ok(PlyStreamStats { vertices: self.vertices, faces: self.faces_written, polygons: self.polygons })
@@ -299,7 +303,7 @@ pub struct StreamPly {
 /// folder); errors name the file and what is wrong.
 pub fn read_stream_ply(path: &Path) -> Result<StreamPly, String> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    let bytes = super::input::read_input(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
     let end = bytes
         .windows(11)
         .position(|w| w == b"end_header\n")

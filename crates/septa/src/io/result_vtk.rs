@@ -298,8 +298,10 @@ fn vtm_xml(stem: &str, blocks: &[&str]) -> String {
 /// piece of that name is removed).
 pub fn write_vtm(r: &ResultView, path: &Path) -> std::io::Result<Vec<PathBuf>> {
     let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "network".into());
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")).join(&stem);
-    std::fs::create_dir_all(&dir)?;
+    // the pieces' folder is a real folder beside the .vtm, never a link
+    // leading elsewhere (safe_write.rs)
+    let parent = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    let dir = super::safe_write::real_dir(parent, Path::new(&stem))?;
     let pieces = vtm_pieces(r);
     let mut paths = Vec::new();
     for name in VTM_BLOCKS {

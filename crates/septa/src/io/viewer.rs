@@ -85,16 +85,43 @@ pub fn viewer_data_script(title: &str, network: &Value, cut: Option<&Value>) -> 
 /// `<script>` elements whose text cannot close them early): what a notebook
 /// shows in an `<iframe srcdoc>`.
 pub fn viewer_inline_page(title: &str, network: &Value, cut: Option<&Value>) -> String {
-    let script = |js: &str| format!("<script>{}</script>", js.replace("</script", "<\\/script"));
+    let script = |js: &str| format!("<script>{}</script>", escape_script_end(js));
+    // Every `<` of the data is inside a JSON string, where `\u003c` is the
+    // same character: no `</script>`, `</SCRIPT >` or `<!--` of a loaded
+    // result can end or change the data script.
+    let data = viewer_data_script(title, network, cut).replace('<', "\\u003c");
     VIEWER_INDEX_HTML
-        .replace(r#"<script src="data.js"></script>"#, &script(&viewer_data_script(title, network, cut)))
+        .replace(r#"<script src="data.js"></script>"#, &script(&data))
         .replace(r#"<script src="viewer.js"></script>"#, &script(VIEWER_JS))
+}
+
+/// `js` with every `</script` (in any letter case: HTML ends a script at
+/// `</SCRIPT` too) written `<\/script`, the same text inside a JavaScript
+/// string or comment.
+fn escape_script_end(js: &str) -> String {
+    let mut out = String::with_capacity(js.len());
+    let mut rest = js;
+    while let Some(i) = rest.find("</") {
+        let after = &rest[i + 2..];
+        let is_end = after.len() >= 6 && after.as_bytes()[..6].eq_ignore_ascii_case(b"script");
+        out.push_str(&rest[..i]);
+        out.push_str(if is_end { "<\\/" } else { "</" });
+        rest = after;
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Writes `dir/{data.js, viewer.js, index.html}` (each atomically; the
 /// folder is created) and returns the path of `index.html`.
 pub fn write_viewer(dir: &Path, title: &str, network: &Value, cut: Option<&Value>) -> Result<PathBuf, ViewerError> {
-    std::fs::create_dir_all(dir).map_err(io_error(dir))?;
+    // `viewer/` inside a result folder: a real folder, never a link out of it
+    match (dir.parent().filter(|p| !p.as_os_str().is_empty()), dir.file_name()) {
+        (Some(parent), Some(name)) if parent.is_dir() => {
+            super::safe_write::real_dir(parent, Path::new(name)).map_err(io_error(dir))?;
+        }
+        _ => std::fs::create_dir_all(dir).map_err(io_error(dir))?,
+    }
     let files = [
         ("data.js", viewer_data_script(title, network, cut)),
         ("viewer.js", VIEWER_JS.to_string()),
@@ -160,7 +187,7 @@ pub fn folder_network(result: &Path) -> Result<(Value, Option<Value>), ViewerErr
 
 /// The file's bytes, `None` when it does not exist, an error naming it otherwise.
 fn read_if_exists(path: &Path) -> Result<Option<Vec<u8>>, ViewerError> {
-    match std::fs::read(path) {
+    match super::input::read_input(path) {
         Ok(b) => Ok(Some(b)),
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(None),
         Err(e) => Err(invalid(path, format!("cannot read: {e}"))),
@@ -228,7 +255,7 @@ fn stream_in(dir: &Path) -> Option<(PathBuf, PathBuf)> {
 /// A streamed network (its file's polygons, its topology file's patches,
 /// chains, corners, shells and cells) in the network contract.
 fn stream_to_network(file: &Path, topology: &Path) -> Result<Value, ViewerError> {
-    let bytes = std::fs::read(topology).map_err(io_error(topology))?;
+    let bytes = super::input::read_input(topology).map_err(io_error(topology))?;
     let mut value = parse_json(topology, &bytes)?;
     let is_vtu = file.extension().is_some_and(|e| e.eq_ignore_ascii_case("vtu"));
     let stream: StreamPly =

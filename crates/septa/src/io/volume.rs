@@ -41,9 +41,9 @@ pub fn read_label_volume(path: &Path) -> Result<LabelVolume, String> {
             return Ok(LabelVolume { shape, labels, affine: IDENTITY });
         }
     }
-    let raw = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
+    let raw = super::input::read_input(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
     let r = if low.ends_with(".nii") || low.ends_with(".nii.gz") {
-        maybe_gunzip(&raw).and_then(|b| read_nifti(&b))
+        nifti_bytes(&raw).and_then(|b| read_nifti(&b))
     } else if low.ends_with(".nrrd") {
         read_nrrd(&raw)
     } else {
@@ -52,14 +52,50 @@ pub fn read_label_volume(path: &Path) -> Result<LabelVolume, String> {
     r.map_err(|e| format!("{file}: {e}"))
 }
 
-fn maybe_gunzip(raw: &[u8]) -> Result<Vec<u8>, String> {
+/// `raw` inflated when it is gzip, to at most `cap` bytes: what the header
+/// declares (a 2 MB gzip inflating to gigabytes for an 8-voxel volume is
+/// read no further than the 8 voxels). Data beyond that is not used.
+fn maybe_gunzip(raw: &[u8], cap: u64) -> Result<Vec<u8>, String> {
+    let limit = super::input::input_limit();
+    if cap > limit {
+        return Err(format!(
+            "the header declares {} of voxel data, more than the input limit of {} (the memory budget, or SEPTA_MAX_INPUT)",
+            crate::grid::memory::human(cap),
+            crate::grid::memory::human(limit)
+        ));
+    }
     if raw.starts_with(&[0x1f, 0x8b]) {
         let mut out = Vec::new();
-        flate2::read::MultiGzDecoder::new(raw).read_to_end(&mut out).map_err(|e| format!("bad gzip data: {e}"))?;
+        flate2::read::MultiGzDecoder::new(raw)
+            .take(cap)
+            .read_to_end(&mut out)
+            .map_err(|e| format!("bad gzip data: {e}"))?;
         Ok(out)
     } else {
-        Ok(raw.to_vec())
+        Ok(raw[..raw.len().min(usize::try_from(cap).unwrap_or(usize::MAX))].to_vec())
     }
+}
+
+/// A NIfTI-1 file's bytes, inflated (`.nii.gz`) no further than its header
+/// declares: the 348-byte header first, then `vox_offset` plus the voxels.
+fn nifti_bytes(raw: &[u8]) -> Result<Vec<u8>, String> {
+    let head = maybe_gunzip(raw, 352)?;
+    let need = nifti_size(&head).unwrap_or(352);
+    maybe_gunzip(raw, need)
+}
+
+/// The bytes a NIfTI-1 header declares (`vox_offset` + voxels x size), or
+/// `None` when the header is not readable (the reader then says why).
+fn nifti_size(b: &[u8]) -> Option<u64> {
+    let b: &[u8; 348] = b.get(..348)?.try_into().ok()?;
+    let big = i32::from_le_bytes(b[0..4].try_into().ok()?) != 348;
+    let i16_at =
+        |o: usize| if big { i16::from_be_bytes([b[o], b[o + 1]]) } else { i16::from_le_bytes([b[o], b[o + 1]]) };
+    let x = [b[108], b[109], b[110], b[111]];
+    let offset = if big { f32::from_be_bytes(x) } else { f32::from_le_bytes(x) };
+    let voxels = (1..=3).try_fold(1u64, |a, k| a.checked_mul(u64::try_from(i16_at(40 + 2 * k)).ok()?))?;
+    let bytes = voxels.checked_mul(u64::try_from(i16_at(72)).ok()? / 8)?; // bitpix
+    (offset >= 0.0 && offset < 1e15).then(|| (offset as u64).saturating_add(bytes))
 }
 
 fn read_npy(raw: &[u8]) -> Result<LabelVolume, String> {
@@ -218,7 +254,7 @@ fn read_nifti(b: &[u8]) -> Result<LabelVolume, String> {
     if !(offset >= 348.0 && offset.fract() == 0.0 && offset <= b.len() as f64) {
         return Err(format!("vox_offset {offset} is not a byte offset inside the file"));
     }
-    let n = shape[0] * shape[1] * shape[2];
+    let n = shape[0] * shape[1] * shape[2]; // below 2^45: each axis is an i16
     let mut values = decode(&b[offset as usize..], kind, n, big)?;
     // nibabel's dataobj scales unless the slope is 0 or NaN (or exactly 1, 0).
     let (slope, inter) = (f32_at(112), f32_at(116));
@@ -316,11 +352,19 @@ fn read_nrrd(raw: &[u8]) -> Result<LabelVolume, String> {
         _ => return Err(format!("type {t:?} is not a label type")),
     };
     let big = get("endian") == Some("big");
-    let n = shape[0] * shape[1] * shape[2];
+    // the product of the sizes must not wrap around (2^61+1 x 4 x 2 did)
+    let n = shape[0]
+        .checked_mul(shape[1])
+        .and_then(|n| n.checked_mul(shape[2]))
+        .filter(|&n| n.checked_mul(8).is_some())
+        .ok_or_else(|| format!("sizes {sizes:?}: the voxel count overflows"))?;
+    let item = match kind {
+        Kind::Int(s) | Kind::Uint(s) | Kind::Float(s) => s,
+    };
     let body = &raw[pos..];
     let values = match get("encoding").ok_or("no \"encoding\" field")? {
         "raw" => decode(body, kind, n, big)?,
-        "gzip" | "gz" => decode(&maybe_gunzip(body)?, kind, n, big)?,
+        "gzip" | "gz" => decode(&maybe_gunzip(body, (n * item) as u64)?, kind, n, big)?,
         "ascii" | "text" | "txt" => {
             let text = std::str::from_utf8(body).map_err(|_| "ascii data is not text")?;
             let nums: Vec<f64> = text
@@ -384,6 +428,24 @@ pub fn diagonal_affine(spacing: [f64; 3], origin: [f64; 3]) -> [[f64; 4]; 3] {
     })
 }
 
+/// Checks that `affine` takes every point of a volume of `shape` voxels
+/// (voxel corners from -1 to `shape`, where label surfaces lie) to finite
+/// world points: a map is linear, so its extremes are at the box's corners.
+/// Before: `--spacing 1e308` wrote infinite points as `null`, exit 0.
+pub fn check_placement(affine: &[[f64; 4]; 3], shape: [usize; 3]) -> Result<(), String> {
+    for c in 0..8 {
+        let p: [f64; 3] = std::array::from_fn(|a| if c >> a & 1 == 1 { shape[a] as f64 } else { -1.0 });
+        let q: [f64; 3] =
+            std::array::from_fn(|k| affine[k][0] * p[0] + affine[k][1] * p[1] + affine[k][2] * p[2] + affine[k][3]);
+        if q.iter().any(|x| !x.is_finite()) {
+            return Err(format!(
+                "the voxel-to-world map (spacing and origin) takes voxel {p:?} to {q:?}, outside the finite doubles; give a smaller spacing or origin"
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Moves label surfaces from voxel indices to world points by `affine`
 /// (points only: the combinatorics do not move). A mirroring map (negative
 /// determinant, decided exactly) reverses every polygon, so each stays
@@ -398,9 +460,19 @@ pub fn place_surfaces(r: &mut crate::regions::RegionSurfaces, affine: &[[f64; 4]
     if *affine == IDENTITY {
         return Ok(());
     }
-    for p in &mut r.network.points {
-        *p = std::array::from_fn(|k| m[k][0] * p[0] + m[k][1] * p[1] + m[k][2] * p[2] + affine[k][3]);
+    let placed: Vec<[f64; 3]> = r
+        .network
+        .points
+        .iter()
+        .map(|p| std::array::from_fn(|k| m[k][0] * p[0] + m[k][1] * p[1] + m[k][2] * p[2] + affine[k][3]))
+        .collect();
+    if let Some(i) = placed.iter().position(|q| q.iter().any(|x| !x.is_finite())) {
+        return Err(format!(
+            "the voxel-to-world map takes point {:?} to {:?}, outside the finite doubles",
+            r.network.points[i], placed[i]
+        ));
     }
+    r.network.points = placed;
     // Cofactor matrix = det * inverse transpose: same directions up to the sign of det.
     let cof = |i: usize, j: usize| {
         let (a, b) = ((i + 1) % 3, (i + 2) % 3);

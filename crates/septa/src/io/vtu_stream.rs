@@ -69,7 +69,7 @@ impl VtuStreamSink {
         };
         for s in SPOOLS {
             let p = sink.temp(s);
-            let f = File::create(&p).map_err(|e| with_path(&p, e))?;
+            let f = super::safe_write::create_temp(&p).map_err(|e| with_path(&p, e))?;
             sink.spools.push(Some(BufWriter::with_capacity(1 << 18, f)));
         }
         Ok(sink)
@@ -142,7 +142,7 @@ impl VtuStreamSink {
             (nc * 4, "Int32", "block", 1),
         ];
         let tmp = self.temp("vtu");
-        let file = File::create(&tmp).map_err(|e| with_path(&tmp, e))?;
+        let file = super::safe_write::create_temp(&tmp).map_err(|e| with_path(&tmp, e))?;
         let mut w = BufWriter::with_capacity(1 << 20, file);
         w.write_all(vtu_header(nv, nc, &arrays, "patch").as_bytes())?;
         let size = |w: &mut BufWriter<File>, bytes: usize| w.write_all(&(bytes as u64).to_le_bytes());
@@ -191,6 +191,7 @@ impl VtuStreamSink {
         let file = w.into_inner().map_err(|e| e.into_error())?;
         super::atomic::sync_if_durable(&file).map_err(|e| with_path(&tmp, e))?;
         drop(file);
+        super::safe_write::check_output_file(&self.path)?;
         std::fs::rename(&tmp, &self.path).map_err(|e| with_path(&self.path, e))?;
         Ok(PlyStreamStats { vertices: self.vertices, faces: self.polygons, polygons: self.polygons })
     }
@@ -239,6 +240,8 @@ impl StreamFile {
         functions: usize,
         triangles: bool,
     ) -> std::io::Result<StreamFile> {
+        // before any work: a link, FIFO or device at OUT is refused, never replaced
+        super::safe_write::check_output_file(path)?;
         if Self::is_vtu(path) {
             if triangles {
                 return Err(std::io::Error::new(
@@ -285,7 +288,7 @@ const STREAM_VTU_ARRAYS: [&str; 8] =
 /// the file and what is wrong.
 pub fn read_stream_vtu(path: &Path) -> Result<StreamPly, String> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
+    let bytes = super::input::read_input(path).map_err(|e| format!("{name}: cannot read: {e}"))?;
     const START: &[u8] = b"<AppendedData encoding=\"raw\">\n_";
     let end = bytes
         .windows(START.len())

@@ -42,7 +42,7 @@ use super::spec::{array, Obj};
 /// assert!(n.eval(&|i| i == 1));
 /// ```
 pub fn load_csg_tree(text: &str, file: &str, n_functions: usize, negative_inside: bool) -> Result<Expr, SceneError> {
-    let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+    let v: Value = super::strict_json::parse(text).map_err(|e| SceneError {
         file: file.to_string(),
         line: e.line(),
         column: e.column(),
@@ -61,43 +61,85 @@ pub(crate) fn csg_tree(v: &Value, path: &JsonPath, n_functions: usize, negative_
     if nodes.is_empty() {
         return err(path, "an empty CSG tree (node 1 is the root)");
     }
-    let mut done: HashMap<usize, Expr> = HashMap::new();
+    let mut done: HashMap<usize, (Expr, usize)> = HashMap::new();
     let mut open = vec![false; nodes.len()];
-    let ctx = Tree { nodes, path, n: n_functions, negative_inside };
-    node(&ctx, 1, &mut done, &mut open)
+    let ctx = Tree { nodes, path, n: n_functions, negative_inside, made: std::cell::Cell::new(0) };
+    node(&ctx, 1, 0, &mut done, &mut open).map(|(e, _)| e)
 }
+
+/// The deepest CSG tree read (every walk of the expression recurses once
+/// per level, so a chain of a million nodes would overflow the stack).
+pub const MAX_TREE_DEPTH: usize = 1024;
+
+/// The most expression nodes a CSG tree may expand to: a node used twice is
+/// copied, so forty nodes each naming the next twice would make 2^40.
+pub const MAX_TREE_NODES: usize = 1 << 20;
 
 struct Tree<'a> {
     nodes: &'a [Value],
     path: &'a JsonPath,
     n: usize,
     negative_inside: bool,
+    /// Expression nodes made so far (copies of shared nodes included).
+    made: std::cell::Cell<usize>,
 }
 
-fn node(t: &Tree, k: usize, done: &mut HashMap<usize, Expr>, open: &mut [bool]) -> Result<Expr, Located> {
+/// Node `k` (1-based) at `depth` as an expression and its size in nodes.
+fn node(
+    t: &Tree,
+    k: usize,
+    depth: usize,
+    done: &mut HashMap<usize, (Expr, usize)>,
+    open: &mut [bool],
+) -> Result<(Expr, usize), Located> {
     let (nodes, path, n) = (t.nodes, t.path, t.n);
-    if let Some(e) = done.get(&k) {
-        return Ok(e.clone());
+    let grow = |by: usize| -> Result<(), Located> {
+        t.made.set(t.made.get().saturating_add(by));
+        if t.made.get() > MAX_TREE_NODES {
+            return err(
+                path,
+                format!("the tree expands to more than {MAX_TREE_NODES} nodes (shared nodes are copied)"),
+            );
+        }
+        Ok(())
+    };
+    if let Some((e, size)) = done.get(&k) {
+        grow(*size)?;
+        return Ok((e.clone(), *size));
     }
     let p = path.index(k - 1);
     if open[k - 1] {
         return err(&p, format!("node {k} contains itself (a cycle in the tree)"));
     }
     open[k - 1] = true;
+    // every walk of the tree recurses once per level: a chain of nodes
+    // deeper than the limit is an error, not a stack overflow
+    if depth > MAX_TREE_DEPTH {
+        return err(&p, format!("the tree is nested deeper than {MAX_TREE_DEPTH} levels"));
+    }
     let o = Obj::new(&nodes[k - 1], &p)?;
+    o.mark_all(&["type", "elements"]);
+    o.finish()?;
     let ty = o.str("type")?;
     let ep = p.key("elements");
     let el = array(o.get("elements")?, &ep)?;
+    let mut size = 1;
     let mut operand = |i: usize| -> Result<Expr, Located> {
         let Some(x) = el.get(i) else { return err(&ep, "expected 2 elements") };
         let ip = ep.index(i);
         match x.as_i64() {
             Some(f) if f < 0 && (-f) as usize <= n => {
                 let leaf = Expr::Func((-f) as usize - 1);
+                size += 2;
+                grow(2)?;
                 Ok(if t.negative_inside { Expr::Not(Box::new(leaf)) } else { leaf })
             }
             Some(f) if f < 0 => err(&ip, format!("function {} does not exist ({n} functions)", -f)),
-            Some(c) if c > 0 && (c as usize) <= nodes.len() => node(t, c as usize, done, open),
+            Some(c) if c > 0 && (c as usize) <= nodes.len() => {
+                let (e, s) = node(t, c as usize, depth + 1, done, open)?;
+                size += s;
+                Ok(e)
+            }
             Some(c) if c > 0 => err(&ip, format!("node {c} does not exist ({} nodes)", nodes.len())),
             _ => err(&ip, "an element is a node number (1-based) or minus a function number"),
         }
@@ -114,6 +156,7 @@ fn node(t: &Tree, k: usize, done: &mut HashMap<usize, Expr>, open: &mut [bool]) 
         return err(&ep, format!("expected 2 elements, got {}", el.len()));
     }
     open[k - 1] = false;
-    done.insert(k, e.clone());
-    Ok(e)
+    grow(1)?;
+    done.insert(k, (e.clone(), size));
+    Ok((e, size))
 }

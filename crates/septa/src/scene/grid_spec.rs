@@ -61,8 +61,8 @@ pub(super) fn grid(v: &Value, path: &JsonPath, base_dir: Option<&Path>) -> Resul
         // A grid file of the adaptive-grid paper (`grid_1.json`).
         let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
         let text =
-            std::fs::read_to_string(&full).or_else(|e| err(path, format!("cannot read {}: {e}", full.display())))?;
-        let g: Value = serde_json::from_str(&text).or_else(|e| err(path, format!("{}: {e}", full.display())))?;
+            crate::io::read_input_text(&full).or_else(|e| err(path, format!("cannot read {}: {e}", full.display())))?;
+        let g: Value = super::strict_json::parse(&text).or_else(|e| err(path, format!("{}: {e}", full.display())))?;
         if !g.is_object() || g.get("bbox_min").is_none() {
             return err(path, format!("{}: not a grid file (resolution, bbox_min, bbox_max)", full.display()));
         }
@@ -74,6 +74,8 @@ pub(super) fn grid(v: &Value, path: &JsonPath, base_dir: Option<&Path>) -> Resul
     let o = Obj::new(v, path)?;
     let rp = path.key("resolution");
     let r = o.get("resolution")?;
+    o.mark_all(&["resolution", "bounds", "split"]);
+    o.finish()?;
     let res: Vec<&Value> = match r {
         Value::Array(a) => a.iter().collect(),
         _ => vec![r; 3],
@@ -114,6 +116,8 @@ pub(super) fn grid(v: &Value, path: &JsonPath, base_dir: Option<&Path>) -> Resul
 /// cube as that program splits them.
 fn anchor_grid(v: &Value, path: &JsonPath) -> Result<GridSpec, Located> {
     let o = Obj::new(v, path)?;
+    o.mark_all(&["resolution", "bbox_min", "bbox_max"]);
+    o.finish()?;
     let rp = path.key("resolution");
     let r = o.get("resolution")?;
     let res: Vec<&Value> = match r {

@@ -91,6 +91,7 @@ mod sample;
 mod scene;
 mod shapes;
 mod spec;
+mod strict_json;
 mod torus;
 pub(crate) mod vec3;
 
@@ -106,11 +107,12 @@ pub use patch::BicubicPatch;
 pub use primitive::Primitive;
 pub use print::{primitive_json, scene_json, scene_text};
 pub use rbf::{read_hermite_rbf, HermiteRbf};
-pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule};
+pub use region_rule::{must_flip, Expr, Interest, RegionId, RegionRule, Rule, MAX_DEPTH, MAX_RULE_LEN};
 pub use sample::{block_may_be_active_ia, block_may_be_active_mi, sample_grid};
-pub use scene::{load_function_list, Mode, Scene};
+pub use scene::{load_function_list, load_function_list_warnings, Mode, Scene};
 pub use shapes::{
     BoxShape, CappedCylinder, Capsule, Cone, Cylinder, Ellipsoid, PlaneShape, PointSet, Sphere, SphereKind,
 };
 pub use spec::PRIMITIVE_TYPES;
+pub use strict_json::parse as parse_json_strict;
 pub use torus::Torus;

@@ -184,7 +184,7 @@ impl Neumaier {
 /// x y z per point) and coefficient file; errors name the file and line.
 pub fn read_hermite_rbf(points: &std::path::Path, coeffs: &std::path::Path) -> Result<HermiteRbf, String> {
     let read =
-        |p: &std::path::Path| std::fs::read_to_string(p).map_err(|e| format!("cannot read {}: {e}", p.display()));
+        |p: &std::path::Path| crate::io::read_input_text(p).map_err(|e| format!("cannot read {}: {e}", p.display()));
     let text = read(points)?;
     let mut nums = vec![];
     let mut dim = None;

@@ -58,9 +58,20 @@ impl Expr {
     /// assert!(e.eval(&|i| i == 1));
     /// assert!(!e.eval(&|i| i == 1 || i == 2));
     /// ```
+    ///
+    /// Limits (a clear error instead of a crash on hostile text): at most
+    /// [`MAX_RULE_LEN`] characters and [`MAX_DEPTH`] levels of `!` and
+    /// parentheses; `a - b - c` is read as `a - (b | c)`, the same set,
+    /// so a long chain of differences stays flat.
     pub fn parse(text: &str, resolve: &impl Fn(&str) -> Option<usize>) -> Result<Expr, String> {
+        if text.len() > MAX_RULE_LEN {
+            return Err(format!(
+                "a condition of {} bytes is longer than the limit of {MAX_RULE_LEN} (name the parts as functions)",
+                text.len()
+            ));
+        }
         let toks = tokenize(text)?;
-        let mut p = Parser { toks, pos: 0, resolve };
+        let mut p = Parser { toks, pos: 0, resolve, depth: 0 };
         let e = p.diff()?;
         if p.pos != p.toks.len() {
             return Err(format!("unexpected `{}` in `{text}`", p.toks[p.pos]));
@@ -115,10 +126,19 @@ fn tokenize(text: &str) -> Result<Vec<String>, String> {
     Ok(toks)
 }
 
+/// The longest condition text [`Expr::parse`] reads, in bytes.
+pub const MAX_RULE_LEN: usize = 1 << 16;
+
+/// The deepest nesting of `!` and parentheses [`Expr::parse`] reads (the
+/// parser and every walk of the tree recurse once per level).
+pub const MAX_DEPTH: usize = 256;
+
 struct Parser<'a, F> {
     toks: Vec<String>,
     pos: usize,
     resolve: &'a F,
+    /// Levels of `!` and `(` open at `pos`.
+    depth: usize,
 }
 
 impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
@@ -126,12 +146,21 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
         self.toks.get(self.pos).map(|s| s.as_str())
     }
     fn diff(&mut self) -> Result<Expr, String> {
-        let mut e = self.or()?;
+        let e = self.or()?;
+        let mut minus = Vec::new();
         while self.peek() == Some("-") {
             self.pos += 1;
-            e = Expr::Diff(Box::new(e), Box::new(self.or()?));
+            minus.push(self.or()?);
         }
-        Ok(e)
+        Ok(difference(e, minus))
+    }
+    /// One more level of `!` or `(`, refused beyond [`MAX_DEPTH`].
+    fn deeper(&mut self) -> Result<(), String> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(format!("nested deeper than {MAX_DEPTH} levels of `!` and parentheses"));
+        }
+        Ok(())
     }
     fn or(&mut self) -> Result<Expr, String> {
         let mut v = vec![self.and()?];
@@ -153,15 +182,20 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
         match self.peek() {
             Some("!") => {
                 self.pos += 1;
-                Ok(Expr::Not(Box::new(self.not()?)))
+                self.deeper()?;
+                let e = Expr::Not(Box::new(self.not()?));
+                self.depth -= 1;
+                Ok(e)
             }
             Some("(") => {
                 self.pos += 1;
+                self.deeper()?;
                 let e = self.diff()?;
                 if self.peek() != Some(")") {
                     return Err("missing `)`".into());
                 }
                 self.pos += 1;
+                self.depth -= 1;
                 Ok(e)
             }
             Some(t) if !"|&-)".contains(t) => {
@@ -175,6 +209,16 @@ impl<F: Fn(&str) -> Option<usize>> Parser<'_, F> {
             Some(t) => Err(format!("unexpected `{t}`")),
             None => Err("expression ends early".into()),
         }
+    }
+}
+
+/// `a - b1 - b2 - ...` as `a - (b1 | b2 | ...)`: the same set, one level
+/// deep however many are taken away.
+pub(crate) fn difference(a: Expr, mut minus: Vec<Expr>) -> Expr {
+    match minus.len() {
+        0 => a,
+        1 => Expr::Diff(Box::new(a), Box::new(minus.pop().expect("one"))),
+        _ => Expr::Diff(Box::new(a), Box::new(Expr::Or(minus))),
     }
 }
 

@@ -78,7 +78,7 @@ impl Scene {
                 ),
             });
         }
-        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+        let text = crate::io::read_input_text(Path::new(path)).map_err(|e| SceneError {
             file: path.to_string(),
             line: 0,
             column: 0,
@@ -141,7 +141,7 @@ impl Scene {
     /// assert!(e.to_string().starts_with("s.json:2:"));
     /// ```
     pub fn from_json(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, SceneError> {
-        let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+        let v: Value = super::strict_json::parse(text).map_err(|e| SceneError {
             file: file.to_string(),
             line: e.line(),
             column: e.column(),
@@ -157,20 +157,39 @@ impl Scene {
 
 /// Read a reference implementation function file (a JSON list of
 /// primitives, or `{"input": [...]}`), with the reference's meaning of a
-/// negative sphere radius (unsigned distance).
+/// negative sphere radius (unsigned distance). A key the reader does not
+/// use (`"negate": true`: the reference program ignores it too) is a
+/// warning printed to standard error ([`load_function_list_warnings`]
+/// returns them instead); a key given twice is an error.
 pub fn load_function_list(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Vec<Primitive>, SceneError> {
-    let v: Value = serde_json::from_str(text).map_err(|e| SceneError {
+    let (functions, warnings) = load_function_list_warnings(text, file, base_dir)?;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    Ok(functions)
+}
+
+/// [`load_function_list`] with its warnings (keys not used, each naming
+/// the file, line and key) returned instead of printed.
+pub fn load_function_list_warnings(
+    text: &str,
+    file: &str,
+    base_dir: Option<&Path>,
+) -> Result<(Vec<Primitive>, Vec<SceneError>), SceneError> {
+    let v: Value = super::strict_json::parse(text).map_err(|e| SceneError {
         file: file.to_string(),
         line: e.line(),
         column: e.column(),
         path: JsonPath::default(),
         message: e.to_string(),
     })?;
-    let ctx = Ctx { base_dir, compat: true };
-    function_list(&v, &JsonPath::default(), &ctx).map_err(|l| {
+    let ctx = Ctx::new(base_dir, true);
+    let located = |l: Located| {
         let (line, column) = locate(text, &l.path).unwrap_or((0, 0));
         SceneError { file: file.to_string(), line, column, path: l.path, message: l.message }
-    })
+    };
+    let functions = function_list(&v, &JsonPath::default(), &ctx).map_err(located)?;
+    Ok((functions, ctx.warnings.into_inner().into_iter().map(located).collect()))
 }
 
 fn function_list(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Vec<Primitive>, Located> {
@@ -204,7 +223,7 @@ fn solid_tree(s: &Value, path: &JsonPath, n: usize, base_dir: Option<&Path>) -> 
     Some(match t {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            std::fs::read_to_string(&full)
+            crate::io::read_input_text(&full)
                 .or_else(|e| err(&p, format!("cannot read {}: {e}", full.display())))
                 .and_then(|text| {
                     super::csg_tree::load_csg_tree(&text, &full.display().to_string(), n, negative)
@@ -235,7 +254,7 @@ fn expr(v: &Value, path: &JsonPath, names: &[String]) -> Result<Expr, Located> {
                 "difference" => {
                     let mut l = list(inner)?;
                     let first = l.remove(0);
-                    Ok(l.into_iter().fold(first, |a, b| Expr::Diff(Box::new(a), Box::new(b))))
+                    Ok(super::region_rule::difference(first, l))
                 }
                 "function" => match inner.as_str().and_then(|n| resolve(names, n)) {
                     Some(i) => Ok(Expr::Func(i)),
@@ -259,6 +278,8 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
     let (list, lp, mut otherwise) = match v {
         Value::Object(_) => {
             let o = Obj::new(v, path)?;
+            o.mark_all(&["rules", "otherwise"]);
+            o.finish()?;
             let other =
                 if o.has("otherwise") { Some(region_id(o.get("otherwise")?, &path.key("otherwise"))?) } else { None };
             (o.get("rules")?, path.key("rules"), other)
@@ -268,6 +289,8 @@ fn rules(v: &Value, path: &JsonPath, names: &[String]) -> Result<RegionRule, Loc
     let mut out = Vec::new();
     for (i, r) in array(list, &lp)?.iter().enumerate() {
         let o = Obj::new(r, &lp.index(i))?;
+        o.mark_all(&["region", "when"]);
+        o.finish()?;
         let region = region_id(o.get("region")?, &o.path.key("region"))?;
         if !o.has("when") {
             // A catch-all ends the list (later rules could never match).
@@ -316,18 +339,21 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         return reference_config(&o, base_dir);
     }
     let grid = grid(o.get("grid")?, &root.key("grid"), base_dir)?;
-    let mode = match o.map.get("mode").map(|m| m.as_str()) {
+    // a scene's keys: anything else (a misspelt `surface`) is an error
+    o.mark_all(&["grid", "mode", "functions", "regions", "solid", "surfaces", "curves", "features", "region_names"]);
+    o.finish()?;
+    let mode = match o.opt("mode").map(|m| m.as_str()) {
         None | Some(Some("ia")) => Mode::Ia,
         Some(Some("mi")) => Mode::Mi,
         _ => return err(&root.key("mode"), "mode must be \"ia\" or \"mi\""),
     };
     let fp = root.key("functions");
-    let ctx = Ctx { base_dir, compat: false };
+    let ctx = Ctx::new(base_dir, false);
     let (functions, names) = match o.get("functions")? {
         Value::String(file) => {
             let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
-            let text =
-                std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+            let text = crate::io::read_input_text(&full)
+                .or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
             let f = load_function_list(&text, &full.display().to_string(), full.parent())
                 .or_else(|e| err(&fp, e.to_string()))?;
             let names = (0..f.len()).map(|i| i.to_string()).collect();
@@ -362,7 +388,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
     if functions.is_empty() {
         return err(&fp, "no functions");
     }
-    let regions = match (o.map.get("regions"), o.map.get("solid")) {
+    let regions = match (o.opt("regions"), o.opt("solid")) {
         (Some(_), Some(_)) => return err(&root.key("solid"), "give `regions` or `solid`, not both"),
         (Some(r), None) => rules(r, &root.key("regions"), &names)?,
         (None, Some(s)) => match solid_tree(s, &root.key("solid"), functions.len(), base_dir) {
@@ -380,17 +406,17 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         (RegionRule::Identity, Mode::Mi) => (0..functions.len() as RegionId).collect(),
         _ => regions.regions(),
     };
-    let surfaces = match o.map.get("surfaces") {
+    let surfaces = match o.opt("surfaces") {
         None => None,
         Some(Value::String(s)) if s == "all" => None,
         Some(s) => Some(tuples::<2>(s, &root.key("surfaces"), &known)?),
     };
-    let curves = match o.map.get("curves") {
+    let curves = match o.opt("curves") {
         None => None,
         Some(Value::String(s)) if s == "all" => None,
         Some(c) => Some(tuples::<3>(c, &root.key("curves"), &known)?),
     };
-    let features = match o.map.get("features") {
+    let features = match o.opt("features") {
         None => true,
         Some(Value::Bool(b)) => *b,
         Some(_) => return err(&root.key("features"), "`features` is true or false"),
@@ -405,7 +431,7 @@ fn scene(v: &Value, base_dir: Option<&Path>) -> Result<Scene, Located> {
         region_names.insert(0, "outside".to_string());
         region_names.insert(1, "inside".to_string());
     }
-    if let Some(v) = o.map.get("region_names") {
+    if let Some(v) = o.opt("region_names") {
         let p = root.key("region_names");
         let Some(map) = v.as_object() else {
             return err(&p, "`region_names` is an object: {\"1\": \"part\", \"0\": \"air\"}");
@@ -457,7 +483,8 @@ fn reference_config(o: &Obj, base_dir: Option<&Path>) -> Result<Scene, Located> 
     let file = o.str("funcFile")?;
     let full = base_dir.map_or_else(|| Path::new(file).to_path_buf(), |d| d.join(file));
     let fp = root.key("funcFile");
-    let text = std::fs::read_to_string(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
+    let text =
+        crate::io::read_input_text(&full).or_else(|e| err(&fp, format!("cannot read {}: {e}", full.display())))?;
     let functions =
         load_function_list(&text, &full.display().to_string(), full.parent()).or_else(|e| err(&fp, e.to_string()))?;
     if functions.is_empty() {

@@ -61,30 +61,79 @@ pub(crate) struct Ctx<'a> {
     /// Folder that relative mesh paths are resolved against.
     pub base_dir: Option<&'a Path>,
     /// Reference compatibility: a negative sphere radius means the
-    /// reference's unsigned sphere distance instead of an error.
+    /// reference's unsigned sphere distance instead of an error, and a key
+    /// the reader does not use is a warning (the reference program ignores
+    /// it too), not an error.
     pub compat: bool,
+    /// The warnings of the compatible reading (keys not used), in order.
+    pub warnings: std::cell::RefCell<Vec<Located>>,
 }
 
+impl<'a> Ctx<'a> {
+    /// A reader of scene fields (strict) or of the reference's function
+    /// format (`compat`).
+    pub fn new(base_dir: Option<&'a Path>, compat: bool) -> Ctx<'a> {
+        Ctx { base_dir, compat, warnings: Default::default() }
+    }
+}
+
+/// An object being read: its members, and which of them were asked for,
+/// so that a member nobody reads (a misspelt `radiuss`) is reported
+/// ([`Obj::finish`]) instead of silently running a default.
 pub(crate) struct Obj<'a> {
     pub map: &'a Map<String, Value>,
     pub path: JsonPath,
+    used: std::cell::RefCell<Vec<String>>,
 }
 
 impl<'a> Obj<'a> {
     pub fn new(v: &'a Value, path: &JsonPath) -> Result<Obj<'a>, Located> {
         match v.as_object() {
-            Some(map) => Ok(Obj { map, path: path.clone() }),
+            Some(map) => Ok(Obj { map, path: path.clone(), used: Default::default() }),
             None => err(path, "expected an object"),
         }
     }
+    fn mark(&self, k: &str) {
+        let mut u = self.used.borrow_mut();
+        if !u.iter().any(|x| x == k) {
+            u.push(k.to_string());
+        }
+    }
+    /// Member `k`, if given (marked as read).
+    pub fn opt(&self, k: &str) -> Option<&'a Value> {
+        self.mark(k);
+        self.map.get(k)
+    }
     pub fn get(&self, k: &str) -> Result<&'a Value, Located> {
-        match self.map.get(k) {
+        match self.opt(k) {
             Some(v) => Ok(v),
             None => err(&self.path, format!("missing parameter `{k}`")),
         }
     }
     pub fn has(&self, k: &str) -> bool {
+        self.mark(k);
         self.map.contains_key(k)
+    }
+    /// The first member not read (in the file's order), as an error naming
+    /// it and the members that are read here.
+    pub fn unknown(&self) -> Option<Located> {
+        let used = self.used.borrow();
+        let k = self.map.keys().find(|k| !used.iter().any(|u| u == *k))?;
+        let mut known: Vec<&str> = used.iter().map(String::as_str).collect();
+        known.sort_unstable();
+        Some(Located {
+            path: self.path.key(k),
+            message: format!("unknown or unused key `{k}` (read here: {})", known.join(", ")),
+        })
+    }
+    /// Marks the members `keys` as read (the keys an object may have, when
+    /// they are read later or conditionally).
+    pub fn mark_all(&self, keys: &[&str]) {
+        keys.iter().for_each(|k| self.mark(k));
+    }
+    /// Every member must have been read: an error naming the first that was not.
+    pub fn finish(&self) -> Result<(), Located> {
+        self.unknown().map_or(Ok(()), Err)
     }
     pub fn f64(&self, k: &str) -> Result<f64, Located> {
         num(self.get(k)?, &self.path.key(k))
@@ -114,7 +163,7 @@ impl<'a> Obj<'a> {
         Ok(normalize(v))
     }
     pub fn flag(&self, k: &str) -> Result<bool, Located> {
-        match self.map.get(k) {
+        match self.opt(k) {
             None => Ok(false),
             Some(Value::Bool(b)) => Ok(*b),
             Some(_) => err(&self.path.key(k), "expected true or false"),
@@ -159,16 +208,34 @@ fn list_of<'a>(o: &Obj<'a>, k: &str, ctx: &Ctx) -> Result<Vec<Primitive>, Locate
     a.iter().enumerate().map(|(i, v)| primitive(v, &p.index(i), ctx)).collect()
 }
 
-/// Read one primitive object (any `name` member is ignored here).
+/// Read one primitive object (any `name` member is ignored here). A member
+/// the type does not read is an error naming it, or in the reference's
+/// format (`ctx.compat`) a warning.
 pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Located> {
     let o = Obj::new(v, path)?;
+    o.mark("name");
+    let p = primitive_of(&o, path, ctx)?;
+    if let Some(unknown) = o.unknown() {
+        if !ctx.compat {
+            return Err(unknown);
+        }
+        ctx.warnings.borrow_mut().push(unknown);
+    }
+    Ok(p)
+}
+
+fn primitive_of(o: &Obj, path: &JsonPath, ctx: &Ctx) -> Result<Primitive, Located> {
     let ty = o.str("type")?.replace('-', "_");
-    let squared = o.flag("squared")?;
+    // read only by the types it changes (elsewhere it is an unused key)
+    let squared = || o.flag("squared");
     Ok(match ty.as_str() {
         "sphere" => {
+            // the reference's display option (a flat-shaded sphere): the
+            // function is the same
+            o.mark("flat");
             let center = o.vec3("center")?;
             let r = o.f64("radius")?;
-            let kind = if squared {
+            let kind = if squared()? {
                 SphereKind::Squared
             } else if r < 0.0 && (ctx.compat || o.flag("unsigned")?) {
                 SphereKind::Unsigned
@@ -192,7 +259,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             point: o.vec3("point")?,
             axis: o.dir(if o.has("unit_vector") { "unit_vector" } else { "direction" })?,
             radius: 0.0,
-            squared,
+            squared: squared()?,
         }),
         "cylinder" => {
             let (point, axis) = if o.has("axis_point1") && o.has("axis_point2") {
@@ -206,21 +273,21 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
                 (o.vec3("axis_point")?, o.dir("axis_vector")?)
             };
             let radius = o.nonneg("radius")?;
-            Primitive::Cylinder(Cylinder { point, axis, radius, squared })
+            Primitive::Cylinder(Cylinder { point, axis, radius, squared: squared()? })
         }
         "torus" => Primitive::Torus(Torus {
             center: o.vec3("center")?,
             axis: o.dir("axis_vector")?,
             major: o.nonneg("major_radius")?,
             minor: o.nonneg("minor_radius")?,
-            squared,
+            squared: squared()?,
         }),
         "circle" => Primitive::Torus(Torus {
             center: o.vec3("center")?,
             axis: o.dir("axis_vector")?,
             major: o.nonneg("radius")?,
             minor: 0.0,
-            squared,
+            squared: squared()?,
         }),
         "cone" => Primitive::Cone(Cone {
             apex: o.vec3("apex")?,
@@ -282,7 +349,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             };
             Primitive::Points(PointSet { points, weights })
         }
-        "mesh" => Primitive::Mesh(Arc::new(mesh(&o, ctx)?)),
+        "mesh" => Primitive::Mesh(Arc::new(mesh(o, ctx)?)),
         "patch" => {
             let orig = o.path.key("origin");
             let size = o.path.key("size");
@@ -325,10 +392,10 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
             radius: o.positive("radius")?,
             height: o.f64("height")?,
         }),
-        "transform" => transform(&o, ctx)?,
-        "sum" => Primitive::Sum(list_of(&o, "of", ctx)?),
-        "min" => Primitive::Min(list_of(&o, "of", ctx)?),
-        "max" => Primitive::Max(list_of(&o, "of", ctx)?),
+        "transform" => transform(o, ctx)?,
+        "sum" => Primitive::Sum(list_of(o, "of", ctx)?),
+        "min" => Primitive::Min(list_of(o, "of", ctx)?),
+        "max" => Primitive::Max(list_of(o, "of", ctx)?),
         "scale" | "neg" | "abs" => {
             let inner = Box::new(primitive(o.get("of")?, &path.key("of"), ctx)?);
             match ty.as_str() {
@@ -351,6 +418,7 @@ pub(crate) fn primitive(v: &Value, path: &JsonPath, ctx: &Ctx) -> Result<Primiti
 /// `coefficients` (4N) and `polynomial` (4). The reference's display
 /// fields `color` and `samples` are not used.
 fn rbf(o: &Obj, ctx: &Ctx) -> Result<HermiteRbf, Located> {
+    o.mark_all(&["color", "samples"]);
     if o.has("points") || o.has("rbf_coeffs") {
         let full = |k: &str| -> Result<std::path::PathBuf, Located> {
             let rel = o.str(k)?;
@@ -433,6 +501,7 @@ fn transform(o: &Obj, ctx: &Ctx) -> Result<Primitive, Located> {
         let r = Obj::new(o.get("rotate")?, &o.path.key("rotate"))?;
         let angle = r.f64("degrees")?.to_radians();
         m = mul(&rotation(r.dir("axis")?, angle), &m);
+        r.finish()?;
     }
     if o.has("matrix") {
         let mp = o.path.key("matrix");

@@ -4,6 +4,7 @@
 mod common;
 
 mod atomic_failure;
+mod hostile;
 mod mesh_formats;
 mod npy_volume;
 mod readers_fuzz;
