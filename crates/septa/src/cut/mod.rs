@@ -47,7 +47,10 @@
 //! filters with stated bounds).
 //!
 //! Voids (a mesh component inside one open arrangement cell) are attached
-//! to their enclosing cell by exact plane-side signatures (`voids.rs`).
+//! to their enclosing cell by exact plane-side signatures (`voids.rs`), or,
+//! when nested shells leave several candidates (an island in the cavity),
+//! by an exact ray from the void (`void_rays.rs`). TopoCut counts each such
+//! void as a cell of its own: its count is `cut_cells + voids_attached`.
 
 #[cfg(feature = "tools")]
 pub mod bench;
@@ -89,6 +92,7 @@ mod triangulate;
 mod validate;
 mod verify;
 mod verify_volume;
+mod void_rays;
 mod voids;
 mod volume;
 mod volume_filter;
@@ -182,8 +186,9 @@ pub struct CutStats {
     pub line_order_violations: usize,
     /// Void shells attached to their enclosing cell.
     pub voids_attached: usize,
-    /// Void shells whose enclosing cell was not unique by plane sides
-    /// (left as separate, negative-volume cells).
+    /// Void shells whose enclosing cell neither the plane sides nor the
+    /// exact ray decided (left as separate, negative-volume cells, which
+    /// `validate` reports; not expected for valid input).
     pub voids_unresolved: usize,
     /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
     pub dropped_planes: Vec<(usize, usize)>,
@@ -533,7 +538,7 @@ fn cut_impl(
     // ones (a page fault is about 1.4 us here, ~10% of a run; armadillo
     // R20's loops alone were 38 MB).
     drop((faces, cells, bnd, pedges));
-    let (attached, unresolved) = voids::attach_voids(&c, &mut out);
+    let (attached, unresolved) = voids::attach_voids(&c, &mut out, &boxes);
     stats.voids_attached = attached;
     stats.voids_unresolved = unresolved;
     lap("faces", &mut stats);

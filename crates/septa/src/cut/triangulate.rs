@@ -180,7 +180,7 @@ fn bridged(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> (usize, Vec<
     // bridge holes from the rightmost one inwards
     let maxx = |l: &Vec<u32>| l.iter().map(|&v| p(v)[0]).fold(f64::NEG_INFINITY, f64::max);
     holes.sort_by(|a, b| maxx(b).total_cmp(&maxx(a)));
-    for h in holes {
+    for (hi, h) in holes.iter().enumerate() {
         let (mi, &m) = h.iter().enumerate().max_by(|a, b| p(*a.1)[0].total_cmp(&p(*b.1)[0])).unwrap();
         let pm = p(m);
         // candidate outer vertices by distance; take the first visible one
@@ -190,16 +190,34 @@ fn bridged(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> (usize, Vec<
             (q[0] - pm[0]).powi(2) + (q[1] - pm[1]).powi(2)
         };
         cands.sort_by(|&a, &b| d2(poly[a]).total_cmp(&d2(poly[b])));
-        let visible = |c: usize| {
-            let pc = p(poly[c]);
+        // the bridge m -> c may cross no edge of the polygon so far, of this
+        // hole or of a hole not yet bridged (two cavities cut by one plane
+        // were bridged across each other), nor pass through a corner:
+        // exact orientations of the projected doubles
+        let rest = &holes[hi..];
+        // a corner met twice (an earlier bridge ends there): the occurrence
+        // whose interior angle holds the new bridge, or the bridges cross
+        // at it (two holes bridged to one outer corner in the wrong order)
+        let flip = normal[k] < 0.0;
+        let o2 = |a: u32, b: u32, c: u32| if flip { orient2(x, k, a, b, c).flip() } else { orient2(x, k, a, b, c) };
+        let in_cone = |c: usize| {
             let n = poly.len();
-            !(0..n).any(|e| {
-                let (a, b) = (poly[e], poly[(e + 1) % n]);
-                a != poly[c] && b != poly[c] && proper_cross(pm, pc, p(a), p(b))
-            }) && !(0..h.len()).any(|e| {
-                let (a, b) = (h[e], h[(e + 1) % h.len()]);
-                a != m && b != m && proper_cross(pm, pc, p(a), p(b))
-            })
+            let (a0, a, a1) = (poly[(c + n - 1) % n], poly[c], poly[(c + 1) % n]);
+            if o2(a0, a, a1) != Sign::Negative {
+                o2(a, m, a0) == Sign::Positive && o2(m, a, a1) == Sign::Positive
+            } else {
+                !(o2(a, m, a1) != Sign::Negative && o2(m, a, a0) != Sign::Negative)
+            }
+        };
+        let visible = |c: usize| {
+            let pc = poly[c];
+            let edges = (0..poly.len())
+                .map(|e| (poly[e], poly[(e + 1) % poly.len()]))
+                .chain(rest.iter().flat_map(|l| (0..l.len()).map(move |e| (l[e], l[(e + 1) % l.len()]))));
+            let corners = poly.iter().chain(rest.iter().copied().flatten());
+            !edges.into_iter().any(|(a, b)| a != pc && b != pc && a != m && b != m && crosses(x, k, m, pc, a, b))
+                && !corners.into_iter().any(|&v| v != pc && v != m && on_segment(x, k, m, pc, v))
+                && (poly.iter().filter(|&&v| v == pc).count() == 1 || in_cone(c))
         };
         let c = cands.iter().copied().find(|&c| visible(c)).unwrap_or(cands[0]);
         let mut merged = Vec::with_capacity(poly.len() + h.len() + 2);
@@ -213,14 +231,19 @@ fn bridged(x: &[[f64; 3]], loops: &[Vec<u32>], normal: [f64; 3]) -> (usize, Vec<
     (k, poly)
 }
 
-fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+/// Segments `p q` and `a b` (projected along axis `k`) cross at a point
+/// inside both, exactly.
+fn crosses(x: &[[f64; 3]], k: usize, p: u32, q: u32, a: u32, b: u32) -> bool {
+    let o = |u: u32, v: u32, w: u32| orient2(x, k, u, v, w).as_i8();
+    o(p, q, a) * o(p, q, b) < 0 && o(a, b, p) * o(a, b, q) < 0
 }
 
-fn proper_cross(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> bool {
-    let (o1, o2) = (cross(a, b, c), cross(a, b, d));
-    let (o3, o4) = (cross(c, d, a), cross(c, d, b));
-    o1 * o2 < 0.0 && o3 * o4 < 0.0
+/// Corner `v` lies on the closed segment `p q` (projected along axis `k`), exactly.
+fn on_segment(x: &[[f64; 3]], k: usize, p: u32, q: u32, v: u32) -> bool {
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let (pp, pq, pv) = (x[p as usize], x[q as usize], x[v as usize]);
+    orient2(x, k, p, q, v) == Sign::Zero
+        && [i, j].iter().all(|&c| pv[c] >= pp[c].min(pq[c]) && pv[c] <= pp[c].max(pq[c]))
 }
 
 /// Ear clipping decided by exact 2D orientations of the projected doubles
@@ -317,6 +340,41 @@ fn ear_clip(x: &[[f64; 3]], k: usize, flip: bool, poly: &[u32]) -> Vec<[u32; 3]>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn cross(o: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    }
+
+    /// Two holes whose nearest outer corner is the same: the second bridge
+    /// goes into the copy of the corner whose angle holds it, and the
+    /// triangles cover the face once (every triangle counter-clockwise,
+    /// their areas summing to the face's).
+    #[test]
+    fn two_holes_bridged_to_one_corner() {
+        let x = [
+            [0.0, 0.0, 0.0],
+            [8.0, 0.0, 0.0],
+            [8.0, 4.0, 0.0],
+            [8.0, 8.0, 0.0],
+            [0.0, 8.0, 0.0],
+            // holes below and above y = 4, their rightmost corners (7, 3)
+            // and (7, 5) both nearest to the outer corner (8, 4)
+            [1.0, 1.0, 0.0],
+            [1.0, 3.0, 0.0],
+            [7.0, 3.0, 0.0],
+            [6.0, 1.0, 0.0],
+            [1.0, 5.0, 0.0],
+            [1.0, 7.0, 0.0],
+            [6.0, 7.0, 0.0],
+            [7.0, 5.0, 0.0],
+        ];
+        let loops = [vec![0, 1, 2, 3, 4], vec![5, 6, 7, 8], vec![9, 10, 11, 12]];
+        let t = triangulate(&x, &loops, [0.0, 0.0, 1.0]);
+        let p = |v: u32| [x[v as usize][0], x[v as usize][1]];
+        let area: f64 = t.iter().map(|f| cross(p(f[0]), p(f[1]), p(f[2])) / 2.0).sum();
+        assert_eq!(area, 64.0 - 11.0 - 11.0);
+        assert!(t.iter().all(|f| cross(p(f[0]), p(f[1]), p(f[2])) > 0.0), "{t:?}");
+    }
 
     #[test]
     fn square_with_square_hole() {

@@ -3,14 +3,17 @@
 //! forms its own shell of negative volume, and belongs to the cut-cell of
 //! the same arrangement cell that encloses it. The arrangement cell is
 //! identified exactly by the side of each plane; when one positive cell
-//! has that signature the void is attached to it.
+//! has that signature the void is attached to it, otherwise (nested shells:
+//! an island in the cavity, voids in islands, ...) an exact ray from the
+//! void finds the enclosing cell (`void_rays.rs`).
 
 use super::geom::{Ctx, Def};
+use super::void_rays::{enclosing_cell, Enclosing};
 use super::{CutCellMesh, Support};
-use septa_exact::Sign;
+use septa_exact::{Interval, Sign};
 
 /// Attaches voids; returns `(attached, left unresolved)`.
-pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
+pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh, boxes: &[Option<[Interval; 3]>]) -> (usize, usize) {
     let n = out.num_cells;
     let mut only_tri = vec![true; n];
     let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); n];
@@ -66,6 +69,10 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
     };
     let sigs: Vec<Option<Vec<Sign>>> =
         (0..n).map(|k| if positive[k] || voids.contains(&k) { Some(signature(k)) } else { None }).collect();
+    let mut is_void = vec![false; n];
+    for &v in &voids {
+        is_void[v] = true;
+    }
     let mut target: Vec<u32> = (0..n as u32).collect();
     let (mut attached, mut unresolved) = (0, 0);
     for &v in &voids {
@@ -81,8 +88,14 @@ pub fn attach_voids(c: &Ctx, out: &mut CutCellMesh) -> (usize, usize) {
         if cands.len() == 1 {
             target[v] = cands[0] as u32;
             attached += 1;
-        } else {
-            unresolved += 1;
+            continue;
+        }
+        match enclosing_cell(c, out, &faces_of[v], v as u32, &is_void, boxes) {
+            Enclosing::Cell(k) => {
+                target[v] = k;
+                attached += 1;
+            }
+            Enclosing::Unknown => unresolved += 1,
         }
     }
     if attached == 0 {

@@ -6,6 +6,8 @@ mod common;
 mod embedding;
 mod expected;
 mod invariance;
+mod nesting;
 mod rational_oracle;
+mod shapes;
 mod small;
 mod verify;
