@@ -1,10 +1,10 @@
-//! `septa cut MESH (--grid N | --random N --seed S | --planes FILE) -o OUTDIR`:
+//! `septa cut MESH (--grid N [NY NZ] | --random N --seed S | --planes FILE) -o OUTDIR`:
 //! cuts the domain of a closed triangle mesh by planes into cut-cells
 //! (TopoCut) and writes `cells.vtu`, `cells.obj` (`--format`: also an
 //! OpenFOAM `constant/polyMesh`) and `cut.json`.
 use crate::CliResult;
 use septa::cut::{cut_mesh, CutOptions};
-use septa::io::{cut_cells_obj_of, cut_cells_vtu_of, grid_planes, random_planes, read_mesh, read_planes};
+use septa::io::{cut_cells_obj_of, cut_cells_vtu_of, grid_planes_xyz, random_planes, read_mesh, read_planes};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -13,9 +13,13 @@ use std::time::Instant;
 pub struct Args {
     /// Closed, outward-oriented triangle mesh (.obj, .off, .ply, .stl).
     pub mesh: PathBuf,
-    /// N evenly spaced axis-aligned planes per axis across the mesh's bounding box.
-    #[arg(long, conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
-    pub grid: Option<usize>,
+    /// Axis-aligned planes across the mesh's bounding box: N per axis, or
+    /// NX NY NZ (TopoCut's `plane -s bound_box_xyz --nx --ny --nz`). On each
+    /// axis the first and last planes lie on the box's faces and the others
+    /// are evenly spaced between (N planes, N-1 slabs); a count of 1 puts one
+    /// plane through the box's middle. Give the mesh before --grid.
+    #[arg(long, num_args = 1..=3, value_name = "N", conflicts_with_all = ["random", "planes"], value_parser = crate::args::planes)]
+    pub grid: Option<Vec<usize>>,
     /// N random planes, each through a random point of the bounding box's
     /// diagonal (the same planes for the same --seed).
     #[arg(long, conflicts_with = "planes", value_parser = crate::args::planes)]
@@ -152,8 +156,12 @@ pub fn run(a: Args) -> CliResult {
     crate::labels::keep_freed_memory();
     let t0 = Instant::now();
     let mesh = read_mesh(&a.mesh)?;
-    let planes = match (a.grid, a.random, &a.planes) {
-        (Some(n), _, _) => grid_planes(&mesh.vertices, n),
+    let planes = match (&a.grid, a.random, &a.planes) {
+        (Some(n), _, _) => match n[..] {
+            [n] => grid_planes_xyz(&mesh.vertices, [n; 3]),
+            [nx, ny, nz] => grid_planes_xyz(&mesh.vertices, [nx, ny, nz]),
+            _ => return Err(format!("--grid takes one count or three (NX NY NZ), not {}", n.len()).into()),
+        },
         (_, Some(n), _) => random_planes(&mesh.vertices, n, a.seed),
         (_, _, Some(f)) => read_planes(f)?,
         _ => return Err("give one of --grid N, --random N, --planes FILE".into()),

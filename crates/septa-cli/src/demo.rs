@@ -175,7 +175,7 @@ fn cut_torus(dir: &Path, _: &Args) -> JobResult {
     septa::io::write_atomic(&mesh, torus_obj(1.0, 0.4, 48, 24).as_bytes())?;
     crate::cut::run(crate::cut::Args {
         mesh,
-        grid: Some(6),
+        grid: Some(vec![6]),
         random: None,
         seed: 0,
         planes: None,

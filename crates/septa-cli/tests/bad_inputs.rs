@@ -266,6 +266,28 @@ fn mesh_and_plane_readers() {
 }
 
 #[test]
+fn grid_counts_per_axis() {
+    let d = scratch("grid_xyz");
+    // a 4 x 1 x 1 box (the cube's x stretched by 4)
+    let bar: String = CUBE.replace("v 1 ", "v 4 ");
+    std::fs::write(d.join("bar.obj"), bar).unwrap();
+    let cells = |args: &[&str]| {
+        let j: serde_json::Value = serde_json::from_str(&succeeds(&d, args)).unwrap();
+        assert_eq!(j["check"], "ok", "{args:?}");
+        j["cut_cells"].as_u64().unwrap()
+    };
+    // 5 x planes (4 slabs of 1), 2 on the y and z faces: four unit cubes
+    assert_eq!(cells(&["cut", "bar.obj", "--grid", "5", "2", "2", "-o", "a", "--json"]), 4);
+    // one count on every axis: 4 x 4 x 4 slabs of aspect 4
+    assert_eq!(cells(&["cut", "bar.obj", "--grid", "5", "-o", "b", "--json"]), 64);
+    // a count of 1: one plane through the middle (2 cells along z)
+    assert_eq!(cells(&["cut", "bar.obj", "--grid", "2", "2", "1", "-o", "c", "--json"]), 2);
+    refused(&d, &["cut", "bar.obj", "--grid", "5", "2", "-o", "x"], &["--grid", "one count or three"]);
+    refused(&d, &["cut", "bar.obj", "--grid", "5", "0", "2", "-o", "x"], &["--grid"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
+
+#[test]
 fn label_volumes() {
     let d = scratch("labels");
     // 3x3x3 labels as int64 C order, with a block of label 1.

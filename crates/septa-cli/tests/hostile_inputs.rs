@@ -319,6 +319,10 @@ fn cut_at_any_scale_is_the_unit_cut_scaled() {
         let j = json(&succeeds(&d, &["cut", &name, "--grid", "2", "-o", &out, "--json", "--verify"]));
         assert_eq!(j["cut_cells"], unit["cut_cells"], "{s}");
         assert_eq!(j["check"], "ok", "{s}");
+        // compared at the cut's scale: 1e300^3 overflows, 1e-200^3 underflows
+        // (the error was NaN, printed "volume error NaN", and passed)
+        let e = &j["volume_relative_error"];
+        assert!(e.as_f64().is_some_and(|e| e < 1e-12), "{s}: volume error {e}");
         let obj = std::fs::read_to_string(d.join(&out).join("cells.obj")).unwrap();
         for l in obj.lines().filter(|l| l.starts_with("v ")) {
             let c: Vec<f64> = l[2..].split_whitespace().map(|x| x.parse().unwrap()).collect();

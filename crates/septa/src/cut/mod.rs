@@ -232,6 +232,13 @@ pub struct CutCellMesh {
     pub counts: CutCounts,
     /// Signed volume of the input mesh.
     pub mesh_volume: f64,
+    /// The sum of the cell volumes and the mesh volume at the scale the cut
+    /// ran at (`scale.rs`: the input times `2^k`): the same as the sum of
+    /// `cell_volumes` and `mesh_volume` for inputs within `[2^-64, 2^64]`;
+    /// for others those overflow or underflow (a cube of side 1e300 has
+    /// volume 1e900), and [`CutCellMesh::validate`] compares these instead
+    /// (the relative error does not change under scaling by `2^3k`).
+    pub volume_sums_at_cut_scale: [f64; 2],
     /// The cut planes used (after dropping duplicates); `Support::Plane(p)`
     /// indexes this list.
     pub planes: Vec<[f64; 4]>,

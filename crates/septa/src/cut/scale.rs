@@ -136,6 +136,7 @@ impl<'a> Scaled<'a> {
             let dropped: std::collections::HashSet<usize> = m.stats.dropped_planes.iter().map(|d| d.0).collect();
             m.planes = planes.iter().enumerate().filter(|(i, _)| !dropped.contains(i)).map(|(_, p)| *p).collect();
         }
+        m.volume_sums_at_cut_scale = [m.cell_volumes.iter().sum(), m.mesh_volume];
         if self.k == 0 {
             return;
         }

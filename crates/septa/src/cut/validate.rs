@@ -71,11 +71,18 @@ impl CutCellMesh {
             }
         }
         let total: f64 = self.cell_volumes.iter().sum();
-        let err = (total - self.mesh_volume).abs() / self.mesh_volume.abs();
+        // At 1e300 the volumes overflow (inf - inf: NaN, which passed
+        // `err > 1e-9`); at 1e-200 they underflow (0 / 0). Then the sums at
+        // the scale the cut ran at (a power of two, scale.rs) decide.
+        let usable = |t: f64, m: f64| t.is_finite() && m.is_normal();
+        let [t2, m2] = self.volume_sums_at_cut_scale;
+        let (t, m) =
+            if usable(total, self.mesh_volume) || !usable(t2, m2) { (total, self.mesh_volume) } else { (t2, m2) };
+        let err = (t - m).abs() / m.abs();
         let min = self.cell_volumes.iter().copied().fold(f64::INFINITY, f64::min);
-        if err > 1e-9 {
+        if !(err <= 1e-9) {
             return Err(CutError::Inconsistent(format!(
-                "cell volumes sum to {total}, mesh volume {}",
+                "cell volumes sum to {total}, mesh volume {} (at the cut's scale: {t2} and {m2})",
                 self.mesh_volume
             )));
         }

@@ -54,7 +54,7 @@ pub use network_out::{
 };
 pub use npz::{parse_npy, read_grid_input, read_npz, GridInput, NpyArray, NpzError};
 pub use outdir::OutputDir;
-pub use planes::{grid_planes, parse_planes, random_planes, read_planes};
+pub use planes::{grid_planes, grid_planes_xyz, parse_planes, random_planes, read_planes};
 pub use ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
 pub use result::{write_file, Annotations, Format, ResultView};

@@ -1,6 +1,7 @@
 //! Cut-plane lists: TopoCut's format (first line `N 4`, then `a b c d`
 //! lines) or plain `a b c d` lines, for the plane `a x + b y + c z + d = 0`;
-//! and the generated sets `--grid N` (TopoCut's An) and `--random N`
+//! and the generated sets `--grid N` or `--grid NX NY NZ` (TopoCut's An
+//! and `bound_box_xyz`) and `--random N`
 //! (TopoCut's Rn).
 
 use super::mesh::{parse_f64, ReadError};
@@ -62,12 +63,24 @@ pub fn bounding_box(vertices: &[[f64; 3]]) -> ([f64; 3], [f64; 3]) {
     (lo, hi)
 }
 
-/// TopoCut's `An`: `n` planes per axis at `min + (max - min) * j / (n - 1)`,
-/// the first and last on the faces of the vertex bounding box.
+/// TopoCut's `An`: `n` planes per axis, [`grid_planes_xyz`] with `[n; 3]`.
 pub fn grid_planes(vertices: &[[f64; 3]], n: usize) -> Vec<[f64; 4]> {
+    grid_planes_xyz(vertices, [n; 3])
+}
+
+/// TopoCut's `plane -s bound_box_xyz --nx NX --ny NY --nz NZ`: on axis
+/// `a`, `n[a]` planes `x_a = min_a + (max_a - min_a) * j / (n[a] - 1)` for
+/// `j = 0 .. n[a]-1` over the bounding box of all vertices, so the first and
+/// the last lie on the box's faces (TopoCut computes the same positions; the
+/// last is taken as `max_a` itself, not the rounded formula). `n[a]` planes
+/// make `n[a] - 1` slabs: `--grid 21 6 6` on a 4 x 1 x 1 box gives cubes of
+/// side 0.2. `n[a] = 1` puts one plane through the box's middle (TopoCut
+/// divides by zero there). The planes come axis by axis, x first.
+pub fn grid_planes_xyz(vertices: &[[f64; 3]], n: [usize; 3]) -> Vec<[f64; 4]> {
     let (lo, hi) = bounding_box(vertices);
     let mut out = Vec::new();
     for axis in 0..3 {
+        let n = n[axis];
         for j in 0..n {
             let x = if n == 1 {
                 0.5 * (lo[axis] + hi[axis])

@@ -4,7 +4,7 @@
 use crate::common;
 
 use septa::io::read_mesh;
-use septa::io::{grid_planes, parse_planes, random_planes};
+use septa::io::{grid_planes, grid_planes_xyz, parse_planes, random_planes};
 use std::path::{Path, PathBuf};
 
 fn tmp(name: &str, bytes: &[u8]) -> PathBuf {
@@ -92,6 +92,19 @@ fn plane_files_and_generators() {
     assert_eq!(g.len(), 15);
     assert_eq!(g[0], [1.0, 0.0, 0.0, -0.0]);
     assert_eq!(g[4], [1.0, 0.0, 0.0, -1.0]);
+    // per-axis counts (TopoCut's bound_box_xyz): 3 x planes on the box's
+    // faces and its middle, 2 y planes on its faces, 1 z plane in the middle
+    let g = grid_planes_xyz(&V, [3, 2, 1]);
+    let want: Vec<[f64; 4]> = vec![
+        [1.0, 0.0, 0.0, -0.0],
+        [1.0, 0.0, 0.0, -0.5],
+        [1.0, 0.0, 0.0, -1.0],
+        [0.0, 1.0, 0.0, -0.0],
+        [0.0, 1.0, 0.0, -1.0],
+        [0.0, 0.0, 1.0, -0.5],
+    ];
+    assert_eq!(g, want);
+    assert_eq!(grid_planes_xyz(&V, [5; 3]), grid_planes(&V, 5));
     let r1 = random_planes(&V, 10, 7);
     assert_eq!(r1, random_planes(&V, 10, 7));
     assert_ne!(r1, random_planes(&V, 10, 8));
