@@ -32,9 +32,13 @@ pub enum CutError {
         /// Triangle index.
         triangle: usize,
     },
-    /// An edge used twice in the same direction.
-    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle}: non-manifold edge or inconsistent orientation")]
+    /// An edge used more often in one direction than in the other.
+    #[error("edge {a}->{b} is used in the same direction by triangles {other} and {triangle} ({forward} times a->b, {backward} times b->a): inconsistent orientation (flip the triangles facing the wrong way)")]
     NonManifoldOrFlipped {
+        /// Triangles using the edge as `a -> b`.
+        forward: usize,
+        /// Triangles using it as `b -> a`.
+        backward: usize,
         /// Triangle index.
         triangle: usize,
         /// The other triangle.
@@ -43,6 +47,20 @@ pub enum CutError {
         a: u32,
         /// Edge end vertex.
         b: u32,
+    },
+    /// An edge of four or more triangles, as many in each direction: two
+    /// solids sharing the edge. A valid domain boundary (TopoCut App. C)
+    /// that the cut does not handle yet (issue 46).
+    #[error("edge {a}-{b} is non-manifold: {count} triangles ({triangles:?}), half in each direction (e.g. two solids sharing the edge); such a closed mesh bounds a valid domain (TopoCut, App. C), but septa cut does not cut it yet")]
+    NonManifoldEdge {
+        /// Edge end (smaller index).
+        a: u32,
+        /// Edge end (larger index).
+        b: u32,
+        /// Triangles around it.
+        count: usize,
+        /// The first few of them.
+        triangles: Vec<usize>,
     },
     /// An edge with only one triangle.
     #[error("edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight")]
@@ -55,10 +73,16 @@ pub enum CutError {
         b: u32,
     },
     /// The triangles around a vertex form more than one fan.
-    #[error("vertex {vertex} is non-manifold (its triangles form several fans)")]
+    #[error("vertex {vertex} is pinched: its {valence} triangles form {fans} fans, the first of {first_fan} triangles (e.g. two solids touching at the vertex); such a closed mesh bounds a valid domain (TopoCut, App. C), but septa cut does not cut it yet")]
     NonManifoldVertex {
         /// Vertex index.
         vertex: usize,
+        /// Its triangles.
+        valence: usize,
+        /// Their fans (edge-connected around the vertex).
+        fans: usize,
+        /// Triangles of the fan of its first triangle.
+        first_fan: usize,
     },
     /// Negative or zero signed volume.
     #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]

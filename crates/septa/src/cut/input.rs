@@ -107,9 +107,21 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
         // the sides run v -> u (`false`) sort before those u -> v
         let (bw, fw) = sides[i..j].split_at(sides[i..j].iter().take_while(|s| !s.2).count());
         if fw.len() > 1 || bw.len() > 1 {
-            let two = if fw.len() > 1 { fw } else { bw };
+            if fw.len() == bw.len() {
+                // consistently oriented around the edge (TopoCut App. C)
+                let triangles = sides[i..j].iter().take(8).map(|s| s.3 as usize).collect();
+                return Err(CutError::NonManifoldEdge { a: u, b: v, count: j - i, triangles });
+            }
+            let (two, other) = if fw.len() > bw.len() { (fw, bw) } else { (bw, fw) };
             let (a, b) = if two[0].2 { (u, v) } else { (v, u) };
-            return Err(CutError::NonManifoldOrFlipped { triangle: two[1].3 as usize, other: two[0].3 as usize, a, b });
+            return Err(CutError::NonManifoldOrFlipped {
+                triangle: two[1].3 as usize,
+                other: two[0].3 as usize,
+                a,
+                b,
+                forward: two.len(),
+                backward: other.len(),
+            });
         }
         if fw.is_empty() || bw.is_empty() {
             let (a, b) = if sides[i].2 { (u, v) } else { (v, u) };
@@ -152,7 +164,12 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
             }
         }
         if count != valence[v] {
-            return Err(CutError::NonManifoldVertex { vertex: v });
+            return Err(CutError::NonManifoldVertex {
+                vertex: v,
+                valence: valence[v] as usize,
+                fans: fans_at(tris, &tri_edges, &edge_tris, v as u32),
+                first_fan: count as usize,
+            });
         }
     }
     // positive volume (outward orientation), computed on coordinates scaled
@@ -174,6 +191,40 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
         return Err(CutError::InwardOrientation { volume: vol });
     }
     Ok((edges, tri_edges, edge_tris))
+}
+
+/// The number of fans of triangles around vertex `v` (error reporting
+/// only: a scan of all triangles).
+fn fans_at(tris: &[[u32; 3]], tri_edges: &[[u32; 3]], edge_tris: &[[u32; 2]], v: u32) -> usize {
+    let around: Vec<u32> = (0..tris.len() as u32).filter(|&t| tris[t as usize].contains(&v)).collect();
+    let mut seen = vec![false; around.len()];
+    let mut fans = 0;
+    for start in 0..around.len() {
+        if seen[start] {
+            continue;
+        }
+        fans += 1;
+        let mut stack = vec![around[start]];
+        seen[start] = true;
+        while let Some(t) = stack.pop() {
+            // the two sides of t at v lead to its neighbours in the fan
+            for (k, &e) in tri_edges[t as usize].iter().enumerate() {
+                let tri = tris[t as usize];
+                if tri[k] != v && tri[(k + 1) % 3] != v {
+                    continue;
+                }
+                for o in edge_tris[e as usize] {
+                    if let Some(p) = around.iter().position(|&x| x == o) {
+                        if !seen[p] {
+                            seen[p] = true;
+                            stack.push(o);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    fans
 }
 
 fn verts3<R: Ring>(v: &[f64; 3]) -> [R; 3] {

@@ -7,6 +7,7 @@ mod embedding;
 mod expected;
 mod invariance;
 mod nesting;
+mod nonmanifold;
 mod rational_oracle;
 mod shapes;
 mod small;
