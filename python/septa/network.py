@@ -45,6 +45,11 @@ class Network:
         chains: list of ``int64`` point-id arrays; corners: ``int64`` point ids.
         shells: list of half-patch id arrays (2p / 2p+1 = positive / negative side of p).
         cells: list of dicts ``{"shells", "label"}``.
+        cell_volume: ``(#C,) float64`` each cell's volume (regions: each
+            region's; NaN for a cell a tet mesh's boundary leaves open);
+            patch_area ``(#P,)``; chain_length ``(#chains,)``. Empty when
+            the result carries no measures.
+        names: ``{"functions": [...], "regions": {region: name}}``.
         embedding: what the exact check of the written doubles found and
             what its repairs changed (``{"before", "after", "snapped",
             "rotated", "nudged", ...}``; ``after`` counts ``coincident_points``,
@@ -69,8 +74,25 @@ class Network:
         net.seconds = dict(d["seconds"])
         net._counts = dict(d["counts"])
         net._counts["cells_method"] = d.get("cells_method")
+        net._set_notes(d.get("names"), d.get("cell_volume"), d.get("patch_area"), d.get("chain_length"))
         net.embedding = json.loads(d["embedding"]) if d.get("embedding") else None
         return net
+
+    def _set_notes(self, names, cell_volume, patch_area, chain_length):
+        """Names and measures (missing or of the wrong length: none)."""
+        names = names if isinstance(names, dict) else {}
+        regions = names.get("regions") or {}
+        self.names = {"functions": [str(f) for f in names.get("functions") or []],
+                      "regions": {int(k): str(v) for k, v in dict(regions).items()}}
+
+        def floats(xs, n):
+            a = np.asarray([np.nan if x is None else x for x in xs] if isinstance(xs, list) else
+                           (np.zeros(0) if xs is None else xs), dtype=np.float64).ravel()
+            return a if len(a) == n else np.zeros(0)
+
+        self.cell_volume = floats(cell_volume, len(self.cells))
+        self.patch_area = floats(patch_area, len(self.patch_labels))
+        self.chain_length = floats(chain_length, len(self.chains))
 
     @property
     def data(self) -> dict:
@@ -92,6 +114,13 @@ class Network:
                 "counts": {k: v for k, v in self._counts.items() if k != "cells_method"},
                 "seconds": self.seconds,
             }
+            if self.names["functions"] or self.names["regions"]:
+                self._data["names"] = {"functions": self.names["functions"],
+                                       "regions": {str(k): v for k, v in self.names["regions"].items()}}
+            if len(self.cell_volume) or len(self.patch_area) or len(self.chain_length):
+                nulls = lambda a: [None if not np.isfinite(x) else float(x) for x in a]
+                self._data["measures"] = {"cell_volume": nulls(self.cell_volume), "patch_area": nulls(self.patch_area),
+                                          "chain_length": nulls(self.chain_length)}
         return self._data
 
     def _triangulate(self):
@@ -146,6 +175,8 @@ class Network:
         self.shells = [np.asarray(s, dtype=np.int64) for s in data.get("shells", [])]
         self.cells = list(data.get("cells", []))
         self.seconds = dict(data.get("seconds", {}))
+        m = data.get("measures") or {}
+        self._set_notes(data.get("names"), m.get("cell_volume"), m.get("patch_area"), m.get("chain_length"))
         self.embedding = data.get("embedding", self._counts.get("embedding"))
 
     def __len__(self) -> int:
@@ -228,13 +259,17 @@ class Network:
         for i, l in enumerate(labels):
             cell_labels[i, :len(l)] = [int(x) for x in l]
         meta = {"counts": {k: v for k, v in self._counts.items() if k != "cells_method"}, "seconds": self.seconds,
-                "cells_method": self._counts.get("cells_method")}
+                "cells_method": self._counts.get("cells_method"),
+                "names": {"functions": self.names["functions"],
+                          "regions": {str(k): v for k, v in self.names["regions"].items()}}}
+        f64 = lambda a: np.ascontiguousarray(a, dtype=np.float64) if len(a) else None
         _septa.write_result(
             str(path), fmt, self.mode if self.mode in ("ia", "mi", "regions") else "ia", self.functions,
             np.ascontiguousarray(self.points, dtype=np.float64).reshape(-1, 3), i64(self.offsets, -1), i64(self.indices, -1),
             i64(self.face_patch, -1), i64(self.face_label, -1, 2), i64(self.face_cells, -1, 2), i64(self.patch_labels, -1, 2),
             *csr(self.chains), *csr(self.chain_patches), i64(self.corners, -1), *csr(self.shells),
-            *csr([c.get("shells", []) for c in self.cells]), cell_labels, json.dumps(meta, default=str))
+            *csr([c.get("shells", []) for c in self.cells]), cell_labels, json.dumps(meta, default=str),
+            cell_volume=f64(self.cell_volume), patch_area=f64(self.patch_area), chain_length=f64(self.chain_length))
 
     # --- converters ---------------------------------------------------
     def _triangle_data(self) -> dict:
@@ -327,7 +362,9 @@ def _from_npz(p: Path) -> Network:
          "face_cells": a["cells"], "face_label": a["labels"], "patch_labels": a["patch_labels"],
          "patch_faces": np.bincount(a["patch"], minlength=len(a["patch_labels"])), "chains": split("chain"),
          "chain_patches": split("chain_patch"), "corners": a["corners"], "shells": split("shell"), "cells": cells,
-         "functions": meta.get("functions", 0), "counts": meta.get("counts", {}), "seconds": meta.get("seconds", {}), "cells_method": meta.get("cells_method")}
+         "functions": meta.get("functions", 0), "counts": meta.get("counts", {}), "seconds": meta.get("seconds", {}), "cells_method": meta.get("cells_method"),
+         "names": meta.get("names"), "cell_volume": a.get("cell_volume"), "patch_area": a.get("patch_area"),
+         "chain_length": a.get("chain_length")}
     net = Network._from_core(d)
     if mode == "regions":
         net.surfaces, net.curves = meta["counts"].get("surfaces", []), meta["counts"].get("curves", [])

@@ -87,7 +87,14 @@ fn scene_network(name: &str, grid: Option<usize>, dir: &Path) -> JobResult {
     if let septa::grid::Grid::Box(b) = &g {
         septa::mesh::certify_network(&mut net, Some(b));
     }
-    septa::io::write_network(&net, dir, &[])?;
+    let notes = septa::io::Annotations {
+        names: scene.result_names(),
+        measures: septa::measure::network_measures(
+            &net,
+            Some(&septa::measure::BoxDomain::of_box(&scene.grid.box_grid()?)),
+        ),
+    };
+    septa::io::write_network(&net, &notes, dir, &[])?;
     Ok(JobRow { counts: counts(&net), viewer: true })
 }
 

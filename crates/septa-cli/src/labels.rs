@@ -68,7 +68,7 @@ pub fn run(a: Args) -> CliResult {
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
-        println!("{file}: {} surfaces, {} curves, {} polygons", r.surfaces.len(), r.curves.len(), r.faces.len());
+        print!("{}", crate::summary::regions_text(&file, &r));
         a.out.tell_embedding(r.embedding.as_ref());
     }
     Ok(())

@@ -3,7 +3,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use septa::grid::Split;
-use septa::io::write_network_formats;
+use septa::io::{write_network_formats, Annotations};
 use septa::job::{GridOverride, Job};
 use septa::network::{self, NetworkOptions};
 
@@ -171,11 +171,14 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         bar.finish_and_clear();
     }
     let mut extra = vec![("read", t_read)];
+    let t = Instant::now();
+    let notes = Annotations::of_job(&job, &net);
+    extra.push(("measure", t.elapsed().as_secs_f64()));
     if !args.no_output {
         let t = Instant::now();
         let quiet = args.out.json || args.out.quiet;
         crate::progress::during(quiet, &format!("writing {}", args.out.output.display()), || {
-            write_network_formats(&net, &args.out.output, &args.out.format.0, &extra)
+            write_network_formats(&net, &notes, &args.out.output, &args.out.format.0, &extra)
         })?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
@@ -190,6 +193,10 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             obj.insert("blocks".into(), sparse_json(&s));
         }
         obj.insert("cells_method".into(), cells_method.as_str().into());
+        obj.insert("measures".into(), notes.measures.to_json());
+        if !notes.names.is_empty() {
+            obj.insert("names".into(), notes.names.to_json());
+        }
         if let Some(e) = &net.embedding {
             obj.insert("embedding".into(), serde_json::to_value(e)?);
         }
@@ -203,6 +210,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     } else if args.out.talk() {
         let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
+        print!("{}", crate::summary::network_text(&net, &notes));
         args.out.tell_embedding(net.embedding.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));

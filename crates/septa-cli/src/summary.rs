@@ -33,6 +33,17 @@ pub fn regions_text(input: &str, r: &RegionSurfaces) -> String {
         plural(r.surfaces.len(), "surface", "surfaces")
     )
     .unwrap();
+    let regions = r.region_ids();
+    for (i, &g) in regions.iter().enumerate() {
+        if i == MAX_LINES {
+            writeln!(out, "  ... and {} more regions (all in --json)", regions.len() - i).unwrap();
+            break;
+        }
+        match r.measures.cell_volume.get(i) {
+            Some(v) if v.is_finite() => writeln!(out, "  region {}: volume {v:.6}", names.region_text(g)).unwrap(),
+            _ => writeln!(out, "  region {}", names.region_text(g)).unwrap(),
+        }
+    }
     for (i, s) in r.surfaces.iter().enumerate() {
         if i == MAX_LINES {
             writeln!(out, "  ... and {} more surfaces (all in --json)", r.surfaces.len() - i).unwrap();
@@ -48,9 +59,10 @@ pub fn regions_text(input: &str, r: &RegionSurfaces) -> String {
         } else {
             plural(s.boundary_loops, "boundary loop", "boundary loops")
         };
+        let area = r.measures.patch_area.get(i).map(|a| format!(", area {a:.6}")).unwrap_or_default();
         writeln!(
             out,
-            "  surface between regions {} and {}: {}, Euler characteristic {}, {closed}",
+            "  surface between regions {} and {}: {}, Euler characteristic {}, {closed}{area}",
             names.region_text(a),
             names.region_text(b),
             plural(s.faces, "polygon", "polygons"),
@@ -73,7 +85,7 @@ pub fn regions_text(input: &str, r: &RegionSurfaces) -> String {
         };
         writeln!(
             out,
-            "  curve {i}, {what}: {}, {}, length {:.4}",
+            "  curve {i}, {what}: {}, {}, length {:.6}",
             if c.closed { "closed" } else { "open" },
             plural(c.vertices.len(), "vertex", "vertices"),
             c.length
@@ -81,4 +93,40 @@ pub fn regions_text(input: &str, r: &RegionSurfaces) -> String {
         .unwrap();
     }
     out
+}
+
+/// The measures of a grid network in words: the cells' volumes (the
+/// largest few), the total patch area and chain length.
+pub fn network_text(net: &septa::network::Network, notes: &septa::io::Annotations) -> String {
+    let m = &notes.measures;
+    let mut out = String::new();
+    let known: Vec<(usize, f64)> = m.cell_volume.iter().copied().enumerate().filter(|(_, v)| v.is_finite()).collect();
+    if !known.is_empty() {
+        let total: f64 = known.iter().map(|x| x.1).sum();
+        let mut order = known.clone();
+        order.sort_by(|a, b| b.1.total_cmp(&a.1));
+        let shown: Vec<String> = order.iter().take(5).map(|(c, v)| format!("cell {c}: {v:.6}")).collect();
+        let rest = if order.len() > 5 { format!(", ... ({} more)", order.len() - 5) } else { String::new() };
+        writeln!(out, "volumes: {} in all; largest {}{rest}", fmt(total), shown.join(", ")).unwrap();
+        if known.len() < m.cell_volume.len() {
+            writeln!(
+                out,
+                "  {} of {} cells reach the tet mesh's boundary: no volume",
+                m.cell_volume.len() - known.len(),
+                m.cell_volume.len()
+            )
+            .unwrap();
+        }
+    }
+    let _ = net;
+    if !m.patch_area.is_empty() {
+        let area: f64 = m.patch_area.iter().sum();
+        let length: f64 = m.chain_length.iter().sum();
+        writeln!(out, "patch area {} in all, chain length {} in all", fmt(area), fmt(length)).unwrap();
+    }
+    out
+}
+
+fn fmt(x: f64) -> String {
+    format!("{x:.6}")
 }

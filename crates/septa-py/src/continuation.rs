@@ -128,7 +128,8 @@ pub fn continuation<'py>(
             Ok((net, stats))
         })?;
     let (net, stats) = r.map_err(InputError::new_err)?;
-    let d = crate::network::to_dict(py, &net)?;
+    let notes = py.detach(|| crate::network::box_notes(&net, &grid));
+    let d = crate::network::to_dict(py, &net, &notes)?;
     if let (Some(s), Some(counts)) = (stats, d.get_item("counts")?) {
         let b = crate::distributed::stats_dict(py, &s.blocks)?;
         b.set_item("seeds", s.seeds)?;
@@ -224,19 +225,20 @@ pub fn continuation_finish<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let field = PyField { f, k };
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
-    let r: Result<(Network, septa::network::SparseStats), String> = py.detach(|| {
+    let r: Result<(Network, septa::network::SparseStats, septa::io::Annotations), String> = py.detach(|| {
         let (grid, options) = job_of(&job)?;
         let blocks = slices
             .iter()
             .enumerate()
             .map(|(i, b)| BlockResult::from_bytes(b).map_err(|e| format!("result {i}: {e}")))
             .collect::<Result<Vec<_>, _>>()?;
-        let (mut net, stats) = finish_continuation(&grid, &field, &options, blocks).map_err(|e| e.to_string())?;
+        let (mut net, s) = finish_continuation(&grid, &field, &options, blocks).map_err(|e| e.to_string())?;
         septa::mesh::certify_network(&mut net, Some(&grid));
-        Ok((net, stats))
+        let notes = crate::network::box_notes(&net, &grid);
+        Ok((net, s, notes))
     });
-    let (net, s) = r.map_err(InputError::new_err)?;
-    let d = crate::network::to_dict(py, &net)?;
+    let (net, s, notes) = r.map_err(InputError::new_err)?;
+    let d = crate::network::to_dict(py, &net, &notes)?;
     if let Some(counts) = d.get_item("counts")? {
         counts.set_item("blocks", crate::distributed::stats_dict(py, &s)?)?;
     }

@@ -14,6 +14,7 @@ use pyo3::types::{PyBytes, PyDict};
 use rayon::prelude::*;
 use septa::complex::Mode;
 use septa::grid::BoxGrid;
+use septa::io::Annotations;
 use septa::network::{
     compute, compute_sparse, finish_sparse, plan_sparse, run_block, BlockResult, Network, NetworkOptions, SparsePlan,
     SparseStats,
@@ -60,8 +61,21 @@ pub(crate) fn stats_dict<'py>(py: Python<'py>, s: &SparseStats) -> PyResult<Boun
     Ok(d)
 }
 
-fn network_dict<'py>(py: Python<'py>, net: &Network, stats: Option<&SparseStats>) -> PyResult<Bound<'py, PyDict>> {
-    let d = crate::network::to_dict(py, net)?;
+/// A job's network's names and measures (its box grid is the domain).
+fn notes_of(j: &Job, net: &Network) -> Annotations {
+    Annotations {
+        names: j.scene.as_ref().map(|s| s.result_names()).unwrap_or_default(),
+        measures: septa::measure::network_measures(net, Some(&septa::measure::BoxDomain::of_box(&j.grid))),
+    }
+}
+
+fn network_dict<'py>(
+    py: Python<'py>,
+    net: &Network,
+    stats: Option<&SparseStats>,
+    notes: &Annotations,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = crate::network::to_dict(py, net, notes)?;
     if let (Some(s), Some(counts)) = (stats, d.get_item("counts")?) {
         counts.set_item("blocks", stats_dict(py, s)?)?;
     }
@@ -135,10 +149,11 @@ pub fn sparse_finish<'py>(
         let j = parse_job(job)?;
         let (mut net, stats) = finish(&j, plan_of(plan), &slices)?;
         septa::mesh::certify_network(&mut net, Some(&j.grid));
-        Ok((net, stats))
+        let notes = notes_of(&j, &net);
+        Ok((net, stats, notes))
     });
-    let (net, stats) = r?;
-    network_dict(py, &net, Some(&stats))
+    let (net, stats, notes) = r?;
+    network_dict(py, &net, Some(&stats), &notes)
 }
 
 /// sparse_finish_regions(job, plan, results, normals=False)
@@ -165,6 +180,7 @@ pub fn sparse_finish_regions<'py>(
         let (net, stats) = finish(&j, plan_of(plan), &slices)?;
         let mut out = septa::regions::from_network(net, &scene.regions, &scene.interest);
         out.names = scene.result_names();
+        out.domain = Some(septa::measure::BoxDomain::of_box(&j.grid));
         if normals {
             septa::regions::add_normals(&mut out, &scene.functions);
         }
@@ -190,23 +206,25 @@ pub fn sparse_network<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let r: Result<(Network, Option<SparseStats>), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
-        let mut j = parse_job(job)?;
-        j.options.cancel = Some(cancel.clone());
-        let run = || -> Result<(Network, Option<SparseStats>), Failure> {
-            if dense {
-                let g = septa::grid::Grid::Box(j.grid.clone());
-                let values = sample_grid(&j.functions, &g.vertices());
-                let net = compute(&g, &values, j.functions.len(), &j.options).map_err(failure)?;
-                Ok((net, None))
-            } else {
-                compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
-            }
-        };
-        let (mut net, stats) = crate::on_threads(threads, run)?;
-        septa::mesh::certify_network(&mut net, Some(&j.grid));
-        Ok((net, stats))
-    })?;
-    let (net, stats) = r?;
-    network_dict(py, &net, stats.as_ref())
+    let r: Result<(Network, Option<SparseStats>, Annotations), Failure> =
+        crate::interrupt::run_interruptible(py, &cancel, || {
+            let mut j = parse_job(job)?;
+            j.options.cancel = Some(cancel.clone());
+            let run = || -> Result<(Network, Option<SparseStats>), Failure> {
+                if dense {
+                    let g = septa::grid::Grid::Box(j.grid.clone());
+                    let values = sample_grid(&j.functions, &g.vertices());
+                    let net = compute(&g, &values, j.functions.len(), &j.options).map_err(failure)?;
+                    Ok((net, None))
+                } else {
+                    compute_sparse(&j.grid, &j.functions, &j.options).map(|(n, s)| (n, Some(s))).map_err(failure)
+                }
+            };
+            let (mut net, stats) = crate::on_threads(threads, run)?;
+            septa::mesh::certify_network(&mut net, Some(&j.grid));
+            let notes = notes_of(&j, &net);
+            Ok((net, stats, notes))
+        })?;
+    let (net, stats, notes) = r?;
+    network_dict(py, &net, stats.as_ref(), &notes)
 }

@@ -7,6 +7,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use septa::complex::Mode;
 use septa::grid::{BoxGrid, Grid, Split, TetMesh};
+use septa::io::Annotations;
+use septa::measure::{network_measures, BoxDomain};
 use septa::network::{compute, Network, NetworkOptions};
 
 fn id(x: u32) -> i64 {
@@ -57,7 +59,7 @@ pub fn network<'py>(
     options.progress = progress.map(py_progress);
     let cancel = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     options.cancel = Some(cancel.clone());
-    let result: Result<Network, Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
+    let result: Result<(Network, Annotations), Failure> = crate::interrupt::run_interruptible(py, &cancel, || {
         let grid = match r#box {
             Some((res, bounds, split)) => {
                 let split = match split {
@@ -82,15 +84,28 @@ pub fn network<'py>(
                 };
                 septa::mesh::certify_network(&mut net, b);
             }
-            Ok(net)
+            Ok::<_, Failure>(net)
         };
-        crate::on_threads(threads, run)
+        let net = crate::on_threads(threads, run)?;
+        let domain = match &grid {
+            Grid::Box(g) => Some(BoxDomain::of_box(g)),
+            Grid::Mesh(_) => None,
+        };
+        let notes = Annotations { names: Default::default(), measures: network_measures(&net, domain.as_ref()) };
+        Ok((net, notes))
     })?;
-    let net = result?;
-    to_dict(py, &net)
+    let (net, notes) = result?;
+    to_dict(py, &net, &notes)
 }
 
-pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py, PyDict>> {
+/// The measures of a network on a box grid (no names).
+pub(crate) fn box_notes(net: &Network, grid: &BoxGrid) -> Annotations {
+    Annotations { names: Default::default(), measures: network_measures(net, Some(&BoxDomain::of_box(grid))) }
+}
+
+/// The arrays of a network (`septa.Network._from_core`), with its names and
+/// measures.
+pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network, notes: &Annotations) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let n = net.points.len();
     d.set_item("mode", if net.mode == Mode::Ia { "ia" } else { "mi" })?;
@@ -148,6 +163,7 @@ pub(crate) fn to_dict<'py>(py: Python<'py>, net: &Network) -> PyResult<Bound<'py
         seconds.set_item(*k, *v)?;
     }
     d.set_item("seconds", seconds)?;
+    crate::result::notes_items(py, &d, &notes.names, &notes.measures)?;
     Ok(d)
 }
 

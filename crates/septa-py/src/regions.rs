@@ -71,25 +71,27 @@ pub(crate) fn region_dict<'py>(py: Python<'py>, r: &RegionSurfaces) -> PyResult<
     Ok(d)
 }
 
-/// labels(volume, sigma=0.0, progress=None, affine=None, certify=True)
+/// labels(volume, sigma=0.0, progress=None, affine=None, names=None, certify=True)
 /// --
 ///
 /// Exact surfaces between the labels of a segmented volume (`septa labels`):
 /// `volume` a 3-axis int64 array (C order, index `[i, j, k]` at grid point
 /// `(i, j, k)`), `sigma` an optional Gaussian smoothing of the indicator
 /// functions in voxels, `progress(done, total)` called as blocks of the
-/// network finish, `affine` the voxel-to-world map (3 rows of 4; default
-/// the identity) placing the points as `septa labels` does, `certify` the
-/// exact check and repair of the placed doubles (`septa::mesh::place_labels`).
+/// network finish, `affine` the voxel-to-world map (3 rows `[M | t]`; default
+/// the identity; the points, the box and so the measures are placed by it, as
+/// `septa labels` does), `names` a dict label -> name, `certify` the exact
+/// check and repair of the placed doubles (`septa::mesh::place_labels`).
 /// Returns the arrays of `regions`; the GIL is released while it is computed.
 #[pyfunction]
-#[pyo3(signature = (volume, sigma = 0.0, progress = None, affine = None, certify = true))]
+#[pyo3(signature = (volume, sigma = 0.0, progress = None, affine = None, names = None, certify = true))]
 pub fn labels<'py>(
     py: Python<'py>,
     volume: numpy::PyReadonlyArray3<'_, i64>,
     sigma: f64,
     progress: Option<Py<PyAny>>,
     affine: Option<[[f64; 4]; 3]>,
+    names: Option<std::collections::BTreeMap<i64, String>>,
     certify: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     use numpy::PyUntypedArrayMethods;
@@ -102,6 +104,7 @@ pub fn labels<'py>(
         let mut r =
             septa::regions::label_surfaces_with_progress(&data, shape, sigma, progress).map_err(|e| e.to_string())?;
         septa::mesh::place_labels(&mut r, shape, &affine, certify)?;
+        r.names.regions = names.unwrap_or_default();
         Ok::<_, String>(r)
     });
     region_dict(py, &result.map_err(InputError::new_err)?)

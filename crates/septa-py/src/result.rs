@@ -53,7 +53,48 @@ pub(crate) fn view_dict<'py>(py: Python<'py>, r: &ResultView) -> PyResult<Bound<
         cells.append(c)?;
     }
     d.set_item("cells", cells)?;
+    notes_items(py, &d, &r.names, &r.measures)?;
     Ok(d)
+}
+
+/// `cell_volume`, `patch_area`, `chain_length` (float64 arrays, empty when
+/// not measured) and `names` (`{"functions": [..], "regions": {r: name}}`).
+pub(crate) fn notes_items<'py>(
+    py: Python<'py>,
+    d: &Bound<'py, PyDict>,
+    names: &septa::io::Names,
+    m: &septa::measure::Measures,
+) -> PyResult<()> {
+    d.set_item("cell_volume", m.cell_volume.clone().into_pyarray(py))?;
+    d.set_item("patch_area", m.patch_area.clone().into_pyarray(py))?;
+    d.set_item("chain_length", m.chain_length.clone().into_pyarray(py))?;
+    let n = PyDict::new(py);
+    n.set_item("functions", names.functions.clone())?;
+    let regions = PyDict::new(py);
+    for (k, v) in &names.regions {
+        regions.set_item(*k, v)?;
+    }
+    n.set_item("regions", regions)?;
+    d.set_item("names", n)?;
+    Ok(())
+}
+
+/// Names from their JSON (`{"functions": [..], "regions": {"r": name}}`);
+/// anything else is no names.
+pub(crate) fn names_of(v: Option<&serde_json::Value>) -> septa::io::Names {
+    let mut n = septa::io::Names::default();
+    let Some(v) = v else { return n };
+    if let Some(fs) = v.get("functions").and_then(|f| f.as_array()) {
+        n.functions = fs.iter().map(|f| f.as_str().map_or_else(|| f.to_string(), str::to_string)).collect();
+    }
+    if let Some(rs) = v.get("regions").and_then(|r| r.as_object()) {
+        for (k, name) in rs {
+            if let (Ok(r), Some(name)) = (k.trim().parse::<i64>(), name.as_str()) {
+                n.regions.insert(r, name.to_string());
+            }
+        }
+    }
+    n
 }
 
 /// A ragged list given as (offsets, indices).
@@ -94,18 +135,20 @@ fn pairs(name: &str, a: &PyReadonlyArray2<'_, i64>) -> PyResult<Vec<[i32; 2]>> {
     Ok(s.chunks_exact(2).map(|c| [c[0] as i32, c[1] as i32]).collect())
 }
 
-/// write_result(path, format, mode, functions, points, offsets, indices, patch, labels, cells, patch_labels, chain_offsets, chain_indices, chain_patch_offsets, chain_patch_indices, corners, shell_offsets, shell_indices, cell_shell_offsets, cell_shell_indices, cell_labels, meta)
+/// write_result(path, format, mode, functions, points, offsets, indices, patch, labels, cells, patch_labels, chain_offsets, chain_indices, chain_patch_offsets, chain_patch_indices, corners, shell_offsets, shell_indices, cell_shell_offsets, cell_shell_indices, cell_labels, meta, cell_volume=None, patch_area=None, chain_length=None)
 /// --
 ///
 /// Writes a result with the command line's writers (`network.ply`, `.obj`,
 /// `.vtu`, `.vtm`, `.npz`, `.plain.ply`); `format` is one of those names.
 /// Integer arrays are int64; ragged lists come as offsets / indices. Every
-/// index is checked (the error names the array and the element). The GIL
-/// is released while writing.
+/// index is checked (the error names the array and the element). The
+/// measures (float64, one per cell, patch, chain) and `meta["names"]` are
+/// written where the format holds them. The GIL is released while writing.
 #[pyfunction]
 #[pyo3(signature = (path, format, mode, functions, points, offsets, indices, patch, labels, cells, patch_labels,
     chain_offsets, chain_indices, chain_patch_offsets, chain_patch_indices, corners, shell_offsets, shell_indices,
-    cell_shell_offsets, cell_shell_indices, cell_labels, meta))]
+    cell_shell_offsets, cell_shell_indices, cell_labels, meta, cell_volume = None, patch_area = None,
+    chain_length = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_result(
     py: Python<'_>,
@@ -131,6 +174,9 @@ pub fn write_result(
     cell_shell_indices: PyReadonlyArray1<'_, i64>,
     cell_labels: PyReadonlyArray2<'_, i64>,
     meta: &str,
+    cell_volume: Option<PyReadonlyArray1<'_, f64>>,
+    patch_area: Option<PyReadonlyArray1<'_, f64>>,
+    chain_length: Option<PyReadonlyArray1<'_, f64>>,
 ) -> PyResult<()> {
     let format = Format::parse_list(format).map_err(InputError::new_err)?;
     let [format] = format[..] else { return Err(InputError::new_err("write_result: one format")) };
@@ -149,7 +195,23 @@ pub fn write_result(
     let any = usize::MAX;
     let width = cell_labels.shape()[1];
     let cl = cell_labels.as_slice().map_err(|_| InputError::new_err("cell_labels: array must be C-contiguous"))?;
+    let meta: serde_json::Value =
+        serde_json::from_str(meta).map_err(|e| InputError::new_err(format!("meta: not JSON: {e}")))?;
+    let floats = |name: &str, a: &Option<PyReadonlyArray1<'_, f64>>| -> PyResult<Vec<f64>> {
+        match a {
+            None => Ok(Vec::new()),
+            Some(a) => Ok(slice(name, a)?.to_vec()),
+        }
+    };
+    let measures = septa::measure::Measures {
+        cell_volume: floats("cell_volume", &cell_volume)?,
+        patch_area: floats("patch_area", &patch_area)?,
+        chain_length: floats("chain_length", &chain_length)?,
+    };
+    let names = names_of(meta.get("names"));
     let view = ResultView {
+        names: Cow::Owned(names),
+        measures: Cow::Owned(measures),
         mode,
         functions,
         face_start: Cow::Owned(to_u32("offsets", slice("offsets", &offsets)?, any)?),
@@ -191,8 +253,6 @@ pub fn write_result(
         points: Cow::Owned(pts),
     };
     view.validate().map_err(InputError::new_err)?;
-    let meta: serde_json::Value =
-        serde_json::from_str(meta).map_err(|e| InputError::new_err(format!("meta: not JSON: {e}")))?;
     let shown = path.display().to_string();
     // A failing write is the file system's error, not bad input: OSError.
     py.detach(|| write_file(&view, &path, format, &meta))

@@ -15,6 +15,7 @@
 //! - [`cut`]: planar cut-cell meshes of closed triangle meshes (TopoCut).
 //! - [`scene`]: primitives, sampling and region rules.
 //! - [`io`]: readers and writers.
+//! - [`measure`]: volumes of cells, areas of patches, lengths of chains.
 //! - [`mesh`]: the written doubles certified as an embedding of the exact network.
 //! - [`job`]: one job model (grid, functions, mode) read from any input, for every front end.
 //! - [`heap`]: free heap memory returned to the system between the grid pipeline's stages.
@@ -33,6 +34,7 @@ pub mod grid;
 pub mod heap;
 pub mod io;
 pub mod job;
+pub mod measure;
 pub mod mesh;
 pub mod network;
 mod progress;

@@ -57,7 +57,7 @@ pub use outdir::OutputDir;
 pub use planes::{grid_planes, grid_planes_xyz, parse_planes, random_planes, read_planes};
 pub use ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
-pub use result::{write_file, Format, ResultView};
+pub use result::{write_file, Annotations, Format, ResultView};
 pub use safe_write::check_output_file;
 pub use summary_out::write_summary_json;
 pub use viewer::{

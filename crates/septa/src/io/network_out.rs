@@ -7,7 +7,7 @@ use std::io::Write;
 use std::path::Path;
 
 use super::atomic::write_atomic_with;
-use super::result::{Format, ResultView};
+use super::result::{Annotations, Format, ResultView};
 use crate::complex::Mode;
 use crate::complex::NONE;
 use crate::network::{CellInfo, Network, Patch};
@@ -46,9 +46,15 @@ pub(crate) fn label_json(mode: Mode, functions: usize, l: &[u64]) -> String {
     }
 }
 
-/// Writes `network.json`; `extra_seconds` are appended to the network's own stage timings.
+/// Writes `network.json`; `extra_seconds` are appended to the network's own
+/// stage timings; `notes` adds `names` and `measures` when there are any.
 /// Everything but `"seconds"` (written last) depends only on the input.
-pub fn write_network_json(net: &Network, path: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
+pub fn write_network_json(
+    net: &Network,
+    notes: &Annotations,
+    path: &Path,
+    extra_seconds: &[(&str, f64)],
+) -> std::io::Result<()> {
     write_atomic_with(path, |w| {
         let mode = match net.mode {
             Mode::Ia => "ia",
@@ -98,6 +104,7 @@ pub fn write_network_json(net: &Network, path: &Path, extra_seconds: &[(&str, f6
                 cells: &net.cells,
             },
         )?;
+        write_notes(w, notes)?;
         if let Some(e) = &net.embedding {
             w.write_all(b",\n\"embedding\":")?;
             serde_json::to_writer(&mut *w, e)?;
@@ -147,6 +154,18 @@ pub(crate) fn write_topology<W: Write + ?Sized>(w: &mut W, t: &TopologyJson) -> 
         write!(w, ",\"label\":{}}}", label_json(t.mode, t.functions, &c.label))?;
     }
     w.write_all(b"]")
+}
+
+/// `,\n"names":{..}` and `,\n"measures":{..}` when there are any (NaN, a
+/// cell without a volume, as `null`).
+pub(crate) fn write_notes<W: Write + ?Sized>(w: &mut W, notes: &Annotations) -> std::io::Result<()> {
+    if !notes.names.is_empty() {
+        write!(w, ",\n\"names\":{}", notes.names.to_json())?;
+    }
+    if !notes.measures.is_empty() {
+        write!(w, ",\n\"measures\":{}", notes.measures.to_json())?;
+    }
+    Ok(())
 }
 
 /// Comma-separated JSON lists.
@@ -219,22 +238,28 @@ pub fn network_meta(net: &Network, extra_seconds: &[(&str, f64)]) -> serde_json:
 
 /// Writes `network.json`, `network.npz`, `network.ply`, `network.obj` and
 /// `network.vtu` into `dir` (created if needed): [`Format::DEFAULT`].
-pub fn write_network(net: &Network, dir: &Path, extra_seconds: &[(&str, f64)]) -> std::io::Result<()> {
-    write_network_formats(net, dir, Format::DEFAULT, extra_seconds)
+pub fn write_network(
+    net: &Network,
+    notes: &Annotations,
+    dir: &Path,
+    extra_seconds: &[(&str, f64)],
+) -> std::io::Result<()> {
+    write_network_formats(net, notes, dir, Format::DEFAULT, extra_seconds)
 }
 
-/// Writes `network.<ext>` for each of `formats` into `dir` (created if
-/// needed) as one set (`io::outdir`: lock, stale temporaries removed,
+/// Writes `network.<ext>` for each of `formats` (with `notes`: names and
+/// measures) into `dir` (created if needed) as one set (`io::outdir`: lock, stale temporaries removed,
 /// `manifest.json` last); `network.json` after the others. Errors name the
 /// folder or file.
 pub fn write_network_formats(
     net: &Network,
+    notes: &Annotations,
     dir: &Path,
     formats: &[Format],
     extra_seconds: &[(&str, f64)],
 ) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "network")?;
-    let view = ResultView::of_network(net);
+    let view = ResultView::of_annotated(net, notes);
     let meta = network_meta(net, extra_seconds);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
         if f == Format::Vtm {
@@ -245,7 +270,7 @@ pub fn write_network_formats(
         out.write_path(&format!("network.{}", f.name()), |p| super::result::write_file(&view, p, f, &meta))?;
     }
     if formats.contains(&Format::Json) {
-        out.write_path("network.json", |p| write_network_json(net, p, extra_seconds))?;
+        out.write_path("network.json", |p| write_network_json(net, notes, p, extra_seconds))?;
     }
     out.finish()
 }

@@ -30,8 +30,16 @@ pub fn regions_summary(r: &RegionSurfaces) -> Value {
         "network": counts,
         "vertices": distinct_vertices(r),
         "faces": r.faces.len(),
-        "surfaces": r.surfaces.iter().map(|s| json!({"regions": s.regions, "faces": s.faces, "euler": s.euler,
-            "boundary_loops": s.boundary_loops})).collect::<Vec<_>>(),
+        "regions": r.region_ids().iter().enumerate().map(|(i, &g)| {
+            let mut o = json!({"region": g, "volume": finite(r.measures.cell_volume.get(i))});
+            if let Some(n) = r.names.region(g) {
+                o["name"] = json!(n);
+            }
+            o
+        }).collect::<Vec<_>>(),
+        "surfaces": r.surfaces.iter().enumerate().map(|(i, s)| json!({"regions": s.regions, "faces": s.faces,
+            "euler": s.euler, "boundary_loops": s.boundary_loops, "area": finite(r.measures.patch_area.get(i))}))
+            .collect::<Vec<_>>(),
         "curves": r.curves.iter().map(|c| json!({"kind": c.kind.as_str(), "regions": c.regions, "functions": c.functions,
             "function_names": c.functions.iter().map(|&f| r.names.function(f as usize)).collect::<Vec<_>>(),
             "closed": c.closed, "length": c.length, "vertices": c.vertices.len()})).collect::<Vec<_>>(),
@@ -42,6 +50,14 @@ pub fn regions_summary(r: &RegionSurfaces) -> Value {
             "collapsed": c.collapsed, "refused": c.refused, "flipped": c.flipped,
             "min_angle_degrees": {"before": c.min_angle[0], "after": c.min_angle[1]}})),
     })
+}
+
+/// A measure as JSON: `null` when unknown or not finite.
+fn finite(x: Option<&f64>) -> Value {
+    match x {
+        Some(&v) if v.is_finite() => json!(v),
+        _ => Value::Null,
+    }
 }
 
 /// Number of distinct network vertices of the kept polygons (a mark per
@@ -97,6 +113,12 @@ pub fn regions_document(r: &RegionSurfaces) -> Value {
         "counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>(),
     });
+    if !r.names.is_empty() {
+        doc["names"] = r.names.to_json();
+    }
+    if !r.measures.is_empty() {
+        doc["measures"] = r.measures.to_json();
+    }
     if !r.normals.is_empty() {
         doc["normals"] = json!({
             "vertex": r.normals.iter().map(|n| n.0).collect::<Vec<_>>(),

@@ -20,10 +20,23 @@
 
 use std::borrow::Cow;
 
+use super::names::Names;
 use crate::complex::Mode;
 use crate::complex::NONE;
+use crate::measure::Measures;
 use crate::network::Network;
 use crate::regions::RegionSurfaces;
+
+/// What a grid network's writers add to it beyond the [`Network`]: the
+/// names of its functions (and materials) and its measures (either may be
+/// empty: then nothing is written for them).
+#[derive(Clone, Debug, Default)]
+pub struct Annotations {
+    /// Function and region (material) names.
+    pub names: Names,
+    /// Cell volumes, patch areas, chain lengths.
+    pub measures: Measures,
+}
 
 /// A result as the writers see it: polygons with per-polygon `patch`,
 /// `labels` and `cells`, chains, corners, shells and cells. Borrowed from a
@@ -62,6 +75,11 @@ pub struct ResultView<'a> {
     /// Per cell: its label; IA one 0/1 per function (1: `f > 0`), MI
     /// `[material]`, regions `[region]`.
     pub cell_labels: Vec<Vec<i64>>,
+    /// Names of functions and regions (may be empty).
+    pub names: Cow<'a, Names>,
+    /// Per cell its volume, per patch its area, per chain its length (empty
+    /// when not known: then no writer writes them).
+    pub measures: Cow<'a, Measures>,
 }
 
 fn id(x: u32) -> i32 {
@@ -69,6 +87,22 @@ fn id(x: u32) -> i32 {
         -1
     } else {
         x as i32
+    }
+}
+
+impl Annotations {
+    /// A job's network's names (a scene's functions and regions) and
+    /// measures (cell volumes need the box of a box grid; on a tet mesh only
+    /// the cells the network closes get one).
+    pub fn of_job(job: &crate::job::Job, net: &Network) -> Annotations {
+        let domain = match &job.grid {
+            crate::grid::Grid::Box(g) => Some(crate::measure::BoxDomain::of_box(g)),
+            _ => None,
+        };
+        Annotations {
+            names: job.scene.as_ref().map(|s| s.result_names()).unwrap_or_default(),
+            measures: crate::measure::network_measures(net, domain.as_ref()),
+        }
     }
 }
 
@@ -81,6 +115,11 @@ impl<'a> ResultView<'a> {
     /// Vertices of polygon `f`.
     pub fn face(&self, f: usize) -> &[u32] {
         &self.face_verts[self.face_start[f] as usize..self.face_start[f + 1] as usize]
+    }
+
+    /// Area of polygon `f`.
+    pub fn face_area(&self, f: usize) -> f64 {
+        crate::measure::polygon_area(&self.points, self.face(f))
     }
 
     /// Number of triangles of the polygons' fans (each polygon is convex:
@@ -120,6 +159,17 @@ impl<'a> ResultView<'a> {
             shells: Cow::Borrowed(&net.shells),
             cell_shells: net.cells.iter().map(|c| c.shells.clone()).collect(),
             cell_labels,
+            names: Cow::Owned(Names::default()),
+            measures: Cow::Owned(Measures::default()),
+        }
+    }
+
+    /// The view of a grid network with its names and measures.
+    pub fn of_annotated(net: &'a Network, notes: &'a Annotations) -> ResultView<'a> {
+        ResultView {
+            names: Cow::Borrowed(&notes.names),
+            measures: Cow::Borrowed(&notes.measures),
+            ..Self::of_network(net)
         }
     }
 
@@ -130,8 +180,7 @@ impl<'a> ResultView<'a> {
     /// its region, so `cells` per polygon are indices into that list.
     pub fn of_regions(r: &'a RegionSurfaces) -> ResultView<'a> {
         let net = &r.network;
-        let regions: Vec<i64> =
-            r.cell_region.iter().copied().collect::<std::collections::BTreeSet<_>>().into_iter().collect();
+        let regions = r.region_ids();
         let index = |g: i64| regions.binary_search(&g).map_or(-1, |i| i as i32);
         let mut labels = Vec::with_capacity(r.faces.len());
         let mut cells = Vec::with_capacity(r.faces.len());
@@ -165,6 +214,8 @@ impl<'a> ResultView<'a> {
             shells: Cow::Owned(Vec::new()),
             cell_shells: vec![Vec::new(); regions.len()],
             cell_labels: regions.iter().map(|&g| vec![g]).collect(),
+            names: Cow::Borrowed(&r.names),
+            measures: Cow::Borrowed(&r.measures),
         }
     }
 
@@ -197,6 +248,16 @@ impl<'a> ResultView<'a> {
         }
         if let Some(i) = self.corners.iter().position(|&v| v >= np) {
             return Err(format!("corners[{i}]: vertex {} does not exist ({np} points)", self.corners[i]));
+        }
+        let m = &self.measures;
+        for (name, len, want) in [
+            ("cell_volume", m.cell_volume.len(), self.cell_labels.len()),
+            ("patch_area", m.patch_area.len(), self.patch_labels.len()),
+            ("chain_length", m.chain_length.len(), self.chains.len()),
+        ] {
+            if len != 0 && len != want {
+                return Err(format!("{name}: expected {want} entries (or none), got {len}"));
+            }
         }
         Ok(())
     }

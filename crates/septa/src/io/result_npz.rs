@@ -12,8 +12,10 @@
 //!   `chain_patch_indices` (patches around each chain), `corners`;
 //! - `shell_offsets`/`shell_indices` (half-patches), `cell_shell_offsets`/
 //!   `cell_shell_indices`, `cell_labels` (#C, L);
+//! - `cell_volume` (#C), `patch_area` (#P), `chain_length` (#chains),
+//!   float64, when measured (`crate::measure`; NaN: a cell not closed);
 //! - `meta`: a unicode scalar holding JSON `{"format": "septa-result",
-//!   "version": 1, "mode", "functions", "counts", "seconds"}`.
+//!   "version": 1, "mode", "functions", "names", "counts", "seconds"}`.
 
 use std::io::{Seek, Write};
 use std::path::Path;
@@ -72,6 +74,12 @@ impl<W: Write + Seek> Npz<W> {
         self.zip.write_all(&buf)
     }
 
+    fn f64s(&mut self, name: &str, xs: &[f64]) -> std::io::Result<()> {
+        self.member(name, "<f8", &[xs.len()], xs.len() * 8)?;
+        let bytes: Vec<u8> = xs.iter().flat_map(|x| x.to_le_bytes()).collect();
+        self.zip.write_all(&bytes)
+    }
+
     /// A ragged list as `NAME_offsets` / `NAME_indices`.
     fn csr(&mut self, name: &str, lists: &[Vec<u32>]) -> std::io::Result<()> {
         let mut at = 0i64;
@@ -120,9 +128,20 @@ pub fn write_npz(r: &ResultView, path: &Path, meta: &serde_json::Value) -> std::
             &[r.cell_labels.len(), width],
             r.cell_labels.iter().flat_map(|l| (0..width).map(move |i| l.get(i).copied().unwrap_or(-1))),
         )?;
+        let ms = &r.measures;
+        for (name, xs) in
+            [("cell_volume", &ms.cell_volume), ("patch_area", &ms.patch_area), ("chain_length", &ms.chain_length)]
+        {
+            if !xs.is_empty() {
+                z.f64s(name, xs)?;
+            }
+        }
         let mut m = serde_json::json!({
             "format": "septa-result", "version": NPZ_VERSION, "mode": r.mode, "functions": r.functions,
         });
+        if !r.names.is_empty() {
+            m["names"] = r.names.to_json();
+        }
         if let (Some(m), Some(extra)) = (m.as_object_mut(), meta.as_object()) {
             for (k, v) in extra {
                 m.insert(k.clone(), v.clone());

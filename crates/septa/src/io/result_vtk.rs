@@ -1,10 +1,10 @@
 //! VTK XML files of a [`ResultView`]: `.vtu` (the polygons with cell data
-//! `patch`, `labels` (2 components), `cells` (2 components)) and `.vtm`, a
+//! `patch`, `labels` (2 components), `cells` (2 components), `area`) and `.vtm`, a
 //! MultiBlock of four `.vtu` pieces that ParaView opens as one tree:
 //! `patches` (the polygons), `chains` (a line cell per chain edge with its `chain` and
 //! the number of patches around that chain), `corners` (vertex cells with `corner`)
 //! and `cells` (every cell's boundary, each polygon once per side and
-//! oriented out of the cell, with `cell` and the cell's `label`; shrink or
+//! oriented out of the cell, with `cell`, the cell's `label` and `volume`; shrink or
 //! threshold by `cell` for an exploded view). Raw appended binary data,
 //! UInt64 headers: readable by VTK >= 8 (ParaView, pyvista) and meshio.
 
@@ -28,7 +28,28 @@ struct Piece<'a> {
     offsets: Vec<u32>,
     cell_type: u8,
     /// Cell data: name, components, values (`components` per cell).
-    data: Vec<(&'static str, usize, Vec<i32>)>,
+    data: Vec<(&'static str, usize, Values)>,
+}
+
+/// One cell-data array's values.
+enum Values {
+    I32(Vec<i32>),
+    F64(Vec<f64>),
+}
+
+impl Values {
+    fn bytes(&self) -> usize {
+        match self {
+            Values::I32(v) => v.len() * 4,
+            Values::F64(v) => v.len() * 8,
+        }
+    }
+    fn vtk_type(&self) -> &'static str {
+        match self {
+            Values::I32(_) => "Int32",
+            Values::F64(_) => "Float64",
+        }
+    }
 }
 
 /// The XML of an unstructured grid with `np` points and `nc` cells whose
@@ -70,7 +91,7 @@ fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
         (nc, "UInt8", "types", 1),
     ];
     for (name, comps, values) in &piece.data {
-        arrays.push((values.len() * 4, "Int32", name, *comps));
+        arrays.push((values.bytes(), values.vtk_type(), name, *comps));
     }
     let scalars = piece.data.first().map_or("", |d| d.0);
     let head = vtu_header(np, nc, &arrays, scalars);
@@ -109,7 +130,15 @@ fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
         buf.extend(std::iter::repeat_n(piece.cell_type, nc));
         for (i, (_, _, values)) in piece.data.iter().enumerate() {
             buf.extend_from_slice(&(arrays[4 + i].0 as u64).to_le_bytes());
-            ints(w, &mut buf, &mut values.iter().copied())?;
+            match values {
+                Values::I32(v) => ints(w, &mut buf, &mut v.iter().copied())?,
+                Values::F64(v) => {
+                    for x in v {
+                        buf.extend_from_slice(&x.to_le_bytes());
+                        flush(w, &mut buf, false)?;
+                    }
+                }
+            }
         }
         flush(w, &mut buf, true)?;
         w.write_all(b"\n</AppendedData>\n</VTKFile>\n")
@@ -123,9 +152,10 @@ fn polygons<'a>(r: &'a ResultView) -> Piece<'a> {
         offsets: r.face_start.to_vec(),
         cell_type: VTK_POLYGON,
         data: vec![
-            ("patch", 1, r.patch.iter().map(|&p| p as i32).collect()),
-            ("labels", 2, r.labels.iter().flatten().copied().collect()),
-            ("cells", 2, r.cells.iter().flatten().copied().collect()),
+            ("patch", 1, Values::I32(r.patch.iter().map(|&p| p as i32).collect())),
+            ("labels", 2, Values::I32(r.labels.iter().flatten().copied().collect())),
+            ("cells", 2, Values::I32(r.cells.iter().flatten().copied().collect())),
+            ("area", 1, Values::F64((0..r.num_faces()).map(|f| r.face_area(f)).collect())),
         ],
     }
 }
@@ -153,7 +183,12 @@ fn chains<'a>(r: &'a ResultView) -> Piece<'a> {
         offsets: (0..=conn.len() as u32 / 2).map(|i| 2 * i).collect(),
         conn,
         cell_type: VTK_LINE,
-        data: vec![("chain", 1, chain), ("patches", 1, patches)],
+        data: measured(
+            vec![("chain", 1, Values::I32(chain.clone())), ("patches", 1, Values::I32(patches))],
+            "length",
+            &r.measures.chain_length,
+            &chain,
+        ),
     }
 }
 
@@ -163,7 +198,7 @@ fn corners<'a>(r: &'a ResultView) -> Piece<'a> {
         conn: r.corners.to_vec(),
         offsets: (0..=r.corners.len() as u32).collect(),
         cell_type: VTK_VERTEX,
-        data: vec![("corner", 1, (0..r.corners.len() as i32).collect())],
+        data: vec![("corner", 1, Values::I32((0..r.corners.len() as i32).collect()))],
     }
 }
 
@@ -209,12 +244,30 @@ fn cell_boundaries<'a>(r: &'a ResultView) -> Piece<'a> {
         conn,
         offsets,
         cell_type: VTK_POLYGON,
-        data: vec![
-            ("cell", 1, side.iter().map(|s| s.0).collect()),
-            ("patch", 1, side.iter().map(|s| r.patch[s.1 as usize] as i32).collect()),
-            ("label", 1, side.iter().map(|s| label(s.0)).collect()),
-        ],
+        data: measured(
+            vec![
+                ("cell", 1, Values::I32(side.iter().map(|s| s.0).collect())),
+                ("patch", 1, Values::I32(side.iter().map(|s| r.patch[s.1 as usize] as i32).collect())),
+                ("label", 1, Values::I32(side.iter().map(|s| label(s.0)).collect())),
+            ],
+            "volume",
+            &r.measures.cell_volume,
+            &side.iter().map(|s| s.0).collect::<Vec<_>>(),
+        ),
     }
+}
+
+/// `data` and, when measured, `name`: `per_item[row_item[i]]` per row.
+fn measured(
+    mut data: Vec<(&'static str, usize, Values)>,
+    name: &'static str,
+    per_item: &[f64],
+    row_item: &[i32],
+) -> Vec<(&'static str, usize, Values)> {
+    if !per_item.is_empty() {
+        data.push((name, 1, Values::F64(row_item.iter().map(|&i| per_item[i as usize]).collect())));
+    }
+    data
 }
 
 /// The four block names of a `.vtm`, in order.

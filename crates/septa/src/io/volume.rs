@@ -490,5 +490,8 @@ pub fn place_surfaces(r: &mut crate::regions::RegionSurfaces, affine: &[[f64; 4]
             r.loops[r.loop_start[f] as usize..r.loop_start[f + 1] as usize].reverse();
         }
     }
+    // Volumes, areas and lengths measured again on the moved points and box.
+    r.domain = r.domain.as_ref().map(|d| d.mapped(affine));
+    r.measure();
     Ok(())
 }

@@ -156,6 +156,8 @@ fn certify_regions_with(
     e.seconds = t0.elapsed().as_secs_f64();
     r.seconds.push(("certify", e.seconds));
     r.embedding = Some(e.clone());
+    // Volumes, areas and lengths of the doubles as written (repairs move points).
+    r.measure();
     e
 }
 

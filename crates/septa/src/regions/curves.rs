@@ -47,16 +47,7 @@ pub struct Curve {
     pub length: f64,
 }
 
-/// Length of a vertex path.
-pub(crate) fn path_length(points: &[[f64; 3]], vertices: &[u32]) -> f64 {
-    vertices
-        .windows(2)
-        .map(|w| {
-            let (p, q) = (points[w[0] as usize], points[w[1] as usize]);
-            ((p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) + (p[2] - q[2]).powi(2)).sqrt()
-        })
-        .sum()
-}
+pub(crate) use crate::measure::path_length;
 
 pub(crate) fn extract(net: &Network, region: &[RegionId], interest: &Interest) -> Vec<Curve> {
     if interest.curves.as_ref().is_some_and(|l| l.is_empty()) {

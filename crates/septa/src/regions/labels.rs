@@ -81,7 +81,7 @@ fn surfaces_of(
         // blocks of one label skipped (sparse evaluation, docs/sparse.md).
         let field = LabelField { labels, shape, ids: &ids };
         let (net, _) = compute_sparse(&bgrid, &field, &options)?;
-        return Ok(regions_of(net, &ids, list_triples));
+        return Ok(measured(regions_of(net, &ids, list_triples), &bgrid));
     }
     // Grid vertex (i, j, k) has the same index as voxel (i, j, k).
     let mut values = vec![0.0; n * k];
@@ -95,8 +95,19 @@ fn surfaces_of(
     if sigma > 0.0 {
         smooth(&mut values, shape, k, sigma);
     }
+    let domain = crate::measure::BoxDomain::of_box(&bgrid);
     let net = compute(&Grid::Box(bgrid), &values, k, &options)?;
-    Ok(regions_of(net, &ids, list_triples))
+    let mut r = regions_of(net, &ids, list_triples);
+    r.domain = Some(domain);
+    r.measure();
+    Ok(r)
+}
+
+/// `r` with its grid's box as domain, measured.
+fn measured(mut r: RegionSurfaces, grid: &BoxGrid) -> RegionSurfaces {
+    r.domain = Some(crate::measure::BoxDomain::of_box(grid));
+    r.measure();
+    r
 }
 
 /// Regions = labels; every pair a surface, every triple a curve.

@@ -29,6 +29,7 @@ mod clean;
 mod curves;
 mod features;
 mod labels;
+mod measures;
 mod surfaces;
 
 use std::time::Instant;
@@ -108,6 +109,12 @@ pub struct RegionSurfaces {
     pub embedding: Option<crate::network::embedding::Embedding>,
     /// The scene's function and region names (or a label table's).
     pub names: crate::io::Names,
+    /// The box the network was computed in (`None`: unknown), for the
+    /// volumes of regions that reach its boundary.
+    pub domain: Option<crate::measure::BoxDomain>,
+    /// Per region (ascending) its volume, per surface its area, per curve
+    /// its length ([`RegionSurfaces::measure`]; empty until measured).
+    pub measures: crate::measure::Measures,
 }
 
 impl RegionSurfaces {
@@ -246,6 +253,8 @@ pub(crate) fn from_network_with(
         clean: None,
         embedding: None,
         names: Default::default(),
+        domain: None,
+        measures: Default::default(),
     }
 }
 
@@ -253,6 +262,7 @@ pub(crate) fn from_network_with(
 /// cleaned triangles).
 fn finish(mut out: RegionSurfaces, scene: &Scene, options: &RegionOptions) -> RegionSurfaces {
     out.names = scene.result_names();
+    out.domain = scene.grid.box_grid().ok().map(|g| crate::measure::BoxDomain::of_box(&g));
     if let Some(factor) = options.clean {
         let g = &scene.grid;
         let h =
@@ -266,6 +276,7 @@ fn finish(mut out: RegionSurfaces, scene: &Scene, options: &RegionOptions) -> Re
     if options.normals {
         add_normals(&mut out, &scene.functions);
     }
+    out.measure();
     out
 }
 

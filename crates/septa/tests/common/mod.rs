@@ -25,7 +25,7 @@ pub fn network_json(net: &septa::network::Network, tag: &str) -> String {
     let dir = std::env::temp_dir().join(format!("septa-test-{}-{tag}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("network.json");
-    septa::io::write_network_json(net, &path, &[]).unwrap();
+    septa::io::write_network_json(net, &Default::default(), &path, &[]).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     let _ = std::fs::remove_dir_all(&dir);
     text.split("\"seconds\"").next().unwrap().to_string()

@@ -23,7 +23,7 @@ fn outputs_round_trip() {
         let net = compute(&grid, &values, 3, &NetworkOptions::new(mode)).unwrap();
         let dir: PathBuf = std::env::temp_dir().join(format!("septa-out-test-{}-{mode:?}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
-        write_network(&net, &dir, &[("read", 0.0)]).unwrap();
+        write_network(&net, &Default::default(), &dir, &[("read", 0.0)]).unwrap();
         let names: Vec<String> =
             std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
         // The five results (json npz ply obj vtu), the manifest written last
@@ -75,7 +75,8 @@ fn outputs_round_trip() {
         let vtu = std::fs::read(dir.join("network.vtu")).unwrap();
         let start = vtu.windows(2).position(|w| w == b"\n_").unwrap() + 2;
         let nf = net.num_faces();
-        let body = 7 * 8 + net.points.len() * 24 + net.face_verts.len() * 4 + nf * 4 + nf + nf * 4 + nf * 16;
+        let body = 8 * 8 + net.points.len() * 24 + net.face_verts.len() * 4 + nf * 4 + nf + nf * 4 + nf * 16 + nf * 8;
+        // (the last: each polygon's area, f64)
         assert_eq!(&vtu[start + body..], b"\n</AppendedData>\n</VTKFile>\n");
         let _ = std::fs::remove_dir_all(&dir);
     }

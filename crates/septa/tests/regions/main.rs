@@ -6,4 +6,5 @@ mod common;
 mod builtin;
 mod clean;
 mod labels;
+mod measures;
 mod orientation;
