@@ -120,7 +120,7 @@ def material_interface(grid_or_vertices, tets, values=None, *, threads=None, loo
 
 
 def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None, grid=None, mode="ia", normals=False,
-                    clean=None, progress=None, certify=True):
+                    clean=None, progress=None, certify=True, project=False):
     """Non-manifold implicit shape: the surfaces and curves of interest of a region rule.
 
     ``scene_or_functions`` is a scene (a dict in the scene-file form, a path,
@@ -147,6 +147,10 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     ``progress``: a function ``progress(done, total)`` called as blocks of
     the network finish (as in :func:`arrangement`); the ``septa`` logger
     says what was computed, at INFO. ``certify``: as in :func:`arrangement`.
+    ``project``: first move every vertex onto the true zero sets of the
+    functions, inside its grid element, moves the exact check refuses left
+    undone (``net.embedding["projection"]``); the same as
+    ``septa regions --project``.
 
     >>> import septa
     >>> net = septa.region_surfaces("builtin:sphere-with-hole")
@@ -171,7 +175,8 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
     text = json.dumps(scene) if isinstance(scene, dict) else str(scene)
     _check_progress(progress)
     t0 = time.perf_counter()
-    net = _region_network(_septa.regions(text, normals=normals, clean=clean, progress=progress, certify=bool(certify)))
+    net = _region_network(_septa.regions(text, normals=normals, clean=clean, progress=progress, certify=bool(certify),
+                                          project=bool(project)))
     _log_done("region_surfaces", net, t0)
     return net
 

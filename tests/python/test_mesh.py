@@ -44,3 +44,26 @@ def test_cli_and_python_write_the_same_certified_doubles(tmp_path):
     raw = json.loads((tmp_path / "raw" / "network.json").read_text())
     assert raw["counts"]["embedding"] is None
     assert np.asarray(raw["points"]).tobytes() == septa.region_surfaces("builtin:cad-part", certify=False).points.tobytes()
+
+
+def test_projection_in_python_is_the_cli_s(tmp_path):
+    """``region_surfaces(..., project=True)`` writes the doubles of ``septa regions --project``."""
+    exe = need(SEPTA, "the command line (scripts/test.sh builds it)")
+    for scene in ("builtin:sphere-with-hole", "builtin:cad-part"):
+        out = tmp_path / scene.split(":")[1]
+        subprocess.run([str(exe), "regions", scene, "-o", str(out), "-q", "--project"], check=True)
+        doc = json.loads((out / "network.json").read_text())
+        net = septa.region_surfaces(scene, project=True)
+        assert np.asarray(doc["points"], dtype=np.float64).tobytes() == net.points.tobytes()
+        assert doc["counts"]["embedding"]["after"] == net.embedding["after"]
+        p = net.embedding["projection"]
+        assert p == doc["counts"]["embedding"]["projection"]
+        assert p["moved"] > 0 and p["residual_after"] < p["residual_before"], p
+        assert sum(net.embedding["after"][k] for k in ("coincident_points", "degenerate_triangles",
+                                                         "intersecting_pairs", "nonfinite_points")) == 0
+        plain = septa.region_surfaces(scene)
+        topo = lambda n: ([(s["regions"], s["euler"], s["boundary_loops"]) for s in n.surfaces], len(n.points),
+                          len(n.indices), {k: v for k, v in n.summary().items() if isinstance(v, int)})
+        assert topo(plain) == topo(net) and not np.array_equal(plain.points, net.points)
+    with pytest.raises(septa.InputError):
+        septa.region_surfaces("builtin:cad-part", certify=False, project=True)

@@ -8,7 +8,7 @@ use septa::io::ResultView;
 use septa::regions::{region_surfaces, RegionOptions, RegionSurfaces};
 use septa::scene::Scene;
 
-/// regions(scene, normals=False, clean=None, progress=None, certify=True)
+/// regions(scene, normals=False, clean=None, progress=None, certify=True, project=False)
 /// --
 ///
 /// `scene` is a scene file path, `builtin:NAME`, or scene JSON text
@@ -19,9 +19,11 @@ use septa::scene::Scene;
 /// `normal_vectors` and `indices_normal`; the GIL is released while it is
 /// computed. With `certify` the kept polygons' written doubles are checked
 /// exactly and repaired (`septa::mesh::certify_regions`; `embedding` in the
-/// summary).
+/// summary). With `project` (and `certify`) the vertices are first moved
+/// onto the true zero sets of the scene's functions
+/// (`septa::mesh::certify_regions_on`, `septa regions --project`).
 #[pyfunction]
-#[pyo3(signature = (scene, normals = false, clean = None, progress = None, certify = true))]
+#[pyo3(signature = (scene, normals = false, clean = None, progress = None, certify = true, project = false))]
 pub fn regions<'py>(
     py: Python<'py>,
     scene: &str,
@@ -29,7 +31,11 @@ pub fn regions<'py>(
     clean: Option<f64>,
     progress: Option<Py<PyAny>>,
     certify: bool,
+    project: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
+    if project && !certify {
+        return Err(InputError::new_err("project: needs certify (moves are checked exactly)"));
+    }
     if let Some(f) = clean {
         if !(f.is_finite() && f >= 0.0) {
             return Err(InputError::new_err(format!("clean: expected a factor >= 0, not {f}")));
@@ -47,7 +53,11 @@ pub fn regions<'py>(
             .map_err(|e| e.to_string())?;
         if certify {
             let grid = s.grid.box_grid().map_err(|e| e.to_string())?;
-            septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds));
+            if project {
+                septa::mesh::certify_regions_on(&mut r, &grid, &s.functions);
+            } else {
+                septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds));
+            }
         }
         Ok(r)
     });

@@ -70,6 +70,8 @@ pub fn certify_network_on(net: &mut Network, grid: &BoxGrid, functions: &[crate:
 fn certify_network_with(net: &mut Network, grid: Option<&BoxGrid>, z: Option<&Zeros>) -> Embedding {
     let t0 = std::time::Instant::now();
     let snapped = grid.map_or(0, |g| snap_to_grid(&mut net.points, &net.keys, g));
+    // the unprojected network, certified instead if the projected one fails
+    let plain = z.map(|_| (net.points.clone(), net.face_verts.clone()));
     let proj = match (grid, z) {
         (Some(g), Some(z)) => {
             let p = Polygons { start: &net.face_start, verts: &net.face_verts, cells: Some(&net.face_cells) };
@@ -86,6 +88,24 @@ fn certify_network_with(net: &mut Network, grid: Option<&BoxGrid>, z: Option<&Ze
         fixed: None,
     };
     let mut e = certify(&mut t);
+    let mut proj = proj;
+    if let (Some(p), Some((x, v))) = (proj.as_mut(), plain) {
+        if e.after.violations() > 0 {
+            // a projected vertex must never make the exact check fail: every
+            // move undone (and counted kept), the unprojected network certified
+            (net.points, net.face_verts) = (x, v);
+            let mut t = Target {
+                points: &mut net.points,
+                start: &net.face_start,
+                verts: &mut net.face_verts,
+                cells: Some(&net.face_cells),
+                bounds: grid.map(|g| g.bounds),
+                fixed: None,
+            };
+            e = certify(&mut t);
+            (p.kept, p.kept_by_check, p.moved) = (p.kept + p.moved, p.kept_by_check + p.moved, 0);
+        }
+    }
     e.snapped = snapped;
     e.projection = proj.map(|mut p| {
         let u = used(&net.face_verts, net.points.len());
@@ -131,6 +151,7 @@ fn certify_regions_with(
     let t0 = std::time::Instant::now();
     let snapped = grid.map_or(0, |g| snap_to_grid(&mut r.network.points, &r.network.keys, g));
     let cells = region_cells(r);
+    let plain = z.map(|_| (r.network.points.clone(), r.loops.clone()));
     let proj = match (grid, z) {
         (Some(g), Some(z)) => {
             let p = Polygons { start: &r.loop_start, verts: &r.loops, cells: Some(&cells) };
@@ -147,6 +168,23 @@ fn certify_regions_with(
         fixed: None,
     };
     let mut e = certify(&mut t);
+    let mut proj = proj;
+    if let (Some(p), Some((x, v))) = (proj.as_mut(), plain) {
+        if e.after.violations() > 0 {
+            // as in certify_network_with: the unprojected surfaces certified
+            (r.network.points, r.loops) = (x, v);
+            let mut t = Target {
+                points: &mut r.network.points,
+                start: &r.loop_start,
+                verts: &mut r.loops,
+                cells: Some(&cells),
+                bounds,
+                fixed: None,
+            };
+            e = certify(&mut t);
+            (p.kept, p.kept_by_check, p.moved) = (p.kept + p.moved, p.kept_by_check + p.moved, 0);
+        }
+    }
     e.snapped += snapped;
     e.projection = proj.map(|mut p| {
         let u = used(&r.loops, r.network.points.len());

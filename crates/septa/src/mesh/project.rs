@@ -314,9 +314,11 @@ pub(crate) fn project(points: &mut [V], keys: &[VKey], polys: &Polygons, grid: &
             moved[v] = true;
         }
     }
-    // back, a round at a time, the moved vertices of new violations
+    // back, a round at a time, the moved vertices of new violations; each
+    // round undoes at least one move, so this ends (at the latest with every
+    // move undone)
     let mut kept_by_check = 0;
-    for round in 0..8 {
+    for round in 0.. {
         let found = check(points, polys, grid_bounds(grid));
         let mut back: Vec<u32> = Vec::new();
         for &b in &found.bad {
