@@ -97,6 +97,13 @@ pub struct Args {
     /// cells -1; no `.topology.json`).
     #[arg(long, requires = "stream")]
     polygons_only: bool,
+    /// Move every vertex onto the true zero sets of the formulas (a scene or
+    /// function list on a box grid), inside its grid element, keeping the
+    /// exact network; moves that would break the exact check are left undone
+    /// (`embedding.projection` in network.json and --json reports them and
+    /// the largest |f|/|grad f| before and after).
+    #[arg(long, conflicts_with_all = ["stream", "no_certify"])]
+    project: bool,
 }
 
 /// The job the arguments describe (the library's one reader of inputs).
@@ -148,7 +155,17 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             septa::grid::Grid::Box(b) => Some(b),
             septa::grid::Grid::Mesh(_) => None,
         };
-        pool.install(|| septa::mesh::certify_network(&mut net, grid));
+        match (grid, &job.functions) {
+            (Some(g), septa::job::Functions::Formulas(fs)) if args.project => {
+                pool.install(|| septa::mesh::certify_network_on(&mut net, g, fs));
+            }
+            _ if args.project => {
+                return Err(format!("--project: {} is not formulas on a box grid", args.input.display()).into())
+            }
+            _ => {
+                pool.install(|| septa::mesh::certify_network(&mut net, grid));
+            }
+        }
     }
     if let Some(bar) = &bar {
         bar.finish_and_clear();

@@ -11,6 +11,12 @@ pub struct Args {
     scene: Option<String>,
     #[command(flatten)]
     out: crate::output::Output,
+    /// Move every vertex onto the true zero sets of the scene's functions
+    /// (inside its grid element, keeping the exact network; moves that would
+    /// break the exact check are left undone and counted in
+    /// `embedding.projection`).
+    #[arg(long, conflicts_with = "no_certify")]
+    project: bool,
     /// Write the scene as a JSON file to edit (to this path, or `-` for the
     /// terminal) and exit: `septa regions builtin:cad-part --print part.json`.
     #[arg(long, value_name = "FILE")]
@@ -80,7 +86,11 @@ pub fn run(a: Args) -> CliResult {
     let mut r = r??;
     if !a.out.no_certify {
         let grid = scene.grid.box_grid()?;
-        a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
+        if a.project {
+            a.out.install(|| septa::mesh::certify_regions_on(&mut r, &grid, &scene.functions))?;
+        } else {
+            a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
+        }
     }
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {

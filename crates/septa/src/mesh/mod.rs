@@ -21,7 +21,10 @@
 mod certify;
 mod check;
 mod local;
+mod project;
 mod volume;
+
+pub use project::Zeros;
 
 pub use crate::network::embedding::{snap_point, Embedding, EmbeddingCheck, Projection};
 
@@ -51,7 +54,29 @@ pub fn snap_to_grid(points: &mut [[f64; 3]], keys: &[VKey], grid: &BoxGrid) -> u
 /// closed by it. No count of the network changes; the report is also kept
 /// in `net.embedding`.
 pub fn certify_network(net: &mut Network, grid: Option<&BoxGrid>) -> Embedding {
+    certify_network_with(net, grid, None)
+}
+
+/// [`certify_network`] after moving the vertices onto the true zero sets of
+/// `functions` (the formulas the network was sampled from on `grid`;
+/// `project.rs`): each vertex stays inside its grid element, a move that
+/// would break the exact check is left undone and counted. The report's
+/// `projection` has the largest `|f| / |grad f|` before and after.
+pub fn certify_network_on(net: &mut Network, grid: &BoxGrid, functions: &[crate::scene::Primitive]) -> Embedding {
+    let z = Zeros { functions, mi: net.mode == crate::complex::Mode::Mi };
+    certify_network_with(net, Some(grid), Some(&z))
+}
+
+fn certify_network_with(net: &mut Network, grid: Option<&BoxGrid>, z: Option<&Zeros>) -> Embedding {
+    let t0 = std::time::Instant::now();
     let snapped = grid.map_or(0, |g| snap_to_grid(&mut net.points, &net.keys, g));
+    let proj = match (grid, z) {
+        (Some(g), Some(z)) => {
+            let p = Polygons { start: &net.face_start, verts: &net.face_verts, cells: Some(&net.face_cells) };
+            Some(project::project(&mut net.points, &net.keys, &p, g, z))
+        }
+        _ => None,
+    };
     let mut t = Target {
         points: &mut net.points,
         start: &net.face_start,
@@ -62,9 +87,23 @@ pub fn certify_network(net: &mut Network, grid: Option<&BoxGrid>) -> Embedding {
     };
     let mut e = certify(&mut t);
     e.snapped = snapped;
+    e.projection = proj.map(|mut p| {
+        let u = used(&net.face_verts, net.points.len());
+        p.residual_after = project::largest_residual(z.unwrap(), &net.points, &net.keys, &u);
+        p
+    });
+    e.seconds = t0.elapsed().as_secs_f64();
     net.seconds.push(("certify", e.seconds));
     net.embedding = Some(e.clone());
     e
+}
+
+fn used(verts: &[u32], n: usize) -> Vec<bool> {
+    let mut u = vec![false; n];
+    for &v in verts {
+        u[v as usize] = true;
+    }
+    u
 }
 
 /// Certifies region surfaces (the kept polygons, as written) in place:
@@ -73,8 +112,32 @@ pub fn certify_network(net: &mut Network, grid: Option<&BoxGrid>) -> Embedding {
 /// (not moved by an affine map); `bounds`: the box closing the regions (the
 /// grid's, or its image under a diagonal map).
 pub fn certify_regions(r: &mut RegionSurfaces, grid: Option<&BoxGrid>, bounds: Option<[[f64; 3]; 2]>) -> Embedding {
+    certify_regions_with(r, grid, bounds, None)
+}
+
+/// [`certify_regions`] after moving the kept polygons' vertices onto the
+/// true zero sets of the scene's `functions` ([`certify_network_on`]).
+pub fn certify_regions_on(r: &mut RegionSurfaces, grid: &BoxGrid, functions: &[crate::scene::Primitive]) -> Embedding {
+    let z = Zeros { functions, mi: r.network.mode == crate::complex::Mode::Mi };
+    certify_regions_with(r, Some(grid), Some(grid.bounds), Some(&z))
+}
+
+fn certify_regions_with(
+    r: &mut RegionSurfaces,
+    grid: Option<&BoxGrid>,
+    bounds: Option<[[f64; 3]; 2]>,
+    z: Option<&Zeros>,
+) -> Embedding {
+    let t0 = std::time::Instant::now();
     let snapped = grid.map_or(0, |g| snap_to_grid(&mut r.network.points, &r.network.keys, g));
     let cells = region_cells(r);
+    let proj = match (grid, z) {
+        (Some(g), Some(z)) => {
+            let p = Polygons { start: &r.loop_start, verts: &r.loops, cells: Some(&cells) };
+            Some(project::project(&mut r.network.points, &r.network.keys, &p, g, z))
+        }
+        _ => None,
+    };
     let mut t = Target {
         points: &mut r.network.points,
         start: &r.loop_start,
@@ -85,6 +148,12 @@ pub fn certify_regions(r: &mut RegionSurfaces, grid: Option<&BoxGrid>, bounds: O
     };
     let mut e = certify(&mut t);
     e.snapped += snapped;
+    e.projection = proj.map(|mut p| {
+        let u = used(&r.loops, r.network.points.len());
+        p.residual_after = project::largest_residual(z.unwrap(), &r.network.points, &r.network.keys, &u);
+        p
+    });
+    e.seconds = t0.elapsed().as_secs_f64();
     r.seconds.push(("certify", e.seconds));
     r.embedding = Some(e.clone());
     // Volumes, areas and lengths of the doubles as written (repairs move points).

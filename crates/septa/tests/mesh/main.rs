@@ -5,3 +5,5 @@
 mod common;
 
 mod certify;
+
+mod project;
