@@ -82,8 +82,11 @@ def test_arrangement_and_label_cells_as_solids(tmp_path):
     vol = np.zeros((14, 13, 12), dtype=np.int32)
     z, y, x = np.mgrid[:14, :13, :12]
     vol[(z - 6.5) ** 2 + (y - 6) ** 2 + (x - 5.5) ** 2 < 16] = 1
-    labels = septa.label_surfaces(vol)
-    _check_solid(labels, 1, 1)
+    labels = septa.label_surfaces(vol, names={1: "ball"})
+    assert labels.names["regions"] == {1: "ball"}
+    _check_solid(labels, "ball", 1)
+    with pytest.raises(septa.InputError, match="not an integer label"):
+        septa.label_surfaces(vol, names={"1": "ball"})
 
 
 def _cells(block):
