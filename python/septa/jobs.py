@@ -182,7 +182,7 @@ def region_surfaces(scene_or_functions, rule=None, *, surfaces=None, curves=None
 
 
 def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0.0, 0.0), progress=None,
-                   certify=True) -> Network:
+                   certify=True, names=None) -> Network:
     """Exact surfaces between the labels of a segmented volume (``septa labels``).
 
     ``volume``: a 3-axis integer array (any integer dtype; what nibabel,
@@ -201,6 +201,8 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     :func:`region_surfaces`. ``progress``: a function ``progress(done,
     total)`` called as blocks of the network finish (as in :func:`arrangement`).
     ``certify``: as in :func:`arrangement`, on the placed points.
+    ``names``: a dict label -> name (``septa labels --names``), in
+    ``net.names["regions"]``, every saved result and ``net.region(name)``.
 
     >>> import numpy as np, septa
     >>> v = np.zeros((8, 8, 8), dtype=np.int32)
@@ -233,15 +235,32 @@ def label_surfaces(volume, *, sigma=0.0, spacing=(1.0, 1.0, 1.0), origin=(0.0, 0
     if not np.isfinite(m).all() or np.linalg.matrix_rank(m[:, :3]) < 3:
         raise _septa.InputError(f"{name}: the voxel-to-world matrix {m[:, :3].tolist()} is not invertible and finite")
     _check_progress(progress)
+    names = _label_names(names)
     t0 = time.perf_counter()
     # Placed in the core as the command line places them (the full affine:
     # direction cosines, shears, flips; a mirror reverses each polygon so it
     # stays counter-clockwise seen from the lesser region), then certified.
     data = _septa.labels(np.ascontiguousarray(a, dtype=np.int64), float(sigma), progress=progress,
-                         affine=m.tolist(), certify=bool(certify))
+                         affine=m.tolist(), names=names, certify=bool(certify))
     net = _region_network(data)
     _log_done("label_surfaces", net, t0)
     return net
+
+
+def _label_names(names):
+    """``{label (int): name (non-empty str)}`` or None; a clear error naming the bad entry."""
+    if names is None:
+        return None
+    if not isinstance(names, dict):
+        raise _septa.InputError(f"names: expected a dict label -> name, got {type(names).__name__}")
+    out = {}
+    for k, v in names.items():
+        if isinstance(k, bool) or not isinstance(k, (int, np.integer)):
+            raise _septa.InputError(f"names: key {k!r} is not an integer label")
+        if not isinstance(v, str) or not v.strip() or any(ord(c) < 32 for c in v):
+            raise _septa.InputError(f"names: label {k}: the name must be a non-empty text without control characters")
+        out[int(k)] = v
+    return out
 
 
 def _read_volume(path: str):

@@ -290,13 +290,47 @@ class Network:
         trimesh = _need("trimesh", "trimesh")
         return trimesh.Trimesh(vertices=self.points, faces=self.triangles, face_attributes=self._triangle_data(), process=False)
 
+    def region(self, key, to: str | None = None, closed: bool = True, dtype=np.float64):
+        """Region (label, arrangement cell) ``key``, an id or a scene's region
+        name, as a closed, outward-oriented triangle surface holding only its
+        own vertices: ``(vertices (n, 3), triangles (m, 3))``, or with
+        ``to="trimesh"`` / ``to="pyvista"`` that mesh. A region reaching the
+        domain's box has an open surface: refused unless ``closed=False``.
+        ``dtype=np.float32``: the surface an STL file holds (vertices that
+        round to one float32 point merged, degenerate triangles dropped)."""
+        from ._solids import region_surface
+
+        v, t = region_surface(self, key, closed, dtype)
+        if to is None:
+            return v, t
+        if to == "trimesh":
+            return _need("trimesh", "trimesh").Trimesh(vertices=v, faces=t, process=False)
+        if to == "pyvista":
+            pv = _need("pyvista", "pyvista")
+            return pv.PolyData(v, faces=np.hstack([np.full((len(t), 1), 3), t]).ravel())
+        raise InputError(f"region: to={to!r} (use None, 'trimesh' or 'pyvista')")
+
+    def save_regions(self, folder, format: str = "stl") -> dict:
+        """Writes every region with a closed surface (see :meth:`region`) to
+        ``folder/NAME.<format>`` (``stl``, binary float32; ``obj``; ``ply``;
+        through trimesh), NAME the scene's region name when it has one and
+        is a plain file name, else ``region_<id>``. Regions reaching the
+        domain's box are left out (logged). Returns ``{region id: path}``."""
+        from ._solids import save_regions
+
+        return save_regions(self, folder, format)
+
     def to_pyvista(self):
-        """A ``pyvista.MultiBlock`` with the blocks of ``network.vtm``:
-        ``patches`` (PolyData of the polygons with cell data ``patch``,
-        ``labels`` (2), ``cells`` (2)), ``chains`` (a line per chain edge
-        with ``chain``), ``corners`` (vertex cells with ``corner``) and
-        ``cells`` (each polygon once per side, oriented out of that cell,
-        with ``cell`` and ``patch``). ``mb["patches"]`` is the surface."""
+        """A ``pyvista.MultiBlock`` with the blocks and arrays of
+        ``network.vtm`` (PolyData where the file has unstructured pieces):
+        ``patches`` (the polygons with cell data ``patch``, ``labels`` (2),
+        ``cells`` (2), ``area``), ``chains`` (a line per chain edge with
+        ``chain``, ``patches`` (how many patches meet there, 0 if unknown),
+        ``length`` when measured), ``corners`` (vertex cells with ``corner``)
+        and ``cells`` (each polygon once per side, oriented out of that cell,
+        with ``cell``, ``patch``, ``label`` (MI material, region, label; IA the
+        sign vector as bits, function ``f`` positive in bit ``f < 31``) and
+        ``volume`` when measured). ``mb["patches"]`` is the surface."""
         pv = _need("pyvista", "pyvista")
         sizes = np.diff(self.offsets)
         polys = np.insert(self.indices, self.offsets[:-1], sizes)
@@ -304,13 +338,20 @@ class Network:
         patches.cell_data["patch"] = self.face_patch
         patches.cell_data["labels"] = self.face_label
         patches.cell_data["cells"] = self.face_cells
+        patches.cell_data["area"] = self._face_area()
         mb = pv.MultiBlock()
         mb["patches"] = patches
         edges = [np.stack([c[:-1], c[1:]], axis=1) for c in self.chains if len(c) > 1]
         if edges:
             e = np.concatenate(edges)
             chains = pv.PolyData(self.points, lines=np.hstack([np.full((len(e), 1), 2), e]).ravel())
-            chains.cell_data["chain"] = np.repeat(np.arange(len(self.chains)), [max(len(c) - 1, 0) for c in self.chains])
+            edges_per = [max(len(c) - 1, 0) for c in self.chains]
+            chain = np.repeat(np.arange(len(self.chains)), edges_per)
+            chains.cell_data["chain"] = chain
+            around = [len(self.chain_patches[c]) if c < len(self.chain_patches) else 0 for c in range(len(self.chains))]
+            chains.cell_data["patches"] = np.asarray(around, dtype=np.int32)[chain]
+            if len(self.chain_length):
+                chains.cell_data["length"] = self.chain_length[chain]
             mb["chains"] = chains
         if len(self.corners):
             corners = pv.PolyData(self.points, verts=np.stack([np.ones_like(self.corners), self.corners], axis=1).ravel())
@@ -324,15 +365,38 @@ class Network:
         face = np.concatenate([s[1] for s in side])
         rev = np.concatenate([s[2] for s in side])
         if len(face):
-            order = np.lexsort((face, cell))
+            order = np.lexsort((rev, face, cell))  # the file's order: (cell, face, reversed)
             cell, face, rev = cell[order], face[order], rev[order]
             loops = [self.indices[self.offsets[f]:self.offsets[f + 1]] for f in face]
             flat = np.concatenate([np.concatenate([[len(l)], l[::-1] if r else l]) for l, r in zip(loops, rev)])
             cells = pv.PolyData(self.points, faces=flat)
             cells.cell_data["cell"] = cell
             cells.cell_data["patch"] = self.face_patch[face]
+            cells.cell_data["label"] = self._cell_label_numbers()[cell]
+            if len(self.cell_volume):
+                cells.cell_data["volume"] = self.cell_volume[cell]
             mb["cells"] = cells
         return mb
+
+    def _face_area(self) -> np.ndarray:
+        """Each polygon's area, summed over its fan as the writers do."""
+        tri, face = self._fan()
+        p = self.points
+        c = np.cross(p[tri[:, 1]] - p[tri[:, 0]], p[tri[:, 2]] - p[tri[:, 0]])
+        n = np.zeros((len(self), 3))
+        np.add.at(n, face, c)
+        return np.linalg.norm(n, axis=1) / 2.0
+
+    def _cell_label_numbers(self) -> np.ndarray:
+        """One number per cell, as the ``label`` of ``network.vtm``'s cells."""
+        out = np.full(len(self.cells), -1, dtype=np.int32)
+        for c, cell in enumerate(self.cells):
+            lab = list(cell.get("label", []))
+            if self.mode == "ia":
+                out[c] = sum(int(bool(b)) << f for f, b in enumerate(lab[:31]))
+            elif lab:
+                out[c] = int(lab[0])
+        return out
 
     def _repr_html_(self) -> str:
         """The viewer inline in a notebook: one self-contained iframe (the

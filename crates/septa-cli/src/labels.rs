@@ -27,12 +27,19 @@ pub struct Args {
     /// World position of voxel (0, 0, 0) (replaces the file's own map).
     #[arg(long, num_args = 3, value_names = ["X", "Y", "Z"], value_parser = crate::args::finite, allow_hyphen_values = true)]
     origin: Option<Vec<f64>>,
+    /// Label names: a JSON object `{"1": "liver", "2": "kidney"}` (label ->
+    /// name), written to network.json's `names` (the viewer shows them) and
+    /// printed in the summary.
+    #[arg(long, value_name = "FILE.json")]
+    names: Option<PathBuf>,
 }
 
 /// Runs `septa labels`.
 pub fn run(a: Args) -> CliResult {
     keep_freed_memory();
     let file = a.volume.display().to_string();
+    // the small file first: a bad table fails before the work
+    let names = a.names.as_deref().map(crate::label_names::read_label_names).transpose()?;
     let vol = read_label_volume(&a.volume)?;
     let affine = if a.spacing.is_some() || a.origin.is_some() {
         let s = a.spacing.as_deref().unwrap_or(&[1.0; 3]);
@@ -58,6 +65,9 @@ pub fn run(a: Args) -> CliResult {
         bar.finish_and_clear();
     }
     let mut r = r?.map_err(|e| format!("{file}: {e}"))?;
+    if let Some(names) = names {
+        r.names.regions = names;
+    }
     a.out
         .install(|| septa::mesh::place_labels(&mut r, vol.shape, &affine, !a.out.no_certify))?
         .map_err(|e| format!("{file}: {e}"))?;

@@ -8,6 +8,7 @@ mod bench_grid;
 mod bench_stream;
 mod cut;
 mod demo;
+mod label_names;
 mod labels;
 mod memcap;
 mod network;

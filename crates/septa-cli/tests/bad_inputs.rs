@@ -327,6 +327,25 @@ fn label_volumes() {
     std::fs::write(d.join("dir.nrrd"), head("space directions: (1,0,0) (0,1,0)\n") + &ascii).unwrap();
     refused(&d, &["labels", "dir.nrrd"], &["dir.nrrd", "space directions"]);
     refused(&d, &["labels", "v.npy", "--spacing", "1", "0", "1"], &["--spacing"]);
+    // --names: a label -> name table, into network.json and the summary; bad
+    // tables name the file and the key before any work.
+    std::fs::write(d.join("names.json"), r#"{"0": "background", "1": "liver"}"#).unwrap();
+    let text = succeeds(&d, &["labels", "v.npy", "--names", "names.json", "-o", "named", "--format", "json"]);
+    assert!(text.contains("1 (liver)") && text.contains("0 (background)"), "{text}");
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("named/network.json")).unwrap()).unwrap();
+    assert_eq!(doc["names"]["regions"], serde_json::json!({"0": "background", "1": "liver"}), "{}", doc["names"]);
+    for (bad, needles) in [
+        (r#"{"one": "liver"}"#, &["names.json", "\"one\"", "not an integer label"][..]),
+        (r#"{"1": 7}"#, &["names.json", "label 1", "non-empty text"][..]),
+        (r#"{"1": "a", "1": "b"}"#, &["names.json", "duplicate key"][..]),
+        (r#"["liver"]"#, &["names.json", "label -> name"][..]),
+    ] {
+        std::fs::write(d.join("names.json"), bad).unwrap();
+        refused(&d, &["labels", "v.npy", "--names", "names.json", "-o", "bad"], needles);
+        assert!(!d.join("bad").exists(), "{bad}: an output folder was made");
+    }
+    refused(&d, &["labels", "v.npy", "--names", "missing.json"], &["--names", "missing.json"]);
     // The same labels as ascii NRRD (first axis fastest) with a mirror: the
     // surfaces of the .npy, moved.
     std::fs::write(d.join("ok.nrrd"), head("space directions: (-1,0,0) (0,1,0) (0,0,1)\n") + &ascii).unwrap();
