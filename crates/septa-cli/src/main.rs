@@ -1,6 +1,7 @@
 //! The `septa` command line: one file per subcommand.
 use clap::{Parser, Subcommand};
 
+mod adaptive;
 mod args;
 mod bench;
 mod bench_ceiling;

@@ -3,7 +3,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use septa::grid::Split;
-use septa::io::{write_network_formats, Annotations};
+use septa::io::{write_network_formats_with, Annotations};
 use septa::job::{GridOverride, Job};
 use septa::network::{self, NetworkOptions};
 
@@ -84,7 +84,7 @@ pub struct Args {
     /// ending in .vtu (for meshio and ParaView), a VTK file with cell data
     /// `patch`, `labels`, `cells`, `block`. The topology goes to
     /// `OUT.topology.json` beside it. Vertices are written once.
-    #[arg(long, conflicts_with_all = ["dense", "no_output"])]
+    #[arg(long, conflicts_with_all = ["dense", "no_output", "adaptive"])]
     stream: Option<PathBuf>,
     /// With `--stream`: blocks computed at a time (0: four per thread).
     #[arg(long, default_value_t = 0, requires = "stream")]
@@ -102,8 +102,10 @@ pub struct Args {
     /// exact network; moves that would break the exact check are left undone
     /// (`embedding.projection` in network.json and --json reports them and
     /// the largest |f|/|grad f| before and after).
-    #[arg(long, conflicts_with_all = ["stream", "no_certify"])]
+    #[arg(long, conflicts_with_all = ["stream", "no_certify", "adaptive"])]
     project: bool,
+    #[command(flatten)]
+    adaptive: crate::adaptive::AdaptiveArgs,
 }
 
 /// The job the arguments describe (the library's one reader of inputs).
@@ -146,9 +148,13 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     }
     // Sparse by default where it applies (formulas on a box grid); the
     // output is identical on both paths.
-    let job = job(&args)?;
+    let mut job = job(&args)?;
     let t_read = t0.elapsed().as_secs_f64();
-    let (mut net, stats) = pool.install(|| job.run(&opts, args.dense))?;
+    let refined = match args.adaptive.adaptive {
+        true => Some(pool.install(|| crate::adaptive::apply(&args.adaptive, &mut job, mode, args.out.json || args.out.quiet))?),
+        false => None,
+    };
+    let (mut net, stats) = pool.install(|| job.run(&opts, args.dense || refined.is_some()))?;
     let tets = job.grid.num_tets();
     if !args.out.no_certify {
         let grid = match &job.grid {
@@ -171,14 +177,22 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         bar.finish_and_clear();
     }
     let mut extra = vec![("read", t_read)];
+    if let Some(r) = &refined {
+        extra.push(("adaptive", r.seconds));
+    }
     let t = Instant::now();
     let notes = Annotations::of_job(&job, &net);
     extra.push(("measure", t.elapsed().as_secs_f64()));
     if !args.no_output {
         let t = Instant::now();
         let quiet = args.out.json || args.out.quiet;
+        let files = refined.as_ref().map(|r| r.files());
+        let extra_files: Vec<septa::io::ExtraFile> = match &files {
+            Some((vtu, json)) => vec![("grid.vtu", vtu.as_slice()), ("adaptive.json", json.as_slice())],
+            None => vec![],
+        };
         crate::progress::during(quiet, &format!("writing {}", args.out.output.display()), || {
-            write_network_formats(&net, &notes, &args.out.output, &args.out.format.0, &extra)
+            write_network_formats_with(&net, &notes, &args.out.output, &args.out.format.0, &extra, &extra_files)
         })?;
         extra.push(("write", t.elapsed().as_secs_f64()));
     }
@@ -193,6 +207,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             obj.insert("blocks".into(), sparse_json(&s));
         }
         obj.insert("cells_method".into(), cells_method.as_str().into());
+        if let Some(r) = &refined {
+            obj.insert("adaptive".into(), r.json());
+        }
         obj.insert("measures".into(), notes.measures.to_json());
         if !notes.names.is_empty() {
             obj.insert("names".into(), notes.names.to_json());
@@ -211,6 +228,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         let counts: Vec<String> = net.counts().iter().map(|(k, v)| format!("{k} {v}")).collect();
         println!("{}", counts.join(", "));
         print!("{}", crate::summary::network_text(&net, &notes));
+        if let Some(r) = &refined {
+            print!("{}", r.text());
+        }
         args.out.tell_embedding(net.embedding.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));

@@ -1,6 +1,6 @@
 //! `septa regions`: surfaces and curves of interest of a scene's region rule.
 use crate::CliResult;
-use septa::io::{regions_summary, write_regions_formats};
+use septa::io::{regions_summary, write_regions_formats_with};
 use septa::regions::{region_surfaces, RegionOptions};
 use septa::scene::{builtin, Scene};
 
@@ -15,8 +15,10 @@ pub struct Args {
     /// (inside its grid element, keeping the exact network; moves that would
     /// break the exact check are left undone and counted in
     /// `embedding.projection`).
-    #[arg(long, conflicts_with = "no_certify")]
+    #[arg(long, conflicts_with_all = ["no_certify", "adaptive"])]
     project: bool,
+    #[command(flatten)]
+    adaptive: crate::adaptive::AdaptiveArgs,
     /// Write the scene as a JSON file to edit (to this path, or `-` for the
     /// terminal) and exit: `septa regions builtin:cad-part --print part.json`.
     #[arg(long, value_name = "FILE")]
@@ -79,12 +81,27 @@ pub fn run(a: Args) -> CliResult {
     // stage after them.
     let (bar, progress) = crate::progress::block_bar(quiet, "region surfaces: topology, surfaces, curves");
     let options = RegionOptions { normals: a.normals, sparse: !a.dense, clean: a.clean, progress };
-    let r = a.out.install(|| region_surfaces(&scene, &options));
+    let refined = match a.adaptive.adaptive {
+        true => {
+            let bounds = scene.grid.box_grid()?.bounds;
+            let refined = a.out.install(|| crate::adaptive::refine_box(&a.adaptive, bounds, &scene.functions, scene.mode, quiet))??;
+            let grid = septa::grid::Grid::Mesh(refined.mesh()?);
+            Some((refined, grid))
+        }
+        false => None,
+    };
+    let r = match &refined {
+        Some((_, grid)) => a.out.install(|| septa::regions::region_surfaces_on(&scene, grid, &options)),
+        None => a.out.install(|| region_surfaces(&scene, &options)),
+    };
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }
     let mut r = r??;
-    if !a.out.no_certify {
+    if !a.out.no_certify && refined.is_some() {
+        let bounds = scene.grid.box_grid()?.bounds;
+        a.out.install(|| septa::mesh::certify_regions(&mut r, None, Some(bounds)))?;
+    } else if !a.out.no_certify {
         let grid = scene.grid.box_grid()?;
         if a.project {
             a.out.install(|| septa::mesh::certify_regions_on(&mut r, &grid, &scene.functions))?;
@@ -94,17 +111,28 @@ pub fn run(a: Args) -> CliResult {
     }
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
-        write_regions_formats(&r, dir, &a.out.format.0)
+        let files = refined.as_ref().map(|(x, _)| x.files());
+        let extra: Vec<septa::io::ExtraFile> = match &files {
+            Some((vtu, json)) => vec![("grid.vtu", vtu.as_slice()), ("adaptive.json", json.as_slice())],
+            None => vec![],
+        };
+        write_regions_formats_with(&r, dir, &a.out.format.0, &extra)
     })?;
     let mut summary = regions_summary(&r);
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
+    }
+    if let (Some((x, _)), Some(obj)) = (&refined, summary.as_object_mut()) {
+        obj.insert("adaptive".into(), x.json());
     }
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&path, &r));
         a.out.tell_embedding(r.embedding.as_ref());
+        if let Some((x, _)) = &refined {
+            print!("{}", x.text());
+        }
         println!("wrote {}", dir.display());
     }
     Ok(())

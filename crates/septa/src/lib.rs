@@ -26,6 +26,7 @@
 #![warn(missing_docs)]
 
 #[cfg(feature = "tools")]
+pub mod adaptive;
 pub mod baseline;
 mod buckets;
 pub mod complex;

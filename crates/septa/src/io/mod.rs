@@ -49,14 +49,14 @@ pub use mesh_stl::parse_stl;
 pub use msh::{parse_msh, read_msh, MshError};
 pub use names::{name_token, Names};
 pub use network_out::{
-    network_meta, write_network, write_network_formats, write_network_json, write_network_obj, write_network_ply,
+    network_meta, write_network, write_network_formats, write_network_formats_with, ExtraFile, write_network_json, write_network_obj, write_network_ply,
     write_network_vtu,
 };
 pub use npz::{parse_npy, read_grid_input, read_npz, GridInput, NpyArray, NpzError};
 pub use outdir::OutputDir;
 pub use planes::{grid_planes, grid_planes_xyz, parse_planes, random_planes, read_planes};
 pub use ply_stream::{PlyStreamSink, PlyStreamStats};
-pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats};
+pub use regions_out::{regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats, write_regions_formats_with};
 pub use result::{write_file, Annotations, Format, ResultView};
 pub use safe_write::check_output_file;
 pub use summary_out::write_summary_json;

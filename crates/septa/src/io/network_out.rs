@@ -258,7 +258,27 @@ pub fn write_network_formats(
     formats: &[Format],
     extra_seconds: &[(&str, f64)],
 ) -> std::io::Result<()> {
+    write_network_formats_with(net, notes, dir, formats, extra_seconds, &[])
+}
+
+/// A file written beside a result, in the same folder transaction: its
+/// name and its bytes (the adaptive grid's `grid.vtu` and `adaptive.json`).
+pub type ExtraFile<'a> = (&'a str, &'a [u8]);
+
+/// [`write_network_formats`] with extra files staged and committed with
+/// the result (all or nothing, like the formats themselves).
+pub fn write_network_formats_with(
+    net: &Network,
+    notes: &Annotations,
+    dir: &Path,
+    formats: &[Format],
+    extra_seconds: &[(&str, f64)],
+    extra_files: &[ExtraFile<'_>],
+) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "network")?;
+    for (name, bytes) in extra_files {
+        out.write_path(name, |p| std::fs::write(p, bytes))?;
+    }
     let view = ResultView::of_annotated(net, notes);
     let meta = network_meta(net, extra_seconds);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {

@@ -32,8 +32,10 @@ pub const MANIFEST: &str = "manifest.json";
 /// Files Septa writes as results; removed when a new run starts in a folder
 /// so that the new set never mixes with an old one (also from runs older
 /// than manifests).
-const RESULT_FILES: [&str; 14] = [
+const RESULT_FILES: [&str; 16] = [
     "network.json",
+    "grid.vtu",
+    "adaptive.json",
     "network.ply",
     "network.obj",
     "network.vtu",

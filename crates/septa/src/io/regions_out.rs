@@ -142,7 +142,21 @@ pub fn write_regions(r: &RegionSurfaces, dir: &Path) -> std::io::Result<()> {
 /// as `vn`) into `dir` (created if needed), as one set (`io::outdir`: lock,
 /// stale temporaries removed, `manifest.json` last).
 pub fn write_regions_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format]) -> std::io::Result<()> {
+    write_regions_formats_with(r, dir, formats, &[])
+}
+
+/// [`write_regions_formats`] with extra files committed with the result
+/// (`super::ExtraFile`: the adaptive grid's `grid.vtu`, `adaptive.json`).
+pub fn write_regions_formats_with(
+    r: &RegionSurfaces,
+    dir: &Path,
+    formats: &[Format],
+    extra_files: &[super::ExtraFile<'_>],
+) -> std::io::Result<()> {
     let mut out = super::OutputDir::create(dir, "regions")?;
+    for (name, bytes) in extra_files {
+        out.write_path(name, |p| std::fs::write(p, bytes))?;
+    }
     let meta = json!({"counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
     let view = ResultView::of_regions(r);

@@ -203,6 +203,20 @@ pub fn region_surfaces(scene: &Scene, options: &RegionOptions) -> Result<RegionS
     Ok(out)
 }
 
+/// [`region_surfaces`] on a given tet grid (an adaptive grid,
+/// `crate::adaptive`): the scene's functions sampled at its vertices.
+pub fn region_surfaces_on(scene: &Scene, grid: &Grid, options: &RegionOptions) -> Result<RegionSurfaces, RegionError> {
+    let t0 = Instant::now();
+    let mut network_options = NetworkOptions::new(scene.mode);
+    network_options.progress = options.progress.clone();
+    let values = sample_grid(&scene.functions, &grid.vertices());
+    let t1 = Instant::now();
+    let net = compute(grid, &values, scene.functions.len(), &network_options)?;
+    let mut out = finish(from_network(net, &scene.regions, &scene.interest), scene, options);
+    out.seconds.insert(0, ("sample", (t1 - t0).as_secs_f64()));
+    Ok(out)
+}
+
 /// Region of a network cell.
 fn cell_region(net: &Network, rule: &RegionRule, c: usize) -> RegionId {
     let label = &net.cells[c].label;
