@@ -15,7 +15,7 @@
 //! Two free ends meet at their middle, put back on the patch.
 
 use super::soup::{add, ekey, scale, Kind, Soup, V};
-use super::Surface;
+use super::surface::Surface;
 
 /// Whether `u` may go into `v` (module doc).
 fn may_go(s: &Soup, u: u32, v: u32) -> bool {

@@ -29,11 +29,13 @@ mod quality;
 mod smooth;
 mod soup;
 mod split;
+mod surface;
 
 pub use quality::Quality;
 
 use constraints::{build, rebuild_chains, Source};
-use original::{On, Original};
+use original::Original;
+use surface::Surface;
 use soup::{Kind, Soup, V};
 
 use super::certify::{certify, Target};
@@ -90,21 +92,6 @@ pub struct Remeshing {
     pub patches_kept: bool,
     /// Seconds.
     pub seconds: f64,
-}
-
-/// Where remeshed vertices are put back: the unremeshed surface.
-pub(super) struct Surface {
-    orig: Original,
-}
-
-impl Surface {
-    pub(super) fn place(&self, kind: Kind, p: V) -> V {
-        match kind {
-            Kind::Fixed => p,
-            Kind::Curve(t) => self.orig.closest(p, On::Trace(t)),
-            Kind::Free(q) => self.orig.closest(p, On::Patch(q)),
-        }
-    }
 }
 
 /// The remeshed soup's live triangles, patches and chains, and the report

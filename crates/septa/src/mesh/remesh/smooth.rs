@@ -6,7 +6,7 @@
 //! patch's area-weighted normal there) or make it degenerate is halved, then refused.
 
 use super::soup::{add, dot, norm, scale, sub, unit, Kind, Soup, V};
-use super::Surface;
+use super::surface::Surface;
 
 fn star_ok(s: &Soup, v: u32, p: V) -> bool {
     s.faces_ok(&[v], |_| false, |w| if w == v { p } else { s.x[w as usize] })

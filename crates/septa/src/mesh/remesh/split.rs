@@ -4,7 +4,7 @@
 //! with its orientation kept. A constraint edge's new vertex is on its trace.
 
 use super::soup::{ekey, scale, add, Kind, Soup};
-use super::Surface;
+use super::surface::Surface;
 
 /// Splits the edge `ab`; the new vertex.
 pub(super) fn split(s: &mut Soup, surf: &Surface, a: u32, b: u32) -> u32 {
