@@ -5,7 +5,7 @@
 //! are doubles rounded from the linear interpolants, and nothing made those
 //! doubles an embedding: two vertices may round to one point, a triangle of
 //! a polygon's fan may have collinear corners, two triangles may cross.
-//! Cut-cells have a certificate (`cut/verify.rs`); this layer gives one to
+//! Cut-cells have a certificate (`cut/check/verify.rs`); this layer gives one to
 //! grid networks, region surfaces and label volumes:
 //!
 //! - [`certify_network`], [`certify_regions`]: the exact check of the fans
