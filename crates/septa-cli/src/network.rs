@@ -144,6 +144,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     }
     let pool = pool.build()?;
     if let Some(out) = &args.stream {
+        if args.out.remesh.is_some() {
+            return Err("--remesh: not with --stream (remeshing needs the whole network in memory)".into());
+        }
         return run_stream(&args, out, mode, &opts, &pool, bar, t0);
     }
     // Sparse by default where it applies (formulas on a box grid); the
@@ -173,6 +176,17 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             }
         }
     }
+    let remeshed = match args.out.remesh {
+        Some(l) => {
+            let bounds = match &job.grid {
+                septa::grid::Grid::Box(b) => Some(b.bounds),
+                septa::grid::Grid::Mesh(_) => None,
+            };
+            let o = septa::mesh::RemeshOptions::new(l);
+            Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?)
+        }
+        None => None,
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -217,6 +231,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         if let Some(e) = &net.embedding {
             obj.insert("embedding".into(), serde_json::to_value(e)?);
         }
+        if let Some(r) = &remeshed {
+            obj.insert("remesh".into(), serde_json::to_value(r)?);
+        }
         let mut secs = serde_json::Map::new();
         for (k, v) in net.seconds.iter().chain(extra.iter()) {
             secs.insert((*k).into(), (*v).into());
@@ -232,6 +249,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             print!("{}", r.text());
         }
         args.out.tell_embedding(net.embedding.as_ref());
+        args.out.tell_remesh(remeshed.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));
         }

@@ -109,6 +109,14 @@ pub fn run(a: Args) -> CliResult {
             a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
         }
     }
+    let remeshed = match a.out.remesh {
+        Some(l) => {
+            let bounds = scene.grid.box_grid()?.bounds;
+            let o = septa::mesh::RemeshOptions::new(l);
+            Some(a.out.install(|| septa::mesh::remesh_regions(&mut r, &o, Some(bounds)))??)
+        }
+        None => None,
+    };
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
         let files = refined.as_ref().map(|(x, _)| x.files());
@@ -125,6 +133,9 @@ pub fn run(a: Args) -> CliResult {
     if let (Some((x, _)), Some(obj)) = (&refined, summary.as_object_mut()) {
         obj.insert("adaptive".into(), x.json());
     }
+    if let (Some(m), Some(obj)) = (&remeshed, summary.as_object_mut()) {
+        obj.insert("remesh".into(), serde_json::to_value(m)?);
+    }
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
@@ -133,6 +144,7 @@ pub fn run(a: Args) -> CliResult {
         if let Some((x, _)) = &refined {
             print!("{}", x.text());
         }
+        a.out.tell_remesh(remeshed.as_ref());
         println!("wrote {}", dir.display());
     }
     Ok(())
