@@ -31,7 +31,7 @@ pub struct AdaptiveArgs {
     #[arg(long, requires = "adaptive")]
     pub max_tets: Option<usize>,
     /// With --adaptive: leaves this short stop uncertified and are reported
-    /// (default: 1/4096 of the box's longest side).
+    /// (default: 1/65536 of the box's longest side).
     #[arg(long, requires = "adaptive", value_parser = crate::args::finite)]
     pub min_edge: Option<f64>,
     /// With --adaptive: start cubes along the box's longest side (default 4).

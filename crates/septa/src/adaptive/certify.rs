@@ -20,7 +20,7 @@
 use crate::scene::Interval;
 
 use super::lattice::EDGES;
-use super::term::{cross, cross_iv, dot, dot_iv, max_norm, mig, norm, radius, sub, Local, Tet, Term, V3};
+use super::term::{centred_combo, cross, cross_iv, dot, dot_iv, max_norm, mig, norm, radius, sub, Local, Tet, Term, V3};
 
 /// Why a tet is not certified yet (kept for the refinement statistics).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -192,18 +192,22 @@ pub fn pair(
     }
     // Each face both zero sets meet: independent within the face.
     for (face, opp) in FACES {
-        let (lo, hi) = tet.sub_box(&face);
-        if !la.bound(lo, hi).contains(0.0) || !lb.bound(lo, hi).contains(0.0) {
+        if flat_on(a, la, &face) || flat_on(b, lb, &face) {
             continue;
         }
         let n = outward(tet, face, opp);
-        let within = dot_iv(n, &c); // det(g_a, g_b, n)
-        if within.contains(0.0) {
+        let tri = face.map(|k| tet.p[k]);
+        let (va, vb) = (face.map(|k| a.vals[k]), face.map(|k| b.vals[k]));
+        if !pair_face_ok(&Pair2 { a, b, la, lb, n }, tri, va, vb, 3) {
             return Err(Miss::Pair);
         }
     }
     // Each edge both cross: their crossings stay apart.
     for (i, j) in EDGES {
+        let (lo, hi) = tet.sub_box(&[i, j]);
+        if apart(a, b, la, lb, &[i, j], lo, hi) || flat_on(a, la, &[i, j]) || flat_on(b, lb, &[i, j]) {
+            continue;
+        }
         let (da, db) = (edge_slopes(tet, a, la, i, j), edge_slopes(tet, b, lb, i, j));
         let (ra, rb) = match (root_range(a, da, i, j), root_range(b, db, i, j)) {
             (Some(ra), Some(rb)) => (ra, rb),
@@ -214,6 +218,91 @@ pub fn pair(
         }
     }
     Ok(())
+}
+
+/// A pair on one face of the tet.
+struct Pair2<'a> {
+    a: &'a Term,
+    b: &'a Term,
+    la: Local<'a>,
+    lb: Local<'a>,
+    n: V3,
+}
+
+/// Whether the curve of `f_t,a = f_t,b = 0` meets the triangle (part of a
+/// face, with normal `n`, corner values `va`, `vb` of the interpolants)
+/// only transversally for every `t`: no common zero on it (bounds or a
+/// combination of one sign), or `det(g_a, g_b, n)` of one sign over the
+/// part's box; else split in four, `depth` times. A curve tangent to a
+/// face plane near its extreme is common (every closed curve has one per
+/// direction), and there the face usually misses it by far more than
+/// its parts' size.
+fn pair_face_ok(p: &Pair2<'_>, tri: [V3; 3], va: [f64; 3], vb: [f64; 3], depth: u32) -> bool {
+    let lo = [0, 1, 2].map(|k| tri[0][k].min(tri[1][k]).min(tri[2][k]));
+    let hi = [0, 1, 2].map(|k| tri[0][k].max(tri[1][k]).max(tri[2][k]));
+    let none_a = !p.la.bound(lo, hi).contains(0.0);
+    let none_b = !p.lb.bound(lo, hi).contains(0.0);
+    // The interpolants' values lie between the corners'; f's in the bound.
+    let signed = |v: [f64; 3]| v.iter().all(|&x| x > 0.0) || v.iter().all(|&x| x < 0.0);
+    if (none_a && signed(va)) || (none_b && signed(vb)) {
+        return true;
+    }
+    for s in [-1.0, 1.0] {
+        let at = [0, 1, 2].map(|i| va[i] + s * vb[i]);
+        if signed(at) {
+            if let Some(v) = centred_combo(p.la, p.lb, s, lo, hi) {
+                if (at[0] > 0.0 && v.lo > 0.0) || (at[0] < 0.0 && v.hi < 0.0) {
+                    return true;
+                }
+            }
+        }
+    }
+    let g = |l: Local<'_>, t: &Term| {
+        l.grad(lo, hi).map(|g| [0, 1, 2].map(|k| g[k].meet(t.g[k]).hull(t.gl[k]))).unwrap_or(t.gp)
+    };
+    let (ga, gb) = (g(p.la, p.a), g(p.lb, p.b));
+    if !dot_iv(p.n, &cross_iv(&ga, &gb)).contains(0.0) {
+        return true;
+    }
+    if depth == 0 {
+        return false;
+    }
+    let m = |x: V3, y: V3| [0, 1, 2].map(|k| 0.5 * (x[k] + y[k]));
+    let (ab, bc, ca) = (m(tri[0], tri[1]), m(tri[1], tri[2]), m(tri[2], tri[0]));
+    let h = |v: [f64; 3]| (0.5 * (v[0] + v[1]), 0.5 * (v[1] + v[2]), 0.5 * (v[2] + v[0]));
+    let (a01, a12, a20) = h(va);
+    let (b01, b12, b20) = h(vb);
+    pair_face_ok(p, [tri[0], ab, ca], [va[0], a01, a20], [vb[0], b01, b20], depth - 1)
+        && pair_face_ok(p, [ab, tri[1], bc], [a01, va[1], a12], [b01, vb[1], b12], depth - 1)
+        && pair_face_ok(p, [ca, bc, tri[2]], [a20, a12, va[2]], [b20, b12, vb[2]], depth - 1)
+        && pair_face_ok(p, [ab, bc, ca], [a01, a12, a20], [b01, b12, b20], depth - 1)
+}
+
+/// An affine term vanishing at every corner of a face or edge vanishes on
+/// all of it for every `t` (its interpolant is itself): there the pair's
+/// curve is the other term's zero set in the face or edge, which its sheet
+/// test already proved a single arc or point.
+fn flat_on(t: &Term, l: Local<'_>, corners: &[usize]) -> bool {
+    l.affine() && corners.iter().all(|&c| t.vals[c] == 0.0)
+}
+
+/// Whether `f_t,a` and `f_t,b` have no common zero on a face or edge (its
+/// corners `corners`, its box `lo, hi`) for any `t`: `a - b` or `a + b`
+/// keeps one sign there, both on the corners (so for the interpolants)
+/// and in a centred enclosure of the functions.
+fn apart(a: &Term, b: &Term, la: Local<'_>, lb: Local<'_>, corners: &[usize], lo: V3, hi: V3) -> bool {
+    [-1.0, 1.0].into_iter().any(|s| {
+        let at: Vec<f64> = corners.iter().map(|&c| a.vals[c] + s * b.vals[c]).collect();
+        let pos = at.iter().all(|&v| v > 0.0);
+        let neg = at.iter().all(|&v| v < 0.0);
+        if !(pos || neg) {
+            return false;
+        }
+        match centred_combo(la, lb, s, lo, hi) {
+            Some(v) => (pos && v.lo > 0.0) || (neg && v.hi < 0.0),
+            None => false,
+        }
+    })
 }
 
 /// Where along edge `ij` (as a fraction) the zero of `f_t` can be, for every
@@ -273,10 +362,21 @@ pub fn triple(tet: &Tet, terms: [&Term; 3], tolerance: f64) -> Result<(), Miss> 
     if (0..3).any(|r| k_box[r].hi < x[r].lo || k_box[r].lo > x[r].hi) {
         return Ok(());
     }
+    // Two affine terms: the point moves along their exact line, where the
+    // third is monotone (the Jacobian is regular), so it is never created,
+    // lost or doubled; it may lie on the tet's faces or edges throughout
+    // (lines through bisection vertices are the common case). Every zero
+    // in the box lies in K, so within diam(K meet X) of each other.
+    let affine = terms.iter().filter(|t| t.affine).count();
+    if affine >= 2 && !dot_iv_iv(&j[0], &cross_iv(&j[1], &j[2])).contains(0.0) {
+        let diam = norm([0, 1, 2].map(|r| k_box[r].hi.min(x[r].hi) - k_box[r].lo.max(x[r].lo)));
+        return if diam <= tolerance { Ok(()) } else { Err(Miss::Distance) };
+    }
     // A unique zero, inside K, for every t: K in the box's interior.
     if !(0..3).all(|r| k_box[r].lo > x[r].lo && k_box[r].hi < x[r].hi) {
         return Err(Miss::Triple);
     }
+
     let corners: Vec<V3> = (0..8)
         .map(|b| [0, 1, 2].map(|r| if b >> r & 1 == 0 { k_box[r].lo } else { k_box[r].hi }))
         .collect();
@@ -295,6 +395,10 @@ pub fn triple(tet: &Tet, terms: [&Term; 3], tolerance: f64) -> Result<(), Miss> 
         return if diam <= tolerance { Ok(()) } else { Err(Miss::Distance) };
     }
     Err(Miss::Triple)
+}
+
+fn dot_iv_iv(a: &[Interval; 3], b: &[Interval; 3]) -> Interval {
+    a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
 }
 
 fn inverse(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {

@@ -57,10 +57,10 @@ pub struct AdaptiveOptions {
 
 impl AdaptiveOptions {
     /// The defaults for a box: tolerance 1e-3 of its longest side, leaves
-    /// down to 1/4096 of it, at most 4 million tets, 4 start cubes.
+    /// down to 1/65536 of it, at most 4 million tets, 4 start cubes.
     pub fn for_box(b: [[f64; 3]; 2]) -> AdaptiveOptions {
         let side = (0..3).map(|k| b[1][k] - b[0][k]).fold(0.0, f64::max);
-        AdaptiveOptions { tolerance: 1e-3 * side, max_tets: 4_000_000, min_edge: side / 4096.0, start: 4 }
+        AdaptiveOptions { tolerance: 1e-3 * side, max_tets: 4_000_000, min_edge: side / 65536.0, start: 4 }
     }
 }
 

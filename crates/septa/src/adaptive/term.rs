@@ -82,6 +82,30 @@ impl Local<'_> {
         }
     }
 
+    /// Whether the function is affine (a plane, half-space or constant, or
+    /// a difference of two): its interpolant is itself.
+    pub fn affine(&self) -> bool {
+        use Primitive::{Constant, HalfSpace, Plane};
+        let one = |f: &Primitive| matches!(f, Plane(_) | HalfSpace(_) | Constant(_));
+        match self {
+            Local::One(f) => one(f),
+            Local::Diff(f, g) => one(f) && one(g),
+        }
+    }
+
+    /// The computed value at `p` with a bound on its rounding error.
+    pub fn eval(&self, p: V3, lo: V3, hi: V3) -> Interval {
+        let one = |f: &Primitive| {
+            let v = f.eval(p);
+            let e = f.eval_error(lo, hi).unwrap_or(f64::INFINITY);
+            Interval::new(v - e, v + e)
+        };
+        match self {
+            Local::One(f) => one(f),
+            Local::Diff(f, g) => one(f).sub(one(g)),
+        }
+    }
+
     /// Gradients over the box.
     pub fn grad(&self, lo: V3, hi: V3) -> Option<[Interval; 3]> {
         match self {
@@ -105,6 +129,8 @@ pub struct Term {
     /// `g` widened to hold the interpolant's gradient too, so it holds the
     /// gradient of every `(1 - t) L + t f` (the homotopy of docs/adaptive.md).
     pub gp: [Interval; 3],
+    /// The interpolant's gradient (padded for its rounding).
+    pub gl: [Interval; 3],
     /// The value at the box's centre (computed, rounding included) hulled
     /// with the interpolant's there.
     pub at_centre: Interval,
@@ -117,7 +143,15 @@ pub struct Term {
 impl Term {
     /// Builds a term from its parts; `None` when the gradient has no
     /// enclosure or the interpolant's gradient is not finite.
-    pub fn new(tet: &Tet, vals: [f64; 4], bound: Interval, g: [Interval; 3], fc: Interval, rounding: f64) -> Option<Term> {
+    pub fn new(
+        tet: &Tet,
+        vals: [f64; 4],
+        bound: Interval,
+        g: [Interval; 3],
+        fc: Interval,
+        rounding: f64,
+        affine: bool,
+    ) -> Option<Term> {
         let gl = interpolant_gradient(&tet.p, &vals)?;
         let scale = gl.iter().fold(0.0f64, |m, x| m.max(x.abs()));
         // The 3x3 solve in doubles: a relative pad far above its error on
@@ -128,8 +162,7 @@ impl Term {
         let c = tet.centre();
         let lc = vals[0] + dot(gl, sub(c, tet.p[0]));
         let lc = Interval::new(lc - pad * norm(sub(c, tet.p[0])) - 1e-12 * lc.abs(), lc + pad * norm(sub(c, tet.p[0])) + 1e-12 * lc.abs());
-        let affine = g.iter().all(|x| x.lo == x.hi);
-        Some(Term { vals, bound, g, gp, at_centre: fc.hull(lc), rounding, affine })
+        Some(Term { vals, bound, g, gp, gl: gl_iv, at_centre: fc.hull(lc), rounding, affine })
     }
 
     /// Whether the zero set can meet the tet.
@@ -214,4 +247,17 @@ pub(crate) fn cross_iv(a: &[Interval; 3], b: &[Interval; 3]) -> [Interval; 3] {
         a[2].mul(b[0]).sub(a[0].mul(b[2])),
         a[0].mul(b[1]).sub(a[1].mul(b[0])),
     ]
+}
+
+/// An enclosure of `a + s b` (`s` = 1 or -1) over a box by the centred
+/// form: its computed value at the centre and its gradients over the box.
+pub fn centred_combo(a: Local<'_>, b: Local<'_>, s: f64, lo: V3, hi: V3) -> Option<Interval> {
+    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let (ga, gb) = (a.grad(lo, hi)?, b.grad(lo, hi)?);
+    let mut v = a.eval(c, lo, hi).add(b.eval(c, lo, hi).scale(s));
+    for k in 0..3 {
+        let h = 0.5 * (hi[k] - lo[k]) * (1.0 + 1e-15);
+        v = v.add(ga[k].add(gb[k].scale(s)).mul(Interval::new(-h, h)));
+    }
+    Some(v)
 }

@@ -60,7 +60,7 @@ fn judge_ia(fs: &[Primitive], tet: &Tet, vals: [&[f64]; 4], tolerance: f64) -> V
     let mut terms = Vec::with_capacity(crossing.len());
     for &i in &crossing {
         let Some(p) = parts(&fs[i], tet, corner_vals(&vals, i)) else { return Verdict::Refine(Miss::NoBound) };
-        let Some(t) = Term::new(tet, p.vals, p.bound, p.g, p.centre, p.err) else {
+        let Some(t) = Term::new(tet, p.vals, p.bound, p.g, p.centre, p.err, Local::One(&fs[i]).affine()) else {
             return Verdict::Refine(Miss::NoBound);
         };
         terms.push(t);
@@ -185,7 +185,8 @@ fn judge_mi(fs: &[Primitive], tet: &Tet, vals: [&[f64]; 4], tolerance: f64) -> V
             let vals = [0, 1, 2, 3].map(|c| pa.vals[c] - pb.vals[c]);
             let bound = Interval::new(lower(pa, pb), -lower(pb, pa));
             let g = [0, 1, 2].map(|k| pa.g[k].sub(pb.g[k]));
-            let Some(t) = Term::new(tet, vals, bound, g, pa.centre.sub(pb.centre), pa.err + pb.err) else {
+            let local = Local::Diff(&fs[cand[a]], &fs[cand[b]]);
+            let Some(t) = Term::new(tet, vals, bound, g, pa.centre.sub(pb.centre), pa.err + pb.err, local.affine()) else {
                 return Verdict::Refine(Miss::NoBound);
             };
             index[a][b] = terms.len();
