@@ -116,7 +116,7 @@ def two_planes(n=4):
 def write_ply(path, net):
     """Binary little-endian PLY in Septa's layout: each polygon as a fan of
     triangles with its polygon id, patch, label pair and cell pair (the
-    names of crates/septa/src/io/result_mesh.rs, written independently)."""
+    names of crates/septa/src/io/writers/result_mesh.rs, written independently)."""
     pts, faces = net["points"], net["faces"]
     ntri = sum(len(f) - 2 for f in faces)
     header = (

@@ -1,6 +1,6 @@
 """Every format from every command, read back by meshio, trimesh and pyvista.
 
-One vocabulary everywhere (crates/septa/src/io/result.rs): per polygon
+One vocabulary everywhere (crates/septa/src/io/writers/result.rs): per polygon
 ``patch``, ``labels`` (2 components), ``cells`` (2 components); PLY splits
 the pairs into ``labels_0``/``labels_1`` and ``cells_0``/``cells_1``; chains
 and corners are line and vertex cells. The reference for every array is

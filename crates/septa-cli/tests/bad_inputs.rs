@@ -112,7 +112,7 @@ fn memory_is_estimated_before_allocating() {
     let _ = std::fs::remove_dir_all(&d);
 }
 
-/// The unit cube, outward (as /work/shared/data/meshes/cube.obj).
+/// The unit cube, outward (as `meshes/cube.obj` in the shared data folder).
 const CUBE: &str = "v 0 0 0\nv 0 0 1\nv 0 1 0\nv 0 1 1\nv 1 0 0\nv 1 0 1\nv 1 1 0\nv 1 1 1\n\
 f 2 4 1\nf 5 2 1\nf 1 4 3\nf 3 5 1\nf 2 8 4\nf 6 2 5\nf 6 8 2\nf 4 8 3\nf 7 5 3\nf 3 8 7\nf 7 6 5\nf 8 6 7\n";
 

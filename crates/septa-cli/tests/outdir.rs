@@ -1,4 +1,4 @@
-//! Output-folder guarantees (`io/outdir.rs`): a second writer is
+//! Output-folder guarantees (`io/files/outdir.rs`): a second writer is
 //! refused, runs killed at random points leave nothing a reader takes for a
 //! result and nothing the next run keeps, Ctrl-C says so and removes its
 //! partial files, and the folder never mixes two runs.

@@ -1,7 +1,7 @@
 //! A timing entry point for `septa bench` (owned by the CLI lead): reads a
 //! mesh and a plane file, cuts, and reports counts and seconds.
 
-use super::{cut_mesh, CutCounts, CutOptions};
+use crate::cut::{cut_mesh, CutCounts, CutOptions};
 use crate::io::{read_mesh, read_planes};
 use std::path::Path;
 use std::time::Instant;

@@ -3,33 +3,37 @@
 //! cut by planes into cut-cells whose combinatorics are those of exact
 //! rational arithmetic.
 //!
-//! Pipeline (paper sections in brackets):
-//! 1. `input.rs`, `selfx.rs`: input conditions [Sec. 2.1, App. A], each
-//!    failure a [`CutError`] naming the element; duplicate planes dropped.
-//! 2. `lines.rs`: cut-vertices as face triples ([`Def`]) on mesh edges
-//!    and plane-plane lines, exact line sorting with a floating-point
-//!    pre-sort, merging of equal triples (union-find) [Sec. 3, App. B].
-//! 3. `clip.rs`: cut-faces inside triangles: each triangle clipped by the
-//!    planes crossing it, in plane order; since every cut is a full plane the
-//!    pieces are convex and need no cycle ordering [Sec. 4, `H(t)`].
-//! 4. `plane_graph.rs`, `holes.rs`: cut-faces inside planes: the half-edge
-//!    structure `H(p)` over all plane-plane lines and the boundary curves,
-//!    exact edge-cycle order at vertices, loops of `next`, inside/outside by
-//!    the boundary side tests [App. C] carried across plane-plane edges;
-//!    holes found exactly and joined to their face [Sec. 2.2, 6.1].
-//! 5. `cells.rs`: half-faces joined across each cut-edge [Sec. 5, eq. 11]:
-//!    an edge with two faces is joined topologically; others by exact
-//!    face-cycle order ([`CutStats::ordered_edges`]).
-//! 6. `embed.rs`, `side_filter.rs`, `output.rs`, `triangulate.rs`: the
-//!    floating-point embedding [Sec. 6.1]: rounded cut-vertices moved by
-//!    ulps until the exact order along every mesh edge and plane-plane line
-//!    holds and every vertex of a cell lies strictly on its exact side of
-//!    the supporting plane of each face of the cell near it (the
-//!    vertex-face orders of Eq. (13)), both checked by exact predicates on
-//!    the doubles; moves and remaining violations counted
-//!    ([`CutStats::moved_vertices`], [`CutStats::sidedness_moved`],
-//!    [`CutStats::sidedness_violations`]); volumes, triangulation of faces
-//!    for output.
+//! A tour, one folder per stage of the pipeline (`pipeline.rs` runs the 13
+//! timed stages, [`CutStats::seconds`] names them; paper sections in
+//! brackets), each folder importing only those listed before it:
+//! - `triangles/`, `check/`: exact tests on triangles of doubles that know
+//!   nothing of the cut (orientations, triangle pairs and their broad phase,
+//!   ear clipping), and the exact check of any written polyhedral mesh
+//!   ([`verify_cells`], [`VerifyReport`]).
+//! - `base/`: the cut's vocabulary: cut-vertices as face triples ([`Def`]),
+//!   the input context and its filtered predicates, [`CutError`], the
+//!   [`CutCellMesh`] a cut returns and its [`CutStats`].
+//! - `input/` (stages 1-3): input conditions [Sec. 2.1, App. A], each
+//!   failure a [`CutError`] naming the element; duplicate planes dropped.
+//! - `arrangement/` (stages 4-8): cut-vertices on mesh edges and plane-plane
+//!   lines, exact line sorting, merging of equal triples [Sec. 3, App. B];
+//!   cut-faces inside triangles by clipping [Sec. 4, `H(t)`] and inside
+//!   planes as loops of `H(p)` with their holes [App. C, Sec. 2.2, 6.1].
+//! - `embed/` (stage 11, and the rounding stage 10 needs): the
+//!   floating-point embedding [Sec. 6.1]: rounded cut-vertices moved by ulps
+//!   until the exact order along every mesh edge and plane-plane line holds
+//!   and every vertex of a cell lies strictly on its exact side of the
+//!   supporting plane of each face of the cell near it (the vertex-face
+//!   orders of Eq. (13)); moves and remaining violations counted
+//!   ([`CutStats::moved_vertices`], [`CutStats::sidedness_moved`],
+//!   [`CutStats::sidedness_violations`]).
+//! - `cells/` (stages 9-10): half-faces joined across each cut-edge
+//!   [Sec. 5, eq. 11] (two faces topologically, others by exact face-cycle
+//!   order, [`CutStats::ordered_edges`]); voids attached; exact volume signs.
+//! - `output/` (stage 12): volumes, the polygons or triangles each face is
+//!   written as, exact rational coordinates, [`Validation`].
+//! - `certify/` (stage 13): the written embedding checked exactly and
+//!   repaired ([`RepairStats`]).
 //!
 //! Difference from the paper: TopoCut inserts planes one at a time into the
 //! half-face structure and infers most cycle orders topologically. Here all
@@ -54,585 +58,33 @@
 
 #[cfg(feature = "tools")]
 pub mod bench;
-mod box_contact;
-mod cells;
-mod clip;
-mod embed;
-// The embedding's corner sides against the full exact sides (internal).
-#[cfg(test)]
-mod embed_tests;
-mod error;
-mod exact_round;
-mod geom;
-mod holes;
-mod input;
-mod lines;
-mod nodes;
-mod nudge;
-mod output;
-mod pair_grid;
-mod plane_graph;
-mod plane_separation;
-mod radix;
-mod rational;
-mod repair;
-mod scale;
-mod selfx;
-mod shells;
-mod side_filter;
-mod sweep_frame;
-mod tiling;
-mod tri_pair;
-// The sidedness filter against exact rationals (internal, so a unit test).
-#[cfg(test)]
-mod side_filter_tests;
+mod pipeline;
 #[cfg(test)]
 mod test_rng;
-mod triangulate;
-mod validate;
-mod verify;
-mod verify_volume;
-mod void_rays;
-mod voids;
-mod volume;
-mod volume_filter;
 
-pub use cells::Support;
-pub use error::CutError;
-pub use geom::Def;
-pub use rational::{exact_coordinates, fraction_string};
-pub use repair::RepairStats;
-pub use validate::Validation;
-pub use verify::{polygon_planar, verify_cells, verify_cells_since, CellPolygons, VerifyReport};
+mod arrangement;
+mod base;
+mod cells;
+mod certify;
+mod check;
+mod embed;
+mod input;
+mod output;
+mod triangles;
+
+pub use base::error::CutError;
+pub use base::geom::Def;
+pub use base::mesh::{CutCellMesh, CutFace, Support};
+pub use base::stats::{CutCounts, CutStats, RepairStats};
+pub use check::cell_polygons::CellPolygons;
+pub use check::polygon::polygon_planar;
+pub use check::verify::{verify_cells, verify_cells_since, VerifyReport};
+pub use output::rational::{exact_coordinates, fraction_string};
+pub use output::validate::Validation;
+pub use pipeline::{cut_mesh, CutOptions, STAGES};
 // The exact triangle machinery the embedding check of grid networks and
 // region surfaces shares (`crate::mesh`, a layer above both `cut` and
 // `network`, so no import cycle).
-pub(crate) use selfx::intersecting_pairs;
-pub(crate) use tri_pair::pair_intersects;
-pub(crate) use verify::collinear;
-
-use cells::FaceLoop;
-use clip::EdgeLine;
-use geom::{Ctx, LineDir};
-use nodes::{FxMap, Nodes};
-use plane_graph::{Boundary, GEdge};
-use rayon::prelude::*;
-use septa_exact::Sign;
-use std::time::Instant;
-
-/// Options of [`cut_mesh`].
-#[derive(Clone, Debug, Default)]
-pub struct CutOptions {
-    /// Worker threads (0: all available). The result does not depend on it.
-    pub threads: usize,
-    /// Skip the exact self-intersection test of the input (for inputs known
-    /// to be clean; the reference implementation assumes it).
-    pub skip_self_intersection_check: bool,
-    /// Skip the exact check and repair of the written embedding
-    /// (`repair.rs`; default: run it, [`CutStats::embedding`] holds the report).
-    pub skip_certify: bool,
-    /// Called with `(stages done, STAGES)` as each stage of the cut ends
-    /// ([`CutStats::seconds`] names them). Default value: none.
-    pub progress: Option<crate::Progress>,
-}
-
-/// Number of stages [`CutOptions::progress`] counts.
-pub const STAGES: usize = 13;
-
-/// Counts of the cut-cell mesh.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-pub struct CutCounts {
-    /// Cut-vertices.
-    pub cut_vertices: usize,
-    /// Cut-edges, counting like the reference one joining edge per hole of
-    /// a cut-face (TopoCut Sec. 6.1 joins each hole to the outer boundary).
-    pub cut_edges: usize,
-    /// Cut-faces (a face with holes counts once).
-    pub cut_faces: usize,
-    /// Cut-cells.
-    pub cut_cells: usize,
-}
-
-/// Timings and predicate statistics.
-#[derive(Clone, Debug, Default, serde::Serialize)]
-pub struct CutStats {
-    /// Seconds per stage.
-    pub seconds: Vec<(String, f64)>,
-    /// Filtered predicates that needed the exact fallback during this cut
-    /// (process-wide counter: concurrent cuts in other threads add to it).
-    pub exact_fallbacks: u64,
-    /// Cut-edges whose face-cycle order was computed (more than two faces).
-    pub ordered_edges: usize,
-    /// Holes of cut-faces (each joined to its face's outer boundary; the
-    /// reference counts one extra cut-edge per hole for that join).
-    pub holes: usize,
-    /// Holes whose face needed an exact containment test.
-    pub hole_containment_tests: usize,
-    /// Vertices whose rounded coordinates were nudged to keep the exact order
-    /// along a mesh edge or plane-plane line (TopoCut Sec. 6.1 heuristic).
-    pub moved_vertices: usize,
-    /// Cut-vertices moved to keep the exact side of the supporting plane of
-    /// every face of their cells near them (TopoCut Sec. 6.1, the orders of
-    /// Eq. (13); "near" as in `embed.rs`).
-    pub sidedness_moved: usize,
-    /// Near (cut-vertex, supporting plane) pairs of a cell whose plainly rounded
-    /// position (after the line-order moves) was on the wrong side or on the
-    /// plane: what the sidedness moves repair.
-    pub sidedness_violations_rounded: usize,
-    /// Such pairs still wrong after the moves, decided exactly (expected 0).
-    pub sidedness_violations: usize,
-    /// Consecutive vertices of a mesh edge or plane-plane line still out of
-    /// exact order in the embedding, decided exactly (expected 0).
-    pub line_order_violations: usize,
-    /// Void shells attached to their enclosing cell.
-    pub voids_attached: usize,
-    /// Void shells whose enclosing cell neither the plane sides nor the
-    /// exact ray decided (left as separate, negative-volume cells, which
-    /// `validate` reports; not expected for valid input).
-    pub voids_unresolved: usize,
-    /// Input planes dropped as duplicates `(dropped, duplicate_of)`.
-    pub dropped_planes: Vec<(usize, usize)>,
-    /// Cut-faces written as triangles because their rounded vertices are
-    /// not exactly coplanar (TopoCut Sec. 8, Limitations: relax planarity).
-    pub faces_split_nonplanar: usize,
-    /// Cut-faces written as triangles because they have holes.
-    pub faces_split_holes: usize,
-    /// The exact check of the written embedding and what its repair changed
-    /// (`None` with [`CutOptions::skip_certify`]).
-    pub embedding: Option<RepairStats>,
-}
-
-/// One cut-face.
-#[derive(Clone, Debug)]
-pub struct CutFace {
-    /// The input face it lies in.
-    pub support: Support,
-    /// Boundary loops of corner vertex ids: the outer boundary first,
-    /// counter-clockwise about the support normal (triangle outward
-    /// normal, or plane normal `(a, b, c)`), then holes (clockwise).
-    pub loops: Vec<Vec<u32>>,
-    /// Cell on the negative side (against the normal) and on the positive
-    /// side; `u32::MAX` for none (outside the domain).
-    pub cells: [u32; 2],
-}
-
-/// The cut-cell mesh.
-#[derive(Clone, Debug, Default)]
-pub struct CutCellMesh {
-    /// Floating-point coordinates of the cut-vertices (nearest to exact up
-    /// to rounding of the homogeneous coordinates).
-    pub vertices: Vec<[f64; 3]>,
-    /// Exact definition of each cut-vertex as a face triple.
-    pub vertex_defs: Vec<Def>,
-    /// Cut-faces.
-    pub faces: Vec<CutFace>,
-    /// Number of cut-cells; cell ids are `0..num_cells`.
-    pub num_cells: usize,
-    /// Counts.
-    pub counts: CutCounts,
-    /// Signed volume of the input mesh.
-    pub mesh_volume: f64,
-    /// The sum of the cell volumes and the mesh volume at the scale the cut
-    /// ran at (`scale.rs`: the input times `2^k`): the same as the sum of
-    /// `cell_volumes` and `mesh_volume` for inputs within `[2^-64, 2^64]`;
-    /// for others those overflow or underflow (a cube of side 1e300 has
-    /// volume 1e900), and [`CutCellMesh::validate`] compares these instead
-    /// (the relative error does not change under scaling by `2^3k`).
-    pub volume_sums_at_cut_scale: [f64; 2],
-    /// The cut planes used (after dropping duplicates); `Support::Plane(p)`
-    /// indexes this list.
-    pub planes: Vec<[f64; 4]>,
-    /// Outward normals of the input triangles (floating point, for output).
-    pub tri_normals: Vec<[f64; 3]>,
-    /// Euler characteristic of the input surface (`V - E + T`).
-    pub mesh_euler: i64,
-    /// Volume of each cell (from the floating-point embedding).
-    pub cell_volumes: Vec<f64>,
-    /// Exact sign of each cell's volume (from the cut-vertices' exact
-    /// homogeneous coordinates; `volume.rs`): what [`CutCellMesh::validate`]
-    /// checks, since a legitimate cell can be too small for `cell_volumes`.
-    pub cell_volume_signs: Vec<Sign>,
-    /// Per cut-face: written as triangles (no new vertices) instead of one
-    /// polygon, because it has holes or its rounded vertices are not exactly
-    /// coplanar ([`CutCellMesh::cell_polygons`]).
-    pub face_split: Vec<bool>,
-    /// Per cut-face: the triangles it is written as when split (vertex ids;
-    /// ids from `vertex_defs.len()` on are face centres added by `repair.rs`,
-    /// not cut-vertices), empty otherwise.
-    pub face_triangles: Vec<Vec<[u32; 3]>>,
-    /// Timings and predicate statistics.
-    pub stats: CutStats,
-}
-
-/// Cuts the domain bounded by `triangles` (closed, outward) by `planes`
-/// (`a x + b y + c z + d = 0`).
-pub fn cut_mesh(
-    vertices: &[[f64; 3]],
-    triangles: &[[u32; 3]],
-    planes: &[[f64; 4]],
-    opts: &CutOptions,
-) -> Result<CutCellMesh, CutError> {
-    // up front: the memory the plane tables need, and a scale the doubles
-    // can cut at (scale.rs)
-    scale::check_memory(planes.len(), vertices.len(), triangles.len())?;
-    let s = scale::Scaled::new(vertices, planes)?;
-    let run = || cut_impl(&s.vertices, triangles, &s.planes, opts);
-    let pool = (opts.threads != 0).then(|| rayon::ThreadPoolBuilder::new().num_threads(opts.threads).build());
-    let mut out = match pool {
-        Some(Ok(pool)) => pool.install(run),
-        _ => run(),
-    }?;
-    s.restore(&mut out, planes);
-    Ok(out)
-}
-
-/// The filters' copies of the triangle normals and of the plane-pair line
-/// directions in `R` (`Ctx::tn_iv`, `Ctx::pp_iv` and their [`Bounded`]
-/// twins), computed once: entries `p < q` of the pairs (`line_dir` reads no
-/// others; lines are keyed so), zero elsewhere.
-///
-/// [`Bounded`]: septa_exact::Bounded
-fn filter_copies<R: septa_exact::Ring>(c: &Ctx) -> (Vec<[R; 3]>, Vec<[R; 3]>) {
-    let np = c.planes.len() as u32;
-    let tn = (0..c.tris.len() as u32).map(|t| c.tn_compute::<R>(t)).collect();
-    let pp = (0..np * np)
-        .map(|i| {
-            let (p, q) = (i / np, i % np);
-            if p < q {
-                c.pp_compute::<R>(p, q)
-            } else {
-                std::array::from_fn(|_| R::of(0.0))
-            }
-        })
-        .collect();
-    (tn, pp)
-}
-
-fn cut_impl(
-    vertices: &[[f64; 3]],
-    triangles: &[[u32; 3]],
-    planes: &[[f64; 4]],
-    opts: &CutOptions,
-) -> Result<CutCellMesh, CutError> {
-    let fb0 = septa_exact::fallback_count();
-    let mut stats = CutStats::default();
-    let mut clock = Instant::now();
-    let debug = std::env::var_os("SEPTA_DEBUG").is_some();
-    let mut lap = |name: &str, stats: &mut CutStats| {
-        if debug {
-            let rss = std::fs::read_to_string("/proc/self/statm").unwrap_or_default();
-            eprintln!("stage {name}: {:.3}s statm {rss}", clock.elapsed().as_secs_f64());
-        }
-        stats.seconds.push((name.to_string(), clock.elapsed().as_secs_f64()));
-        if let Some(p) = &opts.progress {
-            (p.0)(stats.seconds.len(), STAGES);
-        }
-        clock = Instant::now();
-    };
-    let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
-    lap("check_mesh", &mut stats);
-    if !opts.skip_self_intersection_check {
-        selfx::check_self_intersections(vertices, triangles)?;
-    }
-    // After the self-intersection test: shells are then disjoint, which
-    // the winding-number argument needs (timed with it).
-    shells::check_shells(vertices, triangles, &edge_tris, &tri_edges)?;
-    lap("self_intersection", &mut stats);
-    let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
-    let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
-    let nv = vertices.len();
-    let np = planes.len();
-    let mut pv = vec![0i8; np * nv];
-    if nv > 0 {
-        pv.par_chunks_mut(nv).zip(planes.par_iter()).for_each(|(row, pl)| {
-            for (r, x) in row.iter_mut().zip(vertices) {
-                *r = septa_exact::plane_point_sign(pl, x).as_i8();
-            }
-        });
-    }
-    let c = Ctx {
-        verts: vertices,
-        tris: triangles,
-        planes: &planes,
-        edges,
-        tri_edges,
-        edge_tris,
-        pv,
-        tn_iv: Vec::new(),
-        pp_iv: Vec::new(),
-        tn_b: Vec::new(),
-        pp_b: Vec::new(),
-    };
-    let (tn_iv, pp_iv) = filter_copies::<septa_exact::Interval>(&c);
-    let (tn_b, pp_b) = filter_copies::<septa_exact::Bounded>(&c);
-    let c = Ctx { tn_iv, pp_iv, tn_b, pp_b, ..c };
-    let mut crosses = vec![false; np * np];
-    for p in 0..np {
-        for q in p + 1..np {
-            crosses[p * np + q] = c.planes_cross(p as u32, q as u32);
-        }
-    }
-    lap("input", &mut stats);
-    let mut nodes = Nodes::default();
-    let mut line_pts = lines::LinePoints::default();
-    let chains = lines::mesh_edges(&c, &mut nodes, &mut line_pts, &crosses);
-    lap("mesh_edges", &mut stats);
-    let clipped = clip::clip_all(&c);
-    for (d, z) in &clipped.interior {
-        let n = nodes.get(*d);
-        lines::register(&mut line_pts, &crosses, np, n, z);
-    }
-    // every piece's corners as nodes, in one list (numbered here, in this
-    // order: the node ids do not depend on what follows)
-    let mut piece_start: Vec<u32> = Vec::with_capacity(clipped.num_pieces() + 1);
-    piece_start.push(0);
-    let mut piece_nodes: Vec<u32> = Vec::new();
-    for p in clipped.pieces() {
-        piece_nodes.extend(p.nodes.iter().map(|&d| nodes.get(d)));
-        piece_start.push(piece_nodes.len() as u32);
-    }
-    lap("triangles", &mut stats);
-    let plines = lines::plane_lines(&c, &mut nodes, &mut line_pts, &crosses);
-    lap("plane_lines", &mut stats);
-    // compact ids of distinct points
-    let mut canon = vec![u32::MAX; nodes.len()];
-    let mut rep: Vec<Def> = Vec::new();
-    for i in 0..nodes.len() as u32 {
-        let r = nodes.find(i);
-        if canon[r as usize] == u32::MAX {
-            canon[r as usize] = rep.len() as u32;
-            rep.push(nodes.defs[r as usize]);
-        }
-        canon[i as usize] = canon[r as usize];
-    }
-    let cid = |n: u32| canon[n as usize];
-    // boundary edge maps and per-plane edge lists
-    let mut bnd = Boundary { gamma: FxMap::default(), mesh: FxMap::default() };
-    let mut pedges: Vec<Vec<GEdge>> = vec![Vec::new(); np];
-    for (e, chain) in chains.iter().enumerate() {
-        let [u, v] = c.edges[e];
-        let inside: Vec<u32> = (0..np as u32).filter(|&p| c.pv_sign(p, u) == 0 && c.pv_sign(p, v) == 0).collect();
-        // only the planes' graphs look pieces of mesh edges up, and a piece
-        // on a plane's graph lies on that plane with its whole mesh edge
-        if inside.is_empty() {
-            continue;
-        }
-        for w in chain.windows(2) {
-            let (a, b) = (cid(w[0]), cid(w[1]));
-            bnd.mesh.insert((a.min(b), a.max(b)), e as u32);
-            for &p in &inside {
-                pedges[p as usize].push(GEdge { a, b, dir: LineDir::Mesh(e as u32), fwd: true });
-            }
-        }
-    }
-    // the pieces' edges inside their triangles, on the planes: the
-    // boundary map and the planes' graphs (the pieces' loops are made
-    // below, once the planes' loops are counted)
-    for (k, piece) in clipped.pieces().enumerate() {
-        let pn = &piece_nodes[piece_start[k] as usize..piece_start[k + 1] as usize];
-        let (t, n) = (piece.tri, pn.len());
-        for i in 0..n {
-            if let EdgeLine::Plane(p, fwd) = piece.lines[i] {
-                let (a, b) = (cid(pn[i]), cid(pn[(i + 1) % n]));
-                let dir = LineDir::TriPlane(t, p);
-                debug_assert_eq!(fwd, c.order(rep[a as usize], rep[b as usize], dir) == Sign::Positive);
-                bnd.gamma.insert((a.min(b), a.max(b)), t);
-                pedges[p as usize].push(GEdge { a, b, dir, fwd });
-            }
-        }
-    }
-    for ((p, q), pts) in &plines {
-        // before the first and after the last point on the mesh the line is
-        // outside the domain (a point's representative triple is (P,P,P)
-        // only when no mesh triple names it)
-        let on_mesh = |n: &u32| !matches!(rep[cid(*n) as usize], Def::PPP(..));
-        let (Some(i0), Some(i1)) = (pts.iter().position(on_mesh), pts.iter().rposition(on_mesh)) else {
-            continue;
-        };
-        for w in pts[i0..=i1].windows(2) {
-            let (a, b) = (cid(w[0]), cid(w[1]));
-            let ge = GEdge { a, b, dir: LineDir::PlanePlane(*p, *q), fwd: true };
-            pedges[*p as usize].push(ge);
-            pedges[*q as usize].push(ge);
-        }
-    }
-    lap("edges", &mut stats);
-    let mut nholes = 0usize;
-    let mut nface = clipped.num_pieces() as u32;
-    let per_plane: Vec<(Vec<plane_graph::PlaneLoop>, u64, usize, usize)> = (0..np)
-        .into_par_iter()
-        .map(|p| {
-            let mut u = 0u64;
-            let mut loops = plane_graph::plane_faces(&c, p as u32, &pedges[p], &bnd, &mut u);
-            let (h, t) = holes::assign_holes(&c, p as u32, &rep, &mut loops);
-            (loops, u, h, t)
-        })
-        .collect();
-    // the pieces' loops, then the planes' (room for all at once: grown by
-    // doubling, or by the planes' loops after the pieces', the pieces'
-    // loops, most of them, were copied into fresh pages)
-    let mut faces: Vec<FaceLoop> =
-        Vec::with_capacity(nface as usize + per_plane.iter().map(|p| p.0.len()).sum::<usize>());
-    for (k, piece) in clipped.pieces().enumerate() {
-        let pn = &piece_nodes[piece_start[k] as usize..piece_start[k + 1] as usize];
-        let (t, n) = (piece.tri, pn.len());
-        let mut fl =
-            FaceLoop { support: Support::Tri(t), verts: Default::default(), dirs: Default::default(), face: k as u32 };
-        for i in 0..n {
-            fl.verts.push(cid(pn[i]));
-            fl.dirs.push(match piece.lines[i] {
-                EdgeLine::Mesh(e) => (LineDir::Mesh(e), c.edge_tris[e as usize][0] == t),
-                EdgeLine::Plane(p, fwd) => (LineDir::TriPlane(t, p), fwd),
-            });
-        }
-        faces.push(fl);
-    }
-    // the pieces are loops now; their pages go to what follows
-    drop((clipped, piece_nodes, piece_start));
-    for (loops, u, h, t) in per_plane {
-        let _ = u; // loops of unbounded, outside regions
-        nholes += h;
-        stats.hole_containment_tests += t;
-        let mut id = vec![u32::MAX; loops.len()];
-        for (k, l) in loops.iter().enumerate() {
-            if l.outer as usize == k {
-                id[k] = nface;
-                nface += 1;
-            }
-        }
-        for l in loops {
-            let face = id[l.outer as usize];
-            faces.push(FaceLoop {
-                support: Support::Plane(l.plane),
-                verts: smallvec::SmallVec::from_vec(l.verts),
-                dirs: smallvec::SmallVec::from_vec(l.dirs),
-                face,
-            });
-        }
-    }
-    stats.holes = nholes;
-    lap("plane_faces", &mut stats);
-    let cells = cells::assemble(&c, &faces);
-    stats.ordered_edges = cells.ordered_edges;
-    lap("cells", &mut stats);
-    // output: used vertices, coordinates, volumes
-    let mut used = vec![u32::MAX; rep.len()];
-    let mut out = CutCellMesh::default();
-    for f in &faces {
-        for &v in &f.verts {
-            if used[v as usize] == u32::MAX {
-                used[v as usize] = out.vertex_defs.len() as u32;
-                out.vertex_defs.push(rep[v as usize]);
-            }
-        }
-    }
-    let (rounded, boxes): (Vec<[f64; 3]>, Vec<_>) = out.vertex_defs.par_iter().map(|&d| embed::round(&c, d)).unzip();
-    out.vertices = rounded;
-    let nf = nface as usize;
-    out.faces = vec![CutFace { support: Support::Plane(0), loops: Vec::new(), cells: [u32::MAX; 2] }; nf];
-    for f in faces.iter() {
-        let i = f.face as usize;
-        let cf = &mut out.faces[i];
-        cf.support = f.support;
-        cf.cells = [cells.cell_of[2 * i + 1], cells.cell_of[2 * i]];
-        cf.loops.push(f.verts.iter().map(|&v| used[v as usize]).collect());
-    }
-    out.num_cells = cells.count;
-    out.cell_volumes = vec![0.0; cells.count];
-    let cut_edges = cells.edges + nholes;
-    // What is done with is freed as it goes: the heap only grows, so the
-    // certificate's arrays reuse these pages instead of faulting in new
-    // ones (a page fault is about 1.4 us here, ~10% of a run; armadillo
-    // R20's loops alone were 38 MB).
-    drop((faces, cells, bnd, pedges));
-    let (attached, unresolved) = voids::attach_voids(&c, &mut out, &boxes);
-    stats.voids_attached = attached;
-    stats.voids_unresolved = unresolved;
-    lap("faces", &mut stats);
-    // floating-point embedding (Sec. 6.1): line orders and vertex-face
-    // sidedness over the final cells (voids attached)
-    let to_out = |n: &u32| used[cid(*n) as usize];
-    let mut lines: Vec<embed::Line> = Vec::with_capacity(chains.len() + plines.len());
-    for (e, chain) in chains.iter().enumerate() {
-        let verts: Vec<u32> = chain.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
-        lines.push(embed::Line { dir: LineDir::Mesh(e as u32), verts });
-    }
-    for ((p, q), pts) in &plines {
-        let verts: Vec<u32> = pts.iter().map(to_out).filter(|&v| v != u32::MAX).collect();
-        lines.push(embed::Line { dir: LineDir::PlanePlane(*p, *q), verts });
-    }
-    drop((chains, plines, canon, rep, used, nodes, line_pts));
-    let es = embed::embed(&c, &mut out, &boxes, &lines);
-    drop(lines);
-    stats.moved_vertices = es.line_moved;
-    stats.sidedness_moved = es.sidedness_moved;
-    stats.sidedness_violations_rounded = es.sidedness_violations_rounded;
-    stats.sidedness_violations = es.sidedness_violations;
-    stats.line_order_violations = es.line_order_violations;
-    // the moves above may leave an axis plane by an ulp: back onto it
-    for (x, &d) in out.vertices.iter_mut().zip(&out.vertex_defs) {
-        embed::snap_axis_planes(&c, d, x);
-    }
-    lap("embed", &mut stats);
-    // volumes by the divergence theorem: loops count + for cells[0] and -
-    // for cells[1] (volume.rs relies on this orientation)
-    for f in &out.faces {
-        for l in &f.loops {
-            let vol = output::loop_volume(&out.vertices, l);
-            if f.cells[0] != u32::MAX {
-                out.cell_volumes[f.cells[0] as usize] += vol;
-            }
-            if f.cells[1] != u32::MAX {
-                out.cell_volumes[f.cells[1] as usize] -= vol;
-            }
-        }
-    }
-    out.cell_volume_signs = volume::cell_volume_signs(&c, &out, &boxes);
-    let mesh_edges = c.edges.len();
-    drop((boxes, c));
-    // planarity on the written doubles, exactly: a face whose rounded
-    // vertices leave its plane is written as triangles
-    out.face_split = out
-        .faces
-        .par_iter()
-        .map(|f| f.loops.len() > 1 || verify::polygon_planar(&out.vertices, &f.loops[0]) != Some(true))
-        .collect();
-    stats.faces_split_holes = out.faces.iter().filter(|f| f.loops.len() > 1).count();
-    stats.faces_split_nonplanar = out.face_split.iter().filter(|&&s| s).count() - stats.faces_split_holes;
-    out.mesh_volume = output::mesh_volume(vertices, triangles);
-    out.planes = planes.clone();
-    out.tri_normals = triangles
-        .iter()
-        .map(|t| {
-            let [a, b, cc] = t.map(|i| vertices[i as usize]);
-            let (u, v) = ([b[0] - a[0], b[1] - a[1], b[2] - a[2]], [cc[0] - a[0], cc[1] - a[1], cc[2] - a[2]]);
-            [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
-        })
-        .collect();
-    out.mesh_euler = nv as i64 - mesh_edges as i64 + triangles.len() as i64;
-    out.counts = CutCounts { cut_vertices: out.vertex_defs.len(), cut_edges, cut_faces: nf, cut_cells: out.num_cells };
-    lap("output", &mut stats);
-    out.face_triangles = out
-        .faces
-        .par_iter()
-        .zip(&out.face_split)
-        .map(
-            |(f, &s)| {
-                if s {
-                    triangulate::triangulate(&out.vertices, &f.loops, out.support_normal(f))
-                } else {
-                    Vec::new()
-                }
-            },
-        )
-        .collect();
-    if !opts.skip_certify {
-        // the input check passed: its triangles need no second test among themselves
-        let clean = (!opts.skip_self_intersection_check).then_some((vertices, triangles));
-        stats.embedding = Some(repair::repair(&mut out, clean));
-    }
-    lap("certify", &mut stats);
-    stats.exact_fallbacks = septa_exact::fallback_count() - fb0;
-    out.stats = stats;
-    Ok(out)
-}
+pub(crate) use check::polygon::collinear;
+pub(crate) use triangles::selfx::intersecting_pairs;
+pub(crate) use triangles::tri_pair::pair_intersects;

@@ -3,7 +3,7 @@
 //! context for tests of the plane-only predicates.
 
 /// Knuth's MMIX linear congruential generator, its top 53 bits.
-pub(super) fn lcg(seed: u64) -> impl FnMut() -> u64 {
+pub(crate) fn lcg(seed: u64) -> impl FnMut() -> u64 {
     let mut s = seed;
     move || {
         s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
@@ -12,7 +12,7 @@ pub(super) fn lcg(seed: u64) -> impl FnMut() -> u64 {
 }
 
 /// Marsaglia's xorshift64 (shifts 13, 7, 17), as a double in `[-1, 1)`.
-pub(super) fn xorshift_unit(seed: u64) -> impl FnMut() -> f64 {
+pub(crate) fn xorshift_unit(seed: u64) -> impl FnMut() -> f64 {
     let mut s = seed;
     move || {
         s ^= s << 13;
@@ -30,9 +30,10 @@ static TET_TRIS: [[u32; 3]; 4] = [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
 /// The cut context of the tetrahedron above and `planes` (plane-vertex
 /// signs left zero, no filter copies): what the plane-only predicates
 /// (line directions, three-plane points, orders) read.
-pub(super) fn tet_ctx(planes: &[[f64; 4]]) -> super::geom::Ctx<'_> {
-    let (edges, tri_edges, edge_tris) = super::input::check_mesh(&TET_VERTS, &TET_TRIS).expect("closed mesh");
-    super::geom::Ctx {
+pub(crate) fn tet_ctx(planes: &[[f64; 4]]) -> crate::cut::base::geom::Ctx<'_> {
+    let (edges, tri_edges, edge_tris) =
+        crate::cut::input::input::check_mesh(&TET_VERTS, &TET_TRIS).expect("closed mesh");
+    crate::cut::base::geom::Ctx {
         verts: &TET_VERTS,
         tris: &TET_TRIS,
         planes,
@@ -49,7 +50,7 @@ pub(super) fn tet_ctx(planes: &[[f64; 4]]) -> super::geom::Ctx<'_> {
 
 /// Two parallel grids of triangles `thickness` apart, in the plane through
 /// the origin with unit normal `n` (a thin plate's two faces).
-pub(super) fn plate(n: [f64; 3], thickness: f64, cells: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+pub(crate) fn plate(n: [f64; 3], thickness: f64, cells: usize) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     // an orthonormal basis (e1, e2) of the plane
     let a = if n[0].abs() < 0.9 { [1.0, 0.0, 0.0] } else { [0.0, 1.0, 0.0] };
     let cross =
@@ -81,7 +82,7 @@ pub(super) fn plate(n: [f64; 3], thickness: f64, cells: usize) -> (Vec<[f64; 3]>
 }
 
 /// The axis-aligned bounding box of each triangle of `tris`.
-pub(super) fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<super::pair_grid::Aabb> {
+pub(crate) fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<crate::cut::triangles::pair_grid::Aabb> {
     tris.iter()
         .map(|t| {
             let p = t.map(|v| x[v as usize]);
@@ -94,7 +95,7 @@ pub(super) fn aabbs(x: &[[f64; 3]], tris: &[[u32; 3]]) -> Vec<super::pair_grid::
 }
 
 /// A unit cube of 12 triangles, outward.
-pub(super) fn unit_cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+pub(crate) fn unit_cube() -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
     let v: Vec<[f64; 3]> = (0..8).map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64]).collect();
     let t = vec![
         [0, 2, 1],

@@ -96,7 +96,7 @@ const fn c(dx: u8, dy: u8, dz: u8) -> u8 {
 }
 
 /// 5-split of a cube with `i + j + k` even (same tets and vertex order as the
-/// reference grid in /work/shared/data/isn; all positively oriented).
+/// reference grid in the shared data folder (`isn/`); all positively oriented).
 const FIVE_EVEN: [[u8; 4]; 5] = [
     [c(1, 0, 0), c(0, 1, 0), c(0, 0, 1), c(1, 1, 1)],
     [c(0, 0, 0), c(1, 0, 0), c(0, 1, 0), c(0, 0, 1)],

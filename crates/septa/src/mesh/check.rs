@@ -1,5 +1,5 @@
 //! The exact check of a result's written doubles (the guarantee cut-cells
-//! have from `cut/verify.rs`, for grid networks, region surfaces and label
+//! have from `cut/check/verify.rs`, for grid networks, region surfaces and label
 //! volumes): each polygon is fanned from its first vertex, as the writers
 //! and readers do, and on those triangles
 //!

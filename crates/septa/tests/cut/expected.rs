@@ -1,4 +1,4 @@
-//! Cut-cell counts against the TopoCut reference (`/work/shared/data/topocut/expected.json`)
+//! Cut-cell counts against the TopoCut reference (`topocut/expected.json` in the shared data folder)
 //! plus the output checks (faces bound 1-2 cells, volumes, no empty cell).
 //! Small meshes by default; all meshes with `SEPTA_FULL=1`; one case with
 //! `SEPTA_CASE=name`.

@@ -1,4 +1,4 @@
-//! Every case of /work/shared/data/isn: counts equal to the reference
+//! Every case of the shared data folder's `isn/`: counts equal to the reference
 //! implementation's (expected.json), on the built-in box grid, and the box
 //! grid's tets equal to the input's; and from the analytic functions the
 //! values were sampled from (`spec_json`), sparse and streamed with topology.
