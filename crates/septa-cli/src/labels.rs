@@ -71,15 +71,27 @@ pub fn run(a: Args) -> CliResult {
     a.out
         .install(|| septa::mesh::place_labels(&mut r, vol.shape, &affine, !a.out.no_certify))?
         .map_err(|e| format!("{file}: {e}"))?;
+    let remeshed = match a.out.remesh {
+        Some(l) => {
+            let bounds = septa::mesh::label_bounds(vol.shape, &affine);
+            let o = septa::mesh::RemeshOptions::new(l);
+            Some(a.out.install(|| septa::mesh::remesh_regions(&mut r, &o, bounds))?.map_err(|e| format!("{file}: {e}"))?)
+        }
+        None => None,
+    };
     crate::progress::during(quiet, &format!("writing {}", a.out.output.display()), || {
         write_regions_formats(&r, &a.out.output, &a.out.format.0)
     })?;
-    let summary = regions_summary(&r);
+    let mut summary = regions_summary(&r);
+    if let (Some(m), Some(obj)) = (&remeshed, summary.as_object_mut()) {
+        obj.insert("remesh".into(), serde_json::to_value(m)?);
+    }
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&file, &r));
         a.out.tell_embedding(r.embedding.as_ref());
+        a.out.tell_remesh(remeshed.as_ref());
     }
     Ok(())
 }

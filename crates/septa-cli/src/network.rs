@@ -142,6 +142,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     }
     let pool = pool.build()?;
     if let Some(out) = &args.stream {
+        if args.out.remesh.is_some() {
+            return Err("--remesh: not with --stream (remeshing needs the whole network in memory)".into());
+        }
         return run_stream(&args, out, mode, &opts, &pool, bar, t0);
     }
     // Sparse by default where it applies (formulas on a box grid); the
@@ -167,6 +170,17 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
             }
         }
     }
+    let remeshed = match args.out.remesh {
+        Some(l) => {
+            let bounds = match &job.grid {
+                septa::grid::Grid::Box(b) => Some(b.bounds),
+                septa::grid::Grid::Mesh(_) => None,
+            };
+            let o = septa::mesh::RemeshOptions::new(l);
+            Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?)
+        }
+        None => None,
+    };
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -200,6 +214,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         if let Some(e) = &net.embedding {
             obj.insert("embedding".into(), serde_json::to_value(e)?);
         }
+        if let Some(r) = &remeshed {
+            obj.insert("remesh".into(), serde_json::to_value(r)?);
+        }
         let mut secs = serde_json::Map::new();
         for (k, v) in net.seconds.iter().chain(extra.iter()) {
             secs.insert((*k).into(), (*v).into());
@@ -212,6 +229,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         println!("{}", counts.join(", "));
         print!("{}", crate::summary::network_text(&net, &notes));
         args.out.tell_embedding(net.embedding.as_ref());
+        args.out.tell_remesh(remeshed.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));
         }

@@ -33,6 +33,14 @@ pub struct Output {
     /// signs; `embedding` in network.json and --json says what was changed).
     #[arg(long)]
     pub no_certify: bool,
+    /// Remesh every patch to triangles of edge length about L (isotropic:
+    /// split, collapse, flip, smooth), with the chains and corners as
+    /// constraints shared by the patches around them and vertices kept on
+    /// the unremeshed patches: the same patches, chains, corners and cells,
+    /// certified by the exact check after (`remesh` in --json: angles,
+    /// radius ratios, Hausdorff distance to the unremeshed result).
+    #[arg(long, value_name = "L", conflicts_with = "no_certify", value_parser = crate::args::positive)]
+    pub remesh: Option<f64>,
 }
 
 /// The parsed `--format` list.
@@ -51,6 +59,30 @@ impl Output {
             pool = pool.num_threads(t.max(1));
         }
         Ok(pool.build()?.install(work))
+    }
+
+    /// Prints what remeshing did (human-readable mode only).
+    pub fn tell_remesh(&self, r: Option<&septa::mesh::Remeshing>) {
+        if let (true, Some(r)) = (self.talk(), r) {
+            let (b, a) = (&r.before, &r.after);
+            println!(
+                "remesh to L = {}: {} -> {} triangles, smallest angle {:.2} -> {:.2} degrees (mean smallest {:.2} -> \
+                 {:.2}), {} -> {} under 20 degrees; Hausdorff distance {:.3e} (to the unremeshed) / {:.3e} (from it); \
+                 patches kept: {}",
+                r.length,
+                b.triangles,
+                a.triangles,
+                b.min_angle,
+                a.min_angle,
+                b.mean_min_angle,
+                a.mean_min_angle,
+                b.below_20_degrees,
+                a.below_20_degrees,
+                r.hausdorff[0],
+                r.hausdorff[1],
+                r.patches_kept
+            );
+        }
     }
 
     /// Prints what certification did (human-readable mode only).

@@ -92,6 +92,14 @@ pub fn run(a: Args) -> CliResult {
             a.out.install(|| septa::mesh::certify_regions(&mut r, Some(&grid), Some(grid.bounds)))?;
         }
     }
+    let remeshed = match a.out.remesh {
+        Some(l) => {
+            let bounds = scene.grid.box_grid()?.bounds;
+            let o = septa::mesh::RemeshOptions::new(l);
+            Some(a.out.install(|| septa::mesh::remesh_regions(&mut r, &o, Some(bounds)))??)
+        }
+        None => None,
+    };
     let dir = &a.out.output;
     crate::progress::during(quiet, &format!("writing {}", dir.display()), || {
         write_regions_formats(&r, dir, &a.out.format.0)
@@ -100,11 +108,15 @@ pub fn run(a: Args) -> CliResult {
     if let (Some(s), Some(obj)) = (&r.sparse, summary.as_object_mut()) {
         obj.insert("blocks".into(), crate::network::sparse_json(s));
     }
+    if let (Some(m), Some(obj)) = (&remeshed, summary.as_object_mut()) {
+        obj.insert("remesh".into(), serde_json::to_value(m)?);
+    }
     if a.out.json {
         println!("{summary}");
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&path, &r));
         a.out.tell_embedding(r.embedding.as_ref());
+        a.out.tell_remesh(remeshed.as_ref());
         println!("wrote {}", dir.display());
     }
     Ok(())

@@ -22,9 +22,11 @@ mod certify;
 mod check;
 mod local;
 mod project;
+mod remesh;
 mod volume;
 
 pub use project::Zeros;
+pub use remesh::{remesh_network, remesh_regions, Quality, RemeshOptions, Remeshing};
 
 pub use crate::network::embedding::{snap_point, Embedding, EmbeddingCheck, Projection};
 
@@ -230,19 +232,25 @@ pub fn place_labels(
     if !certify {
         return Ok(None);
     }
+    let bounds = label_bounds(shape, affine);
+    let mut e = certify_regions(r, None, bounds);
+    e.snapped = snapped;
+    r.embedding = Some(e.clone());
+    Ok(Some(e))
+}
+
+/// The box closing label surfaces of a volume of `shape` voxels placed by
+/// `affine` (the volume's image; `None` when `affine` rotates or shears).
+pub fn label_bounds(shape: [usize; 3], affine: &[[f64; 4]; 3]) -> Option<[[f64; 3]; 2]> {
     let diagonal = (0..3).all(|i| (0..3).all(|j| i == j || affine[i][j] == 0.0));
-    let bounds = grid.filter(|_| diagonal).map(|g| {
+    label_grid(shape).filter(|_| diagonal).map(|g| {
         // the corners placed as `place_surfaces` places points
         let at = |k: usize, c: f64| affine[k][k] * c + affine[k][3];
         let (lo, hi) = (g.bounds[0], g.bounds[1]);
         let a: [f64; 3] = std::array::from_fn(|k| at(k, lo[k]).min(at(k, hi[k])));
         let b: [f64; 3] = std::array::from_fn(|k| at(k, lo[k]).max(at(k, hi[k])));
         [a, b]
-    });
-    let mut e = certify_regions(r, None, bounds);
-    e.snapped = snapped;
-    r.embedding = Some(e.clone());
-    Ok(Some(e))
+    })
 }
 
 /// The exact check alone of a network's written doubles (nothing moves).

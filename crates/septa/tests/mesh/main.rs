@@ -7,3 +7,5 @@ mod common;
 mod certify;
 
 mod project;
+
+mod remesh;

@@ -1,0 +1,366 @@
+//! Isotropic remeshing of every patch to a target edge length `L`, with the
+//! network's chains and corners as constraints shared by all the patches
+//! around them (Botsch & Kobbelt 2004, "A remeshing approach to
+//! multiresolution modeling"; CGAL's isotropic remeshing with protected
+//! constraints is the anchor): repeated rounds of
+//!
+//! 1. splitting edges longer than `4/3 L` (`split.rs`),
+//! 2. collapsing edges shorter than `4/5 L` where that keeps the topology
+//!    (`collapse.rs`),
+//! 3. flipping edges inside a patch towards valence 6 and Delaunay
+//!    (`flip.rs`),
+//! 4. tangential smoothing, each vertex put back on the surface
+//!    (`smooth.rs`).
+//!
+//! The constraints (`constraints.rs`) are the exact network's: a chain is
+//! resampled once, in the one triangle soup of all patches, so every patch
+//! around it uses the same vertices; corners never move. Vertices stay on
+//! the original patch (closest point on its triangles, `original.rs`) or
+//! constraint curve. The result has the same patches (each with its Euler
+//! characteristic and boundary loops), chains, corners and cells; its
+//! written doubles are then certified by the exact check (`certify.rs`),
+//! and its quality reported (`quality.rs`).
+
+mod collapse;
+mod constraints;
+mod flip;
+mod original;
+mod quality;
+mod smooth;
+mod soup;
+mod split;
+mod surface;
+
+pub use quality::Quality;
+
+use constraints::{build, rebuild_chains, Source};
+use original::Original;
+use surface::Surface;
+use soup::{Kind, Soup, V};
+
+use super::certify::{certify, Target};
+use crate::network::embedding::Embedding;
+use crate::network::{Network, Patch};
+use crate::regions::RegionSurfaces;
+
+/// What to remesh to.
+#[derive(Clone, Debug)]
+pub struct RemeshOptions {
+    /// The target edge length `L`.
+    pub length: f64,
+    /// Rounds of split, collapse, flip and smoothing. Default value: 8.
+    pub iterations: usize,
+}
+
+impl RemeshOptions {
+    /// Remeshing to edge length `length`, 8 rounds.
+    pub fn new(length: f64) -> RemeshOptions {
+        RemeshOptions { length, iterations: 8 }
+    }
+}
+
+/// What remeshing did and what came of it.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Remeshing {
+    /// The target edge length.
+    pub length: f64,
+    /// Rounds run.
+    pub iterations: usize,
+    /// The triangles before (the polygons fanned) and after.
+    pub before: Quality,
+    /// See `before`.
+    pub after: Quality,
+    /// Sampled Hausdorff distance `[remeshed -> unremeshed, unremeshed ->
+    /// remeshed]` (corners, edge middles and centroids of each triangle to
+    /// the other surface).
+    pub hausdorff: [f64; 2],
+    /// Edges split, collapsed, flipped; vertex moves of smoothing.
+    pub splits: usize,
+    /// See `splits`.
+    pub collapses: usize,
+    /// See `splits`.
+    pub flips: usize,
+    /// See `splits`.
+    pub smoothed: usize,
+    /// Vertices that never move (corners, chain ends, where patches meet at
+    /// a point) and constraint traces between them.
+    pub fixed: usize,
+    /// See `fixed`.
+    pub traces: usize,
+    /// Every patch has its triangles' Euler characteristic and boundary
+    /// loops of before.
+    pub patches_kept: bool,
+    /// Seconds.
+    pub seconds: f64,
+}
+
+/// The remeshed soup's live triangles, patches and chains, and the report
+/// (without the certification).
+struct Remeshed {
+    soup: Soup,
+    tris: Vec<[u32; 3]>,
+    tri_patch: Vec<u32>,
+    chains: Vec<Vec<u32>>,
+    report: Remeshing,
+}
+
+fn area(x: &[V], tris: &[[u32; 3]]) -> f64 {
+    tris.iter().map(|t| 0.5 * soup::norm(Soup::normal_of(x, t))).sum()
+}
+
+/// The largest number of triangles a remeshing may make.
+const MAX_TRIANGLES: f64 = 2e7;
+
+fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<Remeshed, String> {
+    let t0 = std::time::Instant::now();
+    let l = opts.length;
+    if !(l.is_finite() && l > 0.0) {
+        return Err(format!("--remesh: the target edge length must be a positive number, not {l}"));
+    }
+    let built = build(src);
+    let estimate = area(src.points, &built.tris) / (3f64.sqrt() / 4.0 * l * l);
+    if estimate > MAX_TRIANGLES {
+        return Err(format!(
+            "--remesh {l}: the target edge length is too small for these patches (about {estimate:.0} triangles; at most {MAX_TRIANGLES:.0})"
+        ));
+    }
+    let mean_edge = {
+        let (mut s, mut n) = (0.0, 0usize);
+        for t in &built.tris {
+            for k in 0..3 {
+                s += soup::dist(src.points[t[k] as usize], src.points[t[(k + 1) % 3] as usize]);
+                n += 1;
+            }
+        }
+        if n > 0 { s / n as f64 } else { l }
+    };
+    let size = mean_edge.max(l);
+    let orig = Original::new(src.points, &built.tris, &built.tri_patch, &built.segs, &built.seg_trace, size);
+    let surf = Surface { orig };
+    let mut report = Remeshing {
+        length: l,
+        iterations: opts.iterations,
+        before: quality::quality(src.points, &built.tris),
+        traces: built.traces,
+        ..Default::default()
+    };
+    let counts_before = quality::patch_counts(&built.tris, &built.tri_patch, patches);
+    let mut s = built.soup;
+    report.fixed = s.kind.iter().zip(&s.vt).filter(|(k, t)| **k == Kind::Fixed && !t.is_empty()).count();
+    let (lo, hi) = (0.8 * l, 4.0 / 3.0 * l);
+    for _ in 0..opts.iterations {
+        report.splits += split::split_long(&mut s, &surf, hi);
+        report.collapses += collapse::collapse_short(&mut s, &surf, lo, hi);
+        report.flips += flip::flip_all(&mut s, false);
+        report.smoothed += smooth::smooth_all(&mut s, &surf);
+    }
+    report.flips += flip::flip_all(&mut s, true);
+    let chains = rebuild_chains(&s, &built.chains);
+    let live: Vec<usize> = (0..s.tris.len()).filter(|&t| s.alive[t]).collect();
+    let tris: Vec<[u32; 3]> = live.iter().map(|&t| s.tris[t]).collect();
+    let tri_patch: Vec<u32> = live.iter().map(|&t| s.patch[t]).collect();
+    report.patches_kept = quality::patch_counts(&tris, &tri_patch, patches)
+        .iter()
+        .zip(&counts_before)
+        .all(|(a, b)| a[1] == b[1] && a[2] == b[2]);
+    if std::env::var_os("SEPTA_REMESH_DEBUG").is_some() {
+        debug(&s, &tris, &tri_patch, &built.tris, &built.tri_patch, patches);
+    }
+    report.hausdorff = quality::hausdorff(src.points, &built.tris, &s.x, &tris, size);
+    report.seconds = t0.elapsed().as_secs_f64();
+    Ok(Remeshed { soup: s, tris, tri_patch, chains, report })
+}
+
+/// The live vertices of `s` numbered densely: old id -> new id.
+fn compact(s: &Soup) -> Vec<u32> {
+    let mut map = vec![u32::MAX; s.x.len()];
+    let mut n = 0;
+    for v in 0..s.x.len() {
+        if !s.vt[v].is_empty() {
+            map[v] = n;
+            n += 1;
+        }
+    }
+    map
+}
+
+/// Remeshes a grid network in place (module doc): its polygons become the
+/// remeshed triangles, its chains their new paths, its corners the same
+/// points; vertices take the grid key of the vertex they came from. The
+/// patches, chains, corners, shells and cells are the same. Then the
+/// written doubles are certified (`bounds`: the grid's box closing the
+/// cells); the certificate is in `net.embedding`.
+pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+    let src = Source {
+        points: &net.points,
+        start: &net.face_start,
+        verts: &net.face_verts,
+        patch: &net.face_patch,
+        chains: &net.chains,
+        corners: &net.corners,
+        bounds,
+    };
+    let r = remesh_source(&src, opts, net.patches.len())?;
+    let map = compact(&r.soup);
+    let n = map.iter().filter(|&&m| m != u32::MAX).count();
+    let mut points = vec![[0.0; 3]; n];
+    let mut keys = Vec::with_capacity(n);
+    for v in 0..map.len() {
+        if map[v] != u32::MAX {
+            points[map[v] as usize] = r.soup.x[v];
+            keys.push(net.keys[r.soup.origin[v] as usize]);
+        }
+    }
+    // per patch, the label and cells of its polygons
+    let mut patch_cells = vec![[u32::MAX; 2]; net.patches.len()];
+    for f in 0..net.num_faces() {
+        patch_cells[net.face_patch[f] as usize] = net.face_cells[f];
+    }
+    let m = |v: u32| map[v as usize];
+    net.face_start = (0..=r.tris.len() as u32).map(|i| 3 * i).collect();
+    net.face_verts = r.tris.iter().flat_map(|t| t.map(m)).collect();
+    net.face_patch = r.tri_patch.clone();
+    net.face_label = r.tri_patch.iter().map(|&p| net.patches[p as usize].label).collect();
+    net.face_cells = r.tri_patch.iter().map(|&p| patch_cells[p as usize]).collect();
+    let mut faces = vec![0usize; net.patches.len()];
+    for &p in &r.tri_patch {
+        faces[p as usize] += 1;
+    }
+    net.patches = net.patches.iter().zip(faces).map(|(p, f)| Patch { label: p.label, faces: f }).collect();
+    net.chains = r.chains.iter().map(|c| c.iter().map(|&v| m(v)).collect()).collect();
+    net.corners = net.corners.iter().map(|&v| m(v)).collect();
+    let mut edges: Vec<[u32; 2]> = Vec::with_capacity(r.tris.len() * 3 / 2);
+    for t in net.face_verts.chunks(3) {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.push([a.min(b), a.max(b)]);
+        }
+    }
+    edges.sort_unstable();
+    edges.dedup();
+    net.edges = edges;
+    net.points = points;
+    net.keys = keys;
+    let mut t = Target {
+        points: &mut net.points,
+        start: &net.face_start,
+        verts: &mut net.face_verts,
+        cells: Some(&net.face_cells),
+        bounds,
+        fixed: None,
+    };
+    let e = certify(&mut t);
+    let mut report = r.report;
+    report.after = quality::quality(&net.points, &tris_of(&net.face_verts));
+    net.seconds.push(("remesh", report.seconds));
+    net.embedding = Some(merge_embedding(net.embedding.take(), e));
+    Ok(report)
+}
+
+fn tris_of(verts: &[u32]) -> Vec<[u32; 3]> {
+    verts.chunks(3).map(|t| [t[0], t[1], t[2]]).collect()
+}
+
+/// The certificate of the remeshed doubles, with the earlier repairs'
+/// counts and projection kept.
+fn merge_embedding(old: Option<Embedding>, new: Embedding) -> Embedding {
+    let mut e = new;
+    if let Some(o) = old {
+        e.snapped += o.snapped;
+        e.rotated += o.rotated;
+        e.nudged += o.nudged;
+        e.projection = o.projection;
+    }
+    e
+}
+
+/// Remeshes region surfaces in place ([`remesh_network`] for their kept
+/// polygons): surfaces are the patches, curves the chains. Original
+/// vertices that stay (fixed ones) keep their ids; every other vertex is
+/// new, appended to the network's points (its polygons, which the
+/// regions' volumes are measured on, are left as they were).
+pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+    let chains: Vec<Vec<u32>> = r.curves.iter().map(|c| c.vertices.clone()).collect();
+    let corners: Vec<u32> =
+        r.curves.iter().filter(|c| !c.closed).flat_map(|c| [c.vertices[0], *c.vertices.last().unwrap()]).collect();
+    let n0 = r.network.points.len();
+    let src = Source {
+        points: &r.network.points,
+        start: &r.loop_start,
+        verts: &r.loops,
+        patch: &r.face_surface,
+        chains: &chains,
+        corners: &corners,
+        bounds,
+    };
+    let out = remesh_source(&src, opts, r.surfaces.len())?;
+    let s = &out.soup;
+    let mut map = vec![u32::MAX; s.x.len()];
+    for v in 0..s.x.len() {
+        if s.vt[v].is_empty() {
+            continue;
+        }
+        if v < n0 && s.kind[v] == Kind::Fixed && s.x[v] == r.network.points[v] {
+            map[v] = v as u32;
+        } else {
+            map[v] = r.network.points.len() as u32;
+            r.network.points.push(s.x[v]);
+            let key = r.network.keys[s.origin[v] as usize];
+            r.network.keys.push(key);
+        }
+    }
+    // per surface, a kept polygon of it (its network polygon gives the
+    // regions on either side, as the writers read them)
+    let mut first = vec![u32::MAX; r.surfaces.len()];
+    for (i, &g) in r.face_surface.iter().enumerate() {
+        if first[g as usize] == u32::MAX {
+            first[g as usize] = r.faces[i];
+        }
+    }
+    let m = |v: u32| map[v as usize];
+    r.faces = out.tri_patch.iter().map(|&g| first[g as usize]).collect();
+    r.loop_start = (0..=out.tris.len() as u32).map(|i| 3 * i).collect();
+    r.loops = out.tris.iter().flat_map(|t| t.map(m)).collect();
+    r.face_surface = out.tri_patch.clone();
+    for (c, path) in r.curves.iter_mut().zip(&out.chains) {
+        c.vertices = path.iter().map(|&v| m(v)).collect();
+    }
+    let counts = quality::patch_counts(&tris_of(&r.loops), &r.face_surface, r.surfaces.len());
+    for (s, c) in r.surfaces.iter_mut().zip(&counts) {
+        s.faces = c[0] as usize;
+    }
+    r.normals.clear();
+    let cells = super::region_cells(r);
+    let mut t = Target {
+        points: &mut r.network.points,
+        start: &r.loop_start,
+        verts: &mut r.loops,
+        cells: Some(&cells),
+        bounds,
+        fixed: None,
+    };
+    let e = certify(&mut t);
+    let mut report = out.report;
+    report.after = quality::quality(&r.network.points, &tris_of(&r.loops));
+    r.seconds.push(("remesh", report.seconds));
+    r.embedding = Some(merge_embedding(r.embedding.take(), e));
+    r.measure_surfaces();
+    Ok(report)
+}
+
+fn debug(s: &Soup, tris: &[[u32; 3]], tri_patch: &[u32], t0: &[[u32; 3]], p0: &[u32], patches: usize) {
+    let a = quality::patch_counts(t0, p0, patches);
+    let b = quality::patch_counts(tris, tri_patch, patches);
+    for p in 0..patches {
+        if a[p][1] != b[p][1] || a[p][2] != b[p][2] {
+            eprintln!("patch {p}: before {:?} after {:?}", a[p], b[p]);
+        }
+    }
+    for (t, tri) in tris.iter().enumerate() {
+        let m = soup::min_angle(tri.map(|v| s.x[v as usize]));
+        if m < 20.0 {
+            let kinds: Vec<String> = tri.iter().map(|&v| format!("{:?}@{:?}", s.kind[v as usize], s.x[v as usize])).collect();
+            eprintln!("tri {t} patch {} angle {m:.2}: {}", tri_patch[t], kinds.join(" "));
+        }
+    }
+}
