@@ -19,8 +19,10 @@
 
 mod boundary;
 mod geometry;
+mod solid;
 
 pub use geometry::BoxDomain;
+pub use solid::{cell_solid, enclosed_volume, Solid, SolidError};
 pub(crate) use geometry::{area_vector, area_vector_len, cross, dot, norm, oriented, sub};
 
 use crate::complex::NONE;
