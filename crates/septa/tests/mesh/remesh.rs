@@ -221,3 +221,36 @@ fn a_bad_length_is_refused() {
     }
 }
 
+
+#[test]
+fn label_volume_remeshes_on_its_own_triangles() {
+    // sampled input: four labels in a ball, meeting along curves and at
+    // points (no formulas: vertices stay on the unremeshed triangles)
+    let n = 24;
+    let mut v = vec![0i64; n * n * n];
+    for i in 0..n {
+        for j in 0..n {
+            for k in 0..n {
+                let (x, y, z) = (i as f64 - 11.3, j as f64 - 11.8, k as f64 - 12.1);
+                v[(i * n + j) * n + k] =
+                    if x * x + y * y + z * z < 80.0 { 1 + (x > 0.0) as i64 + 2 * (y > 0.4 * x) as i64 } else { 0 };
+            }
+        }
+    }
+    let affine = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0]];
+    let mut r = septa::regions::label_surfaces(&v, [n; 3], 0.0).unwrap();
+    septa::mesh::place_labels(&mut r, [n; 3], &affine, true).unwrap();
+    let before = r.clone();
+    let bounds = septa::mesh::label_bounds([n; 3], &affine);
+    let rep = remesh_regions(&mut r, &RemeshOptions::new(2.0), bounds).unwrap();
+    check_report("labels", &rep, 2.0, 20.0);
+    let s = before.surfaces.len();
+    assert_eq!(
+        patch_topology(&r.loop_start, &r.loops, &r.face_surface, s),
+        patch_topology(&before.loop_start, &before.loops, &before.face_surface, s)
+    );
+    assert_eq!(r.curves.len(), before.curves.len());
+    let e = r.embedding.clone().unwrap();
+    assert_eq!(e.after.violations(), 0, "{:?}", e.after);
+    assert_eq!(check_regions(&r, bounds), e.after);
+}
