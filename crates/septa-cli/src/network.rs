@@ -177,7 +177,13 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
                 septa::grid::Grid::Mesh(_) => None,
             };
             let o = septa::mesh::RemeshOptions::new(l);
-            Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?)
+            // formulas on a box grid: new vertices on their true zero sets
+            match (&job.functions, bounds) {
+                (septa::job::Functions::Formulas(fs), Some(_)) => {
+                    Some(pool.install(|| septa::mesh::remesh_network_on(&mut net, &o, bounds, fs))?)
+                }
+                _ => Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?),
+            }
         }
         None => None,
     };

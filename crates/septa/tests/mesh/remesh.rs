@@ -254,3 +254,41 @@ fn label_volume_remeshes_on_its_own_triangles() {
     assert_eq!(e.after.violations(), 0, "{:?}", e.after);
     assert_eq!(check_regions(&r, bounds), e.after);
 }
+
+#[test]
+fn formulas_put_new_vertices_on_the_true_surface() {
+    // a sphere of radius 0.5 and a plane through it (one chain, a circle)
+    use septa::grid::{BoxGrid, Grid, Split};
+    use septa::scene::Primitive;
+    let fs = [Primitive::sphere([0.0; 3], 0.5), Primitive::plane([0.0, 0.0, 1.0], [0.0, 0.0, 0.1])];
+    let grid = BoxGrid::new([24; 3], [[-1.0; 3], [1.0; 3]], Split::Five).unwrap();
+    let g = Grid::Box(grid.clone());
+    let values = septa::scene::sample_grid(&fs, &g.vertices());
+    let opts = NetworkOptions::new(septa::complex::Mode::Ia);
+    let mut net = septa::network::compute(&g, &values, fs.len(), &opts).unwrap();
+    certify_network(&mut net, Some(&grid));
+    let (mut plain, mut on) = (net.clone(), net.clone());
+    let o = RemeshOptions::new(0.12);
+    let rp = remesh_network(&mut plain, &o, Some(grid.bounds)).unwrap();
+    let ro = septa::mesh::remesh_network_on(&mut on, &o, Some(grid.bounds), &fs).unwrap();
+    for (name, r, n) in [("closest point", &rp, &plain), ("formulas", &ro, &on)] {
+        check_report(name, r, 0.12, 20.0);
+        assert_eq!(n.embedding.as_ref().unwrap().after.violations(), 0, "{name}");
+    }
+    // the largest distance of a sphere vertex from the sphere (those of
+    // patches of the sphere's function: label 0)
+    let off = |n: &Network| {
+        let mut worst = 0.0f64;
+        for f in 0..n.num_faces() {
+            if n.face_label[f][0] == 0 {
+                for &v in n.face(f) {
+                    let p = n.points[v as usize];
+                    worst = worst.max(((p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt() - 0.5).abs());
+                }
+            }
+        }
+        worst
+    };
+    assert!(off(&plain) > 1e-4, "{}", off(&plain));
+    assert!(off(&on) < 1e-9, "{}", off(&on));
+}

@@ -33,6 +33,7 @@ mod smooth;
 mod soup;
 mod split;
 mod surface;
+mod zeros;
 
 pub use quality::Quality;
 
@@ -118,7 +119,14 @@ fn area(x: &[V], tris: &[[u32; 3]]) -> f64 {
 /// The largest number of triangles a remeshing may make.
 const MAX_TRIANGLES: f64 = 2e7;
 
-fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<Remeshed, String> {
+/// The formulas a network came from: its patches' labels and the functions.
+struct Formulas<'a> {
+    functions: &'a [crate::scene::Primitive],
+    mi: bool,
+    labels: Vec<[u16; 2]>,
+}
+
+fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize, f: Option<Formulas>) -> Result<Remeshed, String> {
     let t0 = std::time::Instant::now();
     let l = opts.length;
     if !(l.is_finite() && l > 0.0) {
@@ -143,7 +151,34 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<R
     };
     let size = mean_edge.max(l);
     let orig = Original::new(src.points, &built.tris, &built.tri_patch, &built.segs, &built.seg_trace, size);
-    let surf = Surface { orig };
+    let zeros = f.and_then(|f| {
+        let eq = |p: u32| -> Option<zeros::Eq> {
+            let [a, b] = *f.labels.get(p as usize)?;
+            let (a, b) = (a as usize, b as usize);
+            if a >= f.functions.len() || b >= f.functions.len() {
+                return None;
+            }
+            Some(if f.mi { (a, Some(b)) } else { (a, None) })
+        };
+        let patch: Option<Vec<zeros::Eq>> = (0..patches as u32).map(eq).collect();
+        let trace = built
+            .trace_class
+            .iter()
+            .map(|(ps, sides)| {
+                let mut eqs: Vec<zeros::Eq> = Vec::new();
+                for &p in ps {
+                    if let Some(e) = eq(p) {
+                        if !eqs.contains(&e) {
+                            eqs.push(e);
+                        }
+                    }
+                }
+                (eqs, std::array::from_fn(|k| sides >> (2 * k) & 3 != 0))
+            })
+            .collect();
+        Some(zeros::Zeros { functions: f.functions, patch: patch?, trace, l })
+    });
+    let surf = Surface { orig, zeros };
     let mut report = Remeshing {
         length: l,
         iterations: opts.iterations,
@@ -198,6 +233,31 @@ fn compact(s: &Soup) -> Vec<u32> {
 /// written doubles are certified (`bounds`: the grid's box closing the
 /// cells); the certificate is in `net.embedding`.
 pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+    remesh_network_with(net, opts, bounds, None)
+}
+
+/// [`remesh_network`] with the new vertices on the true zero sets of
+/// `functions` (the formulas the network was sampled from; `zeros.rs`).
+pub fn remesh_network_on(
+    net: &mut Network,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+    functions: &[crate::scene::Primitive],
+) -> Result<Remeshing, String> {
+    let f = Formulas {
+        functions,
+        mi: net.mode == crate::complex::Mode::Mi,
+        labels: net.patches.iter().map(|p| p.label).collect(),
+    };
+    remesh_network_with(net, opts, bounds, Some(f))
+}
+
+fn remesh_network_with(
+    net: &mut Network,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+    f: Option<Formulas>,
+) -> Result<Remeshing, String> {
     let src = Source {
         points: &net.points,
         start: &net.face_start,
@@ -207,7 +267,7 @@ pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[
         corners: &net.corners,
         bounds,
     };
-    let r = remesh_source(&src, opts, net.patches.len())?;
+    let r = remesh_source(&src, opts, net.patches.len(), f)?;
     let kept = net.clone();
     let map = compact(&r.soup);
     let n = map.iter().filter(|&&m| m != u32::MAX).count();
@@ -308,7 +368,7 @@ pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Opti
         corners: &corners,
         bounds,
     };
-    let out = remesh_source(&src, opts, r.surfaces.len())?;
+    let out = remesh_source(&src, opts, r.surfaces.len(), None)?;
     let kept = r.clone();
     let s = &out.soup;
     let mut map = vec![u32::MAX; s.x.len()];
