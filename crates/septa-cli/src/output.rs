@@ -67,6 +67,14 @@ impl Output {
     /// Prints what remeshing did (human-readable mode only).
     pub fn tell_remesh(&self, r: Option<&septa::mesh::Remeshing>) {
         if let (true, Some(r)) = (self.talk(), r) {
+            if r.refused > 0 {
+                println!(
+                    "remesh to L = {}: refused, {} violations of the exact check left after repairs; the unremeshed \
+                     result is written",
+                    r.length, r.refused
+                );
+                return;
+            }
             let (b, a) = (&r.before, &r.after);
             println!(
                 "remesh to L = {}: {} -> {} triangles, smallest angle {:.2} -> {:.2} degrees (mean smallest {:.2} -> \

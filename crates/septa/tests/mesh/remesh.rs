@@ -86,6 +86,7 @@ fn min_angle(x: &[[f64; 3]], verts: &[u32]) -> f64 {
 }
 
 fn check_report(name: &str, r: &Remeshing, l: f64, min: f64) {
+    assert_eq!(r.refused, 0, "{name}: {r:?}");
     assert!(r.patches_kept, "{name}: {r:?}");
     assert!(r.after.min_angle >= min, "{name}: smallest angle {} < {min}", r.after.min_angle);
     assert!(r.after.triangles > 0 && r.before.triangles > r.after.triangles, "{name}: {r:?}");
@@ -200,8 +201,13 @@ fn heavy_scenes() {
     for name in ["builtin:saucer-square", "builtin:sphere-plane-hole"] {
         remeshed_network(name, septa::complex::Mode::Ia, 0.1, 20.0);
     }
-    for name in ["builtin:saucer-square", "builtin:patch-blend", "builtin:box-minus-cylinder"] {
+    for name in ["builtin:saucer-square", "builtin:box-minus-cylinder", "builtin:voronoi-lines-5"] {
         remeshed_regions(name, 0.1, 20.0);
+    }
+    // where chains meet at small angles or corners are close, the smallest
+    // angle is what those constraints leave (docs/results.md, Remeshing)
+    for name in ["builtin:patch-blend", "builtin:cad-part"] {
+        remeshed_regions(name, 0.1, 10.0);
     }
 }
 

@@ -19,12 +19,15 @@
 //! constraint curve. The result has the same patches (each with its Euler
 //! characteristic and boundary loops), chains, corners and cells; its
 //! written doubles are then certified by the exact check (`certify.rs`),
-//! and its quality reported (`quality.rs`).
+//! and its quality reported (`quality.rs`). Should violations remain after
+//! the repairs, the remeshing is refused (the unremeshed result kept,
+//! `Remeshing::refused` says how many): never worse than without it.
 
 mod collapse;
 mod constraints;
 mod flip;
 mod original;
+mod sizing;
 mod quality;
 mod smooth;
 mod soup;
@@ -90,6 +93,10 @@ pub struct Remeshing {
     /// Every patch has its triangles' Euler characteristic and boundary
     /// loops of before.
     pub patches_kept: bool,
+    /// Violations of the exact check left after the remeshed triangles'
+    /// repairs: when not 0 the remeshing is refused and the result is the
+    /// unremeshed one (`after` is then `before`'s polygons).
+    pub refused: usize,
     /// Seconds.
     pub seconds: f64,
 }
@@ -147,10 +154,10 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<R
     let counts_before = quality::patch_counts(&built.tris, &built.tri_patch, patches);
     let mut s = built.soup;
     report.fixed = s.kind.iter().zip(&s.vt).filter(|(k, t)| **k == Kind::Fixed && !t.is_empty()).count();
-    let (lo, hi) = (0.8 * l, 4.0 / 3.0 * l);
+    let target = sizing::Sizing::new(&s, l);
     for _ in 0..opts.iterations {
-        report.splits += split::split_long(&mut s, &surf, hi);
-        report.collapses += collapse::collapse_short(&mut s, &surf, lo, hi);
+        report.splits += split::split_long(&mut s, &surf, &target);
+        report.collapses += collapse::collapse_short(&mut s, &surf, &target);
         report.flips += flip::flip_all(&mut s, false);
         report.smoothed += smooth::smooth_all(&mut s, &surf);
     }
@@ -201,6 +208,7 @@ pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[
         bounds,
     };
     let r = remesh_source(&src, opts, net.patches.len())?;
+    let kept = net.clone();
     let map = compact(&r.soup);
     let n = map.iter().filter(|&&m| m != u32::MAX).count();
     let mut points = vec![[0.0; 3]; n];
@@ -251,6 +259,13 @@ pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[
     };
     let e = certify(&mut t);
     let mut report = r.report;
+    if e.after.violations() > 0 {
+        // never worse: the unremeshed network, certified before, is kept
+        report.refused = e.after.violations();
+        *net = kept;
+        report.after = report.before.clone();
+        return Ok(report);
+    }
     report.after = quality::quality(&net.points, &tris_of(&net.face_verts));
     net.seconds.push(("remesh", report.seconds));
     net.embedding = Some(merge_embedding(net.embedding.take(), e));
@@ -294,6 +309,7 @@ pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Opti
         bounds,
     };
     let out = remesh_source(&src, opts, r.surfaces.len())?;
+    let kept = r.clone();
     let s = &out.soup;
     let mut map = vec![u32::MAX; s.x.len()];
     for v in 0..s.x.len() {
@@ -341,6 +357,13 @@ pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Opti
     };
     let e = certify(&mut t);
     let mut report = out.report;
+    if e.after.violations() > 0 {
+        // as in remesh_network: the unremeshed surfaces are kept
+        report.refused = e.after.violations();
+        *r = kept;
+        report.after = report.before.clone();
+        return Ok(report);
+    }
     report.after = quality::quality(&r.network.points, &tris_of(&r.loops));
     r.seconds.push(("remesh", report.seconds));
     r.embedding = Some(merge_embedding(r.embedding.take(), e));
