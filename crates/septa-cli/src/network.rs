@@ -235,6 +235,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         println!("{}", counts.join(", "));
         print!("{}", crate::summary::network_text(&net, &notes));
         args.out.tell_embedding(net.embedding.as_ref());
+        args.out.tell_solids();
         args.out.tell_remesh(remeshed.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));
