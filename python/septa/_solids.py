@@ -24,20 +24,34 @@ log = logging.getLogger("septa")
 
 
 def region_index(net, key) -> int:
-    """The cell id of ``key``: an id, or a region name of the scene."""
+    """The cell of ``key``: a region's name, or an id (for region and label
+    results the region or label id, whose cell is its place among the
+    ascending regions; for ``ia``/``mi`` the cell's index)."""
+    ids = _region_ids(net)
     if isinstance(key, str):
-        ids = [i for i, n in net.names["regions"].items() if n == key]
-        if not ids:
+        named = [i for i, n in net.names["regions"].items() if n == key]
+        if not named:
             known = ", ".join(sorted(set(net.names["regions"].values()))) or "none"
             raise InputError(f"region {key!r}: no region of that name (names: {known})")
-        return ids[0]
+        key = named[0]
+        if key not in ids:
+            raise InputError(f"region {named[0]} ({net.names['regions'][key]!r}): not in this result")
     try:
-        cell = int(key)
+        rid = int(key)
     except (TypeError, ValueError):
         raise InputError(f"region {key!r}: give a region id (int) or name (str)") from None
-    if not 0 <= cell < len(net.cells):
-        raise InputError(f"region {cell}: no such region (the result has {len(net.cells)}: 0..{len(net.cells) - 1})")
-    return cell
+    if rid not in ids:
+        what = "region" if net.mode == "regions" else "region (arrangement or material cell)"
+        shown = ", ".join(map(str, ids[:20])) + (", ..." if len(ids) > 20 else "")
+        raise InputError(f"region {rid}: no such {what} (the result has {len(ids)}: {shown})")
+    return ids.index(rid)
+
+
+def _region_ids(net) -> list:
+    """Per cell its id: the region (label) of a region result, else its index."""
+    if net.mode == "regions":
+        return [int(c.get("label", [i])[0]) for i, c in enumerate(net.cells)]
+    return list(range(len(net.cells)))
 
 
 def region_surface(net, key, closed: bool = True, dtype=np.float64):
@@ -124,15 +138,19 @@ def _open_edges(t: np.ndarray) -> int:
 
 
 def _file_names(net) -> list:
-    """One file stem per cell: its region name if that is a plain, unique
-    file name, else ``region_<id>``."""
+    """One file stem per cell, as the command line's ``--format stl``
+    (io/solids_out.rs): for a region result the region's name if it is a
+    plain, unique file name, else ``region_<id>``; for ``ia``/``mi`` ``cell_<c>``."""
     names = net.names["regions"]
-    taken = [n for n in names.values()]
+    taken = list(names.values())
     out = []
-    for c in range(len(net.cells)):
-        n = names.get(c)
+    for c, rid in enumerate(_region_ids(net)):
+        if net.mode != "regions":
+            out.append(f"cell_{c}")
+            continue
+        n = names.get(rid)
         plain = n and taken.count(n) == 1 and re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,99}", n)
-        out.append(n if plain else f"region_{c}")
+        out.append(n if plain else f"region_{rid}")
     return out
 
 
@@ -148,9 +166,9 @@ def save_regions(net, folder, fmt: str = "stl") -> dict:
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     written = {}
-    for cell, stem in enumerate(_file_names(net)):
+    for rid, stem in zip(_region_ids(net), _file_names(net)):
         try:
-            v, t = region_surface(net, cell, dtype=np.float32 if fmt == "stl" else np.float64)
+            v, t = region_surface(net, rid, dtype=np.float32 if fmt == "stl" else np.float64)
         except InputError as e:
             log.info("save_regions: %s: not written (%s)", stem, e)
             continue
@@ -164,5 +182,5 @@ def save_regions(net, folder, fmt: str = "stl") -> dict:
         finally:
             if os.path.exists(tmp):
                 os.unlink(tmp)
-        written[cell] = path
+        written[rid] = path
     return written

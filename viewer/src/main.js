@@ -3,7 +3,7 @@
 // `septa.view`), so the page works from file:// with no server and no network.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { parseNetwork } from './network.js';
+import { parseNetwork, labelKey, cellText } from './network.js';
 import { NetworkScene } from './scene.js';
 import { buildPanel } from './panel.js';
 import { rgb255 } from './palette.js';
@@ -115,13 +115,19 @@ function start() {
       return;
     }
     const side = p.side ? ` (${p.side === '+' ? 'positive' : 'negative'} side)` : '';
+    // The label in the result's names (a scene's function and region
+    // names, a label table's), when they say more than the ids.
+    const key = net.patchKeys[p.patch];
+    const named = key !== undefined && key !== labelKey(p.patchLabel) ? `: ${key}` : '';
+    const cellName = Array.isArray(p.cellLabel) ? cellText(p.cellLabel, net.names, net.mode) : '';
+    const cellNamed = cellName && cellName !== String(p.cellLabel[0]) && (net.mode === 'regions' || net.mode === 'mi') ? ` (${cellName})` : '';
     info.textContent =
-      `patch ${p.patch} label ${JSON.stringify(p.patchLabel)}${side}\n` +
+      `patch ${p.patch} label ${JSON.stringify(p.patchLabel)}${named}${side}\n` +
       `face ${p.face}, cells [+ ${p.faceCells[0]}, - ${p.faceCells[1]}]\n` +
       (p.cell >= 0
         ? (net.mode === 'regions' && Array.isArray(p.cellLabel)
-          ? `cell ${p.cell}: region ${p.cellLabel[0]}`
-          : `cell ${p.cell} label ${JSON.stringify(p.cellLabel)}`)
+          ? `cell ${p.cell}: region ${p.cellLabel[0]}${cellNamed}`
+          : `cell ${p.cell} label ${JSON.stringify(p.cellLabel)}${cellNamed}`)
         : 'cell: outside');
   }
   let down = null;

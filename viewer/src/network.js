@@ -6,12 +6,40 @@
 // triangulation and keeps the face's CCW orientation (seen from its positive
 // side) in every triangle.
 
-/** Stable string key of a label (patch label pair or cell label). */
-export function labelKey(label) {
+/** A function's name from the result's `names` (a scene's `"name"`), or
+ * `f<index>` when it has none (a scene names unnamed functions by index). */
+function functionName(f, names) {
+  const n = names?.functions?.[f];
+  return n !== undefined && n !== null && String(n) !== String(f) ? String(n) : `f${f}`;
+}
+
+/** A region's (label's, material's) name, or its id. */
+function regionName(r, names, mode) {
+  const n = names?.regions?.[String(r)];
+  if (n !== undefined && n !== null) return String(n);
+  // MI: a material is a function; named as the function when it has a name
+  if (mode === 'mi' && r >= 0 && names?.functions?.[r] !== undefined && String(names.functions[r]) !== String(r)) {
+    return String(names.functions[r]);
+  }
+  return String(r);
+}
+
+/** Stable string key of a label (patch label pair or cell label), in the
+ * result's names where it has them: IA patches by their function's name,
+ * MI and region walls as `a|b` of their materials' or regions' names. */
+export function labelKey(label, names = null, mode = 'ia') {
   if (!Array.isArray(label)) return String(label);
   // IA patches carry [function, -1] (or [f, f]); show just the function.
-  if (label.length === 2 && (label[1] < 0 || label[0] === label[1])) return `f${label[0]}`;
+  if (label.length === 2 && (label[1] < 0 || label[0] === label[1])) return functionName(label[0], names);
+  if (mode === 'mi' || mode === 'regions') return label.map((r) => regionName(r, names, mode)).join('|');
   return label.join('|');
+}
+
+/** A cell's label in words: regions and MI by name, IA as its sign vector. */
+export function cellText(label, names, mode) {
+  if (!Array.isArray(label)) return String(label);
+  if ((mode === 'regions' || mode === 'mi') && label.length >= 1) return regionName(label[0], names, mode);
+  return JSON.stringify(label);
 }
 
 /** Parses a network object; returns typed arrays plus the raw lists. */
@@ -42,7 +70,9 @@ export function parseNetwork(net) {
     }
   });
 
-  const patchKeys = patches.map((p) => labelKey(p.label ?? [facePatch.indexOf(p), -1]));
+  const names = net.names || null;
+  const mode = net.mode || 'ia';
+  const patchKeys = patches.map((p) => labelKey(p.label ?? [facePatch.indexOf(p), -1], names, mode));
   const labels = [...new Set(patchKeys)];
 
   const box = new Float64Array([Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity]);
@@ -55,7 +85,8 @@ export function parseNetwork(net) {
   if (!points.length) box.set([0, 0, 0, 1, 1, 1]);
 
   return {
-    mode: net.mode || 'ia',
+    mode,
+    names,
     pos,
     faces,
     tris,

@@ -60,6 +60,24 @@ pub struct Args {
     /// cells.vtu then carries no guarantee beyond the exact combinatorics).
     #[arg(long)]
     pub no_certify: bool,
+    /// Write every face as triangles (no new vertices) in cells.vtu,
+    /// cells.obj and the OpenFOAM mesh (TopoCut's --is-triangulate). Faces
+    /// with holes are always written as triangles.
+    #[arg(long)]
+    pub triangulate: bool,
+    /// Name a boundary patch of the OpenFOAM mesh by a side of the input's
+    /// bounding box: NAME=SIDE, SIDE one of xmin xmax ymin ymax zmin zmax
+    /// (e.g. --patch inlet=xmin --patch outlet=xmax). The faces on input
+    /// triangles lying in that side (all three corners exactly on it) form
+    /// a `patch` NAME; the rest of the input surface stays the wall `surface`.
+    #[arg(long = "patch", value_name = "NAME=SIDE", value_parser = parse_patch)]
+    pub patches: Vec<(String, septa::io::BoxSide)>,
+    /// Report OpenFOAM checkMesh's quantities for the polyMesh (computed as
+    /// checkMesh computes them: cell volumes, face areas, non-orthogonality,
+    /// skewness, face pyramids, volume ratio, and the checks checkMesh would
+    /// fail); printed, and in cut.json as `check_mesh`.
+    #[arg(long)]
+    pub check_mesh: bool,
     /// Exploded view factor for cells.obj.
     #[arg(long, default_value_t = 0.0, value_parser = crate::args::finite_nonneg)]
     pub explode: f64,
@@ -117,6 +135,13 @@ fn parse_formats(s: &str) -> Result<MeshFormats, String> {
     Ok(MeshFormats(out))
 }
 
+fn parse_patch(s: &str) -> Result<(String, septa::io::BoxSide), String> {
+    let (name, side) = s.split_once('=').ok_or_else(|| format!("'{s}': expected NAME=SIDE, e.g. inlet=xmin"))?;
+    let side = septa::io::parse_box_side(side)
+        .ok_or_else(|| format!("'{side}' is not a side: expected xmin, xmax, ymin, ymax, zmin or zmax"))?;
+    Ok((name.to_string(), side))
+}
+
 /// `septa cut FILE.vtu --verify`: the exact check of a written polyhedral mesh.
 fn verify_file(a: &Args) -> CliResult {
     let (points, cells) = septa::io::read_polyhedra(&a.mesh)?;
@@ -166,6 +191,8 @@ pub fn run(a: Args) -> CliResult {
         (_, _, Some(f)) => read_planes(f)?,
         _ => return Err("give one of --grid N, --random N, --planes FILE".into()),
     };
+    // named patches checked before any work
+    let patches = septa::io::BoundaryPatches::by_side(&mesh.vertices, &mesh.triangles, &a.patches)?;
     let read_s = t0.elapsed().as_secs_f64();
     // With the global pool sized here, the cut runs in it (threads 0 below)
     // instead of starting a second pool of the same size. This thread is one
@@ -202,6 +229,11 @@ pub fn run(a: Args) -> CliResult {
         eprintln!("warning: plane {d} duplicates plane {k}; dropped");
     }
     let check = crate::progress::during(a.json || a.quiet, "checking the cells", || out.validate());
+    // how faces are written: after the checks, which count the cut-faces
+    let mut out = out;
+    if a.triangulate {
+        out.triangulate_all();
+    }
     let t2 = Instant::now();
     let writing = crate::progress::stage(a.json || a.quiet, &format!("writing {}", out_dir.display()));
     // One set: lock, stale temporaries removed, manifest last (io::outdir).
@@ -217,12 +249,18 @@ pub fn run(a: Args) -> CliResult {
         dir.write("cells.obj", cut_cells_obj_of(&out, &polys, a.explode).as_bytes())?;
     }
     let mut foam_swapped = None;
-    if wants(MeshFormat::Foam) {
-        let pm = septa::io::poly_mesh(&out);
-        for (name, text) in pm.files() {
-            dir.write(&format!("constant/polyMesh/{name}"), text.as_bytes())?;
+    let mut check_mesh = None;
+    if wants(MeshFormat::Foam) || a.check_mesh {
+        let pm = septa::io::poly_mesh_patched(&out, &patches);
+        if wants(MeshFormat::Foam) {
+            for (name, text) in pm.files() {
+                dir.write(&format!("constant/polyMesh/{name}"), text.as_bytes())?;
+            }
+            foam_swapped = Some(pm.swapped);
         }
-        foam_swapped = Some(pm.swapped);
+        if a.check_mesh {
+            check_mesh = Some((septa::io::check_poly_mesh(&pm), pm.patches.clone()));
+        }
     }
     if a.exact_vertices {
         let defs: Vec<String> = out.vertex_defs.iter().map(|d| format!("{d:?}")).collect();
@@ -308,6 +346,13 @@ pub fn run(a: Args) -> CliResult {
         // polyMesh cell numbers that differ from the cut-cells' (io::cut_foam)
         j["foam_cells_swapped"] = serde_json::json!(s);
     }
+    if let Some((r, patches)) = &check_mesh {
+        j["check_mesh"] = serde_json::json!(r);
+        j["foam_patches"] = serde_json::json!(patches
+            .iter()
+            .map(|p| serde_json::json!({"name": p.0, "type": p.1, "faces": p.3}))
+            .collect::<Vec<_>>());
+    }
     dir.write("cut.json", serde_json::to_string_pretty(&j)?.as_bytes())?;
     dir.finish()?;
     if a.json {
@@ -321,6 +366,9 @@ pub fn run(a: Args) -> CliResult {
             c.cut_cells,
             t0.elapsed().as_secs_f64()
         );
+    }
+    if let (Some((r, patches)), false) = (&check_mesh, a.json || a.quiet) {
+        print_check_mesh(r, patches);
     }
     // The process ends here: its memory goes back with it, so the cut's
     // many small vectors (face loops, cell lists) are not freed one by one
@@ -336,4 +384,29 @@ pub fn run(a: Args) -> CliResult {
         }
     }
     Ok(())
+}
+
+/// The `--check-mesh` report, in checkMesh's words.
+fn print_check_mesh(r: &septa::io::FoamCheck, patches: &[(String, &'static str, usize, usize)]) {
+    println!("check-mesh (OpenFOAM checkMesh's quantities):");
+    let list: Vec<String> = patches.iter().map(|p| format!("{} ({} faces, {})", p.0, p.3, p.1)).collect();
+    println!("  patches: {}", list.join(", "));
+    println!(
+        "  cells {}, faces {} ({} internal); max cell openness {:.3e}; max aspect ratio {:.4}",
+        r.cells, r.faces, r.internal_faces, r.max_cell_openness, r.max_aspect_ratio
+    );
+    println!("  minimum face area {:.6e}, maximum {:.6e}", r.min_face_area, r.max_face_area);
+    println!("  min volume {:.6e}, max volume {:.6e}, total volume {:.8}", r.min_volume, r.max_volume, r.total_volume);
+    println!(
+        "  non-orthogonality max {:.4} average {:.4} degrees ({} faces over 70)",
+        r.max_non_orthogonality, r.average_non_orthogonality, r.severely_non_orthogonal
+    );
+    println!("  face pyramids: {} faces incorrectly oriented", r.wrong_pyramids);
+    println!("  max skewness {:.4} ({} faces over 4)", r.max_skewness, r.highly_skew_faces);
+    println!("  min volume ratio {:.4e} ({} faces under 0.01)", r.min_volume_ratio, r.small_volume_ratio_faces);
+    if r.failed.is_empty() {
+        println!("  mesh OK");
+    } else {
+        println!("  failed {} checks: {}", r.failed.len(), r.failed.join(", "));
+    }
 }

@@ -144,6 +144,7 @@ pub fn run(a: Args) -> CliResult {
         if let Some((x, _)) = &refined {
             print!("{}", x.text());
         }
+        a.out.tell_solids();
         a.out.tell_remesh(remeshed.as_ref());
         println!("wrote {}", dir.display());
     }

@@ -6,16 +6,24 @@ fn septa(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_septa")).args(args).output().unwrap()
 }
 
+/// A fresh folder under the system's temporary folder.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("septa-adaptive-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
 fn json(path: &std::path::Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
 #[test]
 fn tiny_sphere_found_certified_and_grid_written() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("tiny.json");
+    let dir = scratch("tiny");
+    let scene = dir.join("tiny.json");
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0.1,0.2,0.3],"radius":0.01}]"#).unwrap();
-    let out = dir.path().join("out");
+    let out = dir.join("out");
     let s = scene.to_str().unwrap();
     let o = out.to_str().unwrap();
     // At --grid 8 a uniform grid misses the sphere entirely.
@@ -44,10 +52,10 @@ fn tiny_sphere_found_certified_and_grid_written() {
 
 #[test]
 fn budget_and_min_edge_are_reported_never_silent() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("tiny.json");
+    let dir = scratch("budget");
+    let scene = dir.join("tiny.json");
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0.1,0.2,0.3],"radius":0.01}]"#).unwrap();
-    let o = dir.path().join("out");
+    let o = dir.join("out");
     let r = septa(&[
         "ia", scene.to_str().unwrap(), "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "--max-tets", "2000",
         "-o", o.to_str().unwrap(),
@@ -63,10 +71,10 @@ fn budget_and_min_edge_are_reported_never_silent() {
 
 #[test]
 fn bad_settings_refused_with_the_flag_named() {
-    let dir = tempfile::tempdir().unwrap();
-    let scene = dir.path().join("s.json");
+    let dir = scratch("bad");
+    let scene = dir.join("s.json");
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0,0,0],"radius":0.5}]"#).unwrap();
-    let o = dir.path().join("out");
+    let o = dir.join("out");
     for (flag, value) in [("--tolerance", "-1"), ("--min-edge", "0"), ("--max-tets", "10")] {
         let r = septa(&["ia", scene.to_str().unwrap(), "--adaptive", flag, value, "-o", o.to_str().unwrap()]);
         assert!(!r.status.success());
@@ -78,8 +86,8 @@ fn bad_settings_refused_with_the_flag_named() {
 
 #[test]
 fn regions_adaptive_runs_on_a_scene() {
-    let dir = tempfile::tempdir().unwrap();
-    let o = dir.path().join("out");
+    let dir = scratch("regions");
+    let o = dir.join("out");
     let r = septa(&["regions", "builtin:cad-part", "--adaptive", "--tolerance", "0.05", "--max-tets", "400000", "-o", o.to_str().unwrap(), "--json"]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();

@@ -104,14 +104,14 @@ fn cut_impl(
         }
         clock = Instant::now();
     };
-    let (edges, tri_edges, edge_tris) = input::check_mesh(vertices, triangles)?;
+    let ((edges, tri_edges, edge_tris), nm) = input::check_mesh_nm(vertices, triangles)?;
     lap("check_mesh", &mut stats);
     if !opts.skip_self_intersection_check {
         input::check_self_intersections(vertices, triangles)?;
     }
     // After the self-intersection test: shells are then disjoint, which
     // the winding-number argument needs (timed with it).
-    shells::check_shells(vertices, triangles, &edge_tris, &tri_edges)?;
+    shells::check_shells(vertices, triangles, &edge_tris, &tri_edges, &nm)?;
     lap("self_intersection", &mut stats);
     let keep = input::check_planes(planes, &mut stats.dropped_planes)?;
     let planes: Vec<[f64; 4]> = keep.iter().map(|&i| planes[i]).collect();
@@ -132,6 +132,7 @@ fn cut_impl(
         edges,
         tri_edges,
         edge_tris,
+        wedges: nm.wedges,
         pv,
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),
@@ -256,7 +257,7 @@ fn cut_impl(
         for i in 0..n {
             fl.verts.push(cid(pn[i]));
             fl.dirs.push(match piece.lines[i] {
-                EdgeLine::Mesh(e) => (LineDir::Mesh(e), c.edge_tris[e as usize][0] == t),
+                EdgeLine::Mesh(e) => (LineDir::Mesh(e), c.runs_forward(t, e)),
                 EdgeLine::Plane(p, fwd) => (LineDir::TriPlane(t, p), fwd),
             });
         }
@@ -363,7 +364,6 @@ fn cut_impl(
         }
     }
     out.cell_volume_signs = volume::cell_volume_signs(&c, &out, &boxes);
-    let mesh_edges = c.edges.len();
     drop((boxes, c));
     // planarity on the written doubles, exactly: a face whose rounded
     // vertices leave its plane is written as triangles
@@ -384,7 +384,7 @@ fn cut_impl(
             [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
         })
         .collect();
-    out.mesh_euler = nv as i64 - mesh_edges as i64 + triangles.len() as i64;
+    out.mesh_euler = nm.domain_euler2;
     out.counts = CutCounts { cut_vertices: out.vertex_defs.len(), cut_edges, cut_faces: nf, cut_cells: out.num_cells };
     lap("output", &mut stats);
     out.face_triangles = out

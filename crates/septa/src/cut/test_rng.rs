@@ -40,6 +40,7 @@ pub(crate) fn tet_ctx(planes: &[[f64; 4]]) -> crate::cut::base::geom::Ctx<'_> {
         edges,
         tri_edges,
         edge_tris,
+        wedges: Default::default(),
         pv: vec![0; planes.len() * TET_VERTS.len()],
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),

@@ -34,9 +34,12 @@ pub use readers::npz::{parse_npy, read_grid_input, read_npz, GridInput, NpyArray
 pub use readers::planes::{grid_planes, grid_planes_xyz, parse_planes, random_planes, read_planes};
 pub use readers::read_mesh::read_mesh;
 pub use readers::volume::{check_placement, diagonal_affine, place_surfaces, read_label_volume, LabelVolume};
-pub use writers::cut_foam::{poly_mesh, write_poly_mesh, PolyMesh};
+pub use writers::cut_foam::{
+    parse_box_side, poly_mesh, poly_mesh_patched, write_poly_mesh, BoundaryPatches, BoxSide, PolyMesh,
+};
 pub use writers::cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_cells_vtu_of};
 pub use writers::cut_vtu::{read_polyhedra, Polyhedra};
+pub use writers::foam_check::{check_poly_mesh, face_centres_and_areas, FoamCheck};
 pub use writers::network_out::{
     network_meta, write_network, write_network_formats, write_network_formats_with, ExtraFile, write_network_json, write_network_obj, write_network_ply,
     write_network_vtu,
@@ -45,8 +48,10 @@ pub use writers::ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use writers::regions_out::{
     regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats, write_regions_formats_with,
 };
-pub use writers::result::{Annotations, Format, ResultView};
+pub use writers::result::{Annotations, Format, ResultView, SolidFormat};
 pub use writers::result_file::write_file;
+pub use writers::result_vtk::vtk_face_order;
+pub use writers::solids_out::{solid_stems, solids, write_solids, write_solids_into, SolidFile, SOLIDS_DIR};
 pub use writers::summary_out::write_summary_json;
 pub use writers::viewer::{
     folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,

@@ -19,9 +19,11 @@
 
 mod boundary;
 mod geometry;
+mod solid;
 
 pub use geometry::BoxDomain;
 pub(crate) use geometry::{area_vector, area_vector_len, cross, dot, norm, oriented, sub};
+pub use solid::{cell_solid, enclosed_volume, Solid, SolidError};
 
 use crate::complex::NONE;
 use crate::network::Network;

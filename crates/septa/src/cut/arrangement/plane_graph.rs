@@ -210,9 +210,26 @@ fn gamma_status(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> Status {
 
 /// Side status of the left of half-edge `h` in plane `p` for an edge on mesh
 /// edge `e`: the direction `w = n_p x h` against the wedge of the two
-/// triangles at `e` (TopoCut Sec. 4.1, face-cycle test of tuple types).
+/// triangles at `e` (TopoCut Sec. 4.1, face-cycle test of tuple types); at a
+/// non-manifold edge against each of its wedges, which are disjoint (App. C,
+/// eq. 18: inside one of them is inside).
 pub(crate) fn mesh_status(c: &Ctx, p: u32, e: u32, h: (LineDir, bool)) -> Status {
-    let [t1, t2] = c.edge_tris[e as usize];
+    let Some(ws) = c.wedges.get(&e) else {
+        return wedge_status(c, p, e, c.edge_tris[e as usize], h);
+    };
+    let mut status = Status::Outside;
+    for &w in ws {
+        match wedge_status(c, p, e, w, h) {
+            Status::Inside => return Status::Inside,
+            Status::Surface => status = Status::Surface,
+            Status::Outside => {}
+        }
+    }
+    status
+}
+
+/// [`mesh_status`] for the wedge between `t1` (running `u -> v`) and `t2`.
+fn wedge_status(c: &Ctx, p: u32, e: u32, [t1, t2]: [u32; 2], h: (LineDir, bool)) -> Status {
     let [u, v] = c.edges[e as usize];
     let apex = *c.tris[t2 as usize].iter().find(|&&x| x != u && x != v).unwrap();
     fn side<R: Ring>(c: &Ctx, p: u32, t: u32, h: (LineDir, bool)) -> R {

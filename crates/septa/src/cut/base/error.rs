@@ -48,19 +48,22 @@ pub enum CutError {
         /// Edge end vertex.
         b: u32,
     },
-    /// An edge of four or more triangles, as many in each direction: two
-    /// solids sharing the edge. A valid domain boundary (TopoCut App. C)
-    /// that the cut does not handle yet (issue 46).
-    #[error("edge {a}-{b} is non-manifold: {count} triangles ({triangles:?}), half in each direction (e.g. two solids sharing the edge); such a closed mesh bounds a valid domain (TopoCut, App. C), but septa cut does not cut it yet")]
-    NonManifoldEdge {
+    /// An edge of four or more triangles, as many in each direction, whose
+    /// orientations do not alternate around it (TopoCut App. C: consecutive
+    /// triangles about the edge must bound one wedge of the domain between
+    /// them): some points beside the edge would be inside the solid twice.
+    #[error("edge {a}-{b} is non-manifold ({count} triangles, half in each direction) but triangles {first} and {second}, next to each other about the edge, face the same way: the solid would be inside itself there (a solid inside another sharing the edge with it, or flipped triangles); nested solids must face alternately (a cavity's triangles face inwards)")]
+    EdgeWinding {
         /// Edge end (smaller index).
         a: u32,
         /// Edge end (larger index).
         b: u32,
-        /// Triangles around it.
+        /// A triangle at the edge.
+        first: usize,
+        /// The next one about the edge, facing the same way.
+        second: usize,
+        /// Triangles around the edge.
         count: usize,
-        /// The first few of them.
-        triangles: Vec<usize>,
     },
     /// An edge with only one triangle.
     #[error("edge {a}->{b} of triangle {triangle} has no opposite triangle: the mesh is not watertight")]
@@ -71,18 +74,6 @@ pub enum CutError {
         a: u32,
         /// Edge end.
         b: u32,
-    },
-    /// The triangles around a vertex form more than one fan.
-    #[error("vertex {vertex} is pinched: its {valence} triangles form {fans} fans, the first of {first_fan} triangles (e.g. two solids touching at the vertex); such a closed mesh bounds a valid domain (TopoCut, App. C), but septa cut does not cut it yet")]
-    NonManifoldVertex {
-        /// Vertex index.
-        vertex: usize,
-        /// Its triangles.
-        valence: usize,
-        /// Their fans (edge-connected around the vertex).
-        fans: usize,
-        /// Triangles of the fan of its first triangle.
-        first_fan: usize,
     },
     /// Negative or zero signed volume.
     #[error("the mesh encloses signed volume {volume}: triangles must face outwards")]

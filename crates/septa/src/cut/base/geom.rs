@@ -42,8 +42,12 @@ pub struct Ctx<'a> {
     pub edges: Vec<[u32; 2]>,
     /// For each triangle, the edge index of its side `k` (from corner `k` to `k+1`).
     pub tri_edges: Vec<[u32; 3]>,
-    /// For each edge, the triangle containing it as `u -> v` and the one with `v -> u`.
+    /// For each edge, the triangle containing it as `u -> v` and the one with
+    /// `v -> u` (of a non-manifold edge: its first wedge).
     pub edge_tris: Vec<[u32; 2]>,
+    /// Non-manifold edges (TopoCut App. C): every wedge of the domain at
+    /// each, `[t with u -> v, t with v -> u]` (`input/wedges.rs`).
+    pub wedges: rustc_hash::FxHashMap<u32, Vec<[u32; 2]>>,
     /// `pv[p * nv + v]`: sign of plane `p` at vertex `v` (App. B, eq. 13).
     pub pv: Vec<i8>,
     /// Triangle normals in interval arithmetic (the filter's copy of
@@ -92,6 +96,13 @@ pub(crate) fn neg3<R: Ring>(a: &V3<R>) -> V3<R> {
 }
 
 impl Ctx<'_> {
+    /// Whether triangle `t` runs along its side edge `e` as `u -> v`.
+    #[inline]
+    pub fn runs_forward(&self, t: u32, e: u32) -> bool {
+        let k = self.tri_edges[t as usize].iter().position(|&x| x == e).expect("a side of the triangle");
+        self.tris[t as usize][k] == self.edges[e as usize][0]
+    }
+
     /// Sign of plane `p` at mesh vertex `v` (precomputed table).
     #[inline]
     pub fn pv_sign(&self, p: u32, v: u32) -> i8 {

@@ -57,7 +57,10 @@ pub struct CutCellMesh {
     pub planes: Vec<[f64; 4]>,
     /// Outward normals of the input triangles (floating point, for output).
     pub tri_normals: Vec<[f64; 3]>,
-    /// Euler characteristic of the input surface (`V - E + T`).
+    /// Twice the Euler characteristic of the domain: `V - E + T` of the
+    /// input surface when it is a manifold, else that of the surface split
+    /// at its non-manifold edges and pinched vertices, less twice what
+    /// gluing them back removes (`input::NonManifold::domain_euler2`).
     pub mesh_euler: i64,
     /// Volume of each cell (from the floating-point embedding).
     pub cell_volumes: Vec<f64>,

@@ -59,6 +59,7 @@ fn corner_sides_equal_the_sides_from_coordinates() {
         edges,
         tri_edges,
         edge_tris,
+        wedges: Default::default(),
         pv,
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),

@@ -1,17 +1,58 @@
 //! Input conditions (TopoCut Sec. 2.1 and App. A), checked before any
-//! cutting: each failure names the offending element.
+//! cutting: each failure names the offending element. Closed meshes that
+//! are not manifolds (App. C) are valid: an edge with as many triangles
+//! each way, alternating about it, is paired into wedges (`wedges.rs`); a
+//! vertex whose triangles form several fans (pinched) needs nothing more.
 
 use crate::cut::triangles::selfx::intersecting_pairs;
 use crate::cut::CutError;
 use septa_exact::{filtered_sign, filtered_sign_bounded, Bounded, Exact, Interval, Ring, Sign};
 
 /// Mesh edges `(u < v)`, per-triangle side edges, and per-edge triangles
-/// `[t with u->v, t with v->u]`, after checking watertight, manifold and
-/// consistently oriented.
+/// `[t with u->v, t with v->u]` (of a non-manifold edge: its first wedge),
+/// after checking watertight and consistently oriented.
 pub type Topology = (Vec<[u32; 2]>, Vec<[u32; 3]>, Vec<[u32; 2]>);
+
+/// What a closed mesh that is not a manifold adds to its [`Topology`].
+#[derive(Clone, Debug, Default)]
+pub struct NonManifold {
+    /// Non-manifold edges: the wedges of the domain at each, as
+    /// `[t with u->v, t with v->u]` (`wedges.rs`).
+    pub wedges: rustc_hash::FxHashMap<u32, Vec<[u32; 2]>>,
+    /// Vertices whose triangles form several fans (pinched).
+    pub pinched: usize,
+    /// Twice the Euler characteristic of the closed domain. Split at its
+    /// non-manifold edges and pinched vertices (`V'` vertex copies, one per
+    /// fan, `E'` edge copies, one per wedge) the boundary is a manifold
+    /// surface of `chi' = V' - E' + T`, bounding a solid of `chi' / 2`;
+    /// gluing back lowers both by `g = (V' - V) - (E' - E)`:
+    /// `chi(domain) = chi' / 2 - g` (`chi(surface) / 2` for a manifold).
+    pub domain_euler2: i64,
+}
+
+impl NonManifold {
+    /// The triangle across side edge `e` of triangle `t` (its partner in
+    /// the wedge for a non-manifold edge).
+    pub fn across(&self, edge_tris: &[[u32; 2]], e: u32, t: u32) -> u32 {
+        let pair = match self.wedges.get(&e) {
+            Some(ws) => *ws.iter().find(|w| w.contains(&t)).expect("each triangle of the edge in one wedge"),
+            None => edge_tris[e as usize],
+        };
+        if pair[0] == t {
+            pair[1]
+        } else {
+            pair[0]
+        }
+    }
+}
 
 /// Checks indices, degenerate triangles, duplicate vertices, edges.
 pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, CutError> {
+    check_mesh_nm(verts, tris).map(|x| x.0)
+}
+
+/// [`check_mesh`] with what non-manifold edges and vertices add.
+pub fn check_mesh_nm(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<(Topology, NonManifold), CutError> {
     if tris.is_empty() {
         return Err(CutError::EmptyMesh);
     }
@@ -95,6 +136,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
         }
         out
     };
+    let mut nm = NonManifold::default();
     let mut edges = Vec::with_capacity(sides.len() / 2);
     let mut edge_tris = Vec::with_capacity(sides.len() / 2);
     let mut tri_edges = vec![[0u32; 3]; tris.len()];
@@ -107,11 +149,10 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
         let (u, v, _, t, _) = sides[i];
         // the sides run v -> u (`false`) sort before those u -> v
         let (bw, fw) = sides[i..j].split_at(sides[i..j].iter().take_while(|s| !s.2).count());
-        if fw.len() > 1 || bw.len() > 1 {
-            if fw.len() == bw.len() {
-                // consistently oriented around the edge (TopoCut App. C)
-                let triangles = sides[i..j].iter().take(8).map(|s| s.3 as usize).collect();
-                return Err(CutError::NonManifoldEdge { a: u, b: v, count: j - i, triangles });
+        if fw.len() != bw.len() {
+            if j - i == 1 {
+                let (a, b) = if sides[i].2 { (u, v) } else { (v, u) };
+                return Err(CutError::NotWatertight { triangle: t as usize, a, b });
             }
             let (two, other) = if fw.len() > bw.len() { (fw, bw) } else { (bw, fw) };
             let (a, b) = if two[0].2 { (u, v) } else { (v, u) };
@@ -124,55 +165,50 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
                 backward: other.len(),
             });
         }
-        if fw.is_empty() || bw.is_empty() {
-            let (a, b) = if sides[i].2 { (u, v) } else { (v, u) };
-            return Err(CutError::NotWatertight { triangle: t as usize, a, b });
-        }
         let e = edges.len() as u32;
         edges.push([u, v]);
-        edge_tris.push([fw[0].3, bw[0].3]);
-        tri_edges[fw[0].3 as usize][fw[0].4 as usize] = e;
-        tri_edges[bw[0].3 as usize][bw[0].4 as usize] = e;
+        for s in &sides[i..j] {
+            tri_edges[s.3 as usize][s.4 as usize] = e;
+        }
+        if fw.len() > 1 {
+            // as many each way (TopoCut App. C): paired by angle into wedges
+            let around: Vec<(u32, bool)> = sides[i..j].iter().map(|s| (s.3, s.2)).collect();
+            let ws = super::wedges::pair_wedges(verts, tris, u, v, &around)?;
+            edge_tris.push(ws[0]);
+            nm.wedges.insert(e, ws);
+        } else {
+            edge_tris.push([fw[0].3, bw[0].3]);
+        }
         i = j;
     }
-    // manifold vertices: the triangles around each vertex form one fan
-    let mut valence = vec![0u32; verts.len()];
-    let mut first = vec![u32::MAX; verts.len()];
-    for (t, tri) in tris.iter().enumerate() {
-        for &v in tri {
-            valence[v as usize] += 1;
-            if first[v as usize] == u32::MAX {
-                first[v as usize] = t as u32;
+    // the fans around each vertex: the triangles at a corner joined across
+    // the sides entering it (a manifold vertex has one; a pinched one more)
+    let mut seen = vec![false; 3 * tris.len()];
+    let mut fans = vec![0u32; verts.len()];
+    for t0 in 0..tris.len() {
+        for k0 in 0..3 {
+            if seen[3 * t0 + k0] {
+                continue;
+            }
+            let v = tris[t0][k0];
+            fans[v as usize] += 1;
+            let (mut t, mut k) = (t0, k0);
+            while !seen[3 * t + k] {
+                seen[3 * t + k] = true;
+                // the side entering v; the triangle across it is the next in the fan
+                let e = tri_edges[t][(k + 2) % 3];
+                t = nm.across(&edge_tris, e, t as u32) as usize;
+                k = tris[t].iter().position(|&x| x == v).expect("the fan's triangles hold the vertex");
             }
         }
     }
-    for v in 0..verts.len() {
-        if valence[v] == 0 {
-            continue;
-        }
-        let t0 = first[v];
-        let mut t = t0;
-        let mut count = 0;
-        loop {
-            count += 1;
-            let tri = tris[t as usize];
-            let k = tri.iter().position(|&x| x == v as u32).unwrap();
-            // the side entering v; its other triangle is the next in the fan
-            let e = tri_edges[t as usize][(k + 2) % 3] as usize;
-            t = if edge_tris[e][0] == t { edge_tris[e][1] } else { edge_tris[e][0] };
-            if t == t0 || count > valence[v] {
-                break;
-            }
-        }
-        if count != valence[v] {
-            return Err(CutError::NonManifoldVertex {
-                vertex: v,
-                valence: valence[v] as usize,
-                fans: fans_at(tris, &tri_edges, &edge_tris, v as u32),
-                first_fan: count as usize,
-            });
-        }
-    }
+    let used = fans.iter().filter(|&&f| f > 0).count() as i64;
+    let copies: i64 = fans.iter().map(|&f| f as i64).sum();
+    nm.pinched = fans.iter().filter(|&&f| f > 1).count();
+    let edge_copies: i64 = edges.len() as i64 + nm.wedges.values().map(|w| w.len() as i64 - 1).sum::<i64>();
+    let chi_split = copies - edge_copies + tris.len() as i64;
+    let glue = (copies - used) - (edge_copies - edges.len() as i64);
+    nm.domain_euler2 = chi_split - 2 * glue;
     // positive volume (outward orientation), computed on coordinates scaled
     // by a power of two (exact) so that the largest is about 1: a closed
     // cube scaled by 1e-200 has a volume of 1e-600, which underflows to 0
@@ -191,41 +227,7 @@ pub fn check_mesh(verts: &[[f64; 3]], tris: &[[u32; 3]]) -> Result<Topology, Cut
     if vol <= 0.0 {
         return Err(CutError::InwardOrientation { volume: vol });
     }
-    Ok((edges, tri_edges, edge_tris))
-}
-
-/// The number of fans of triangles around vertex `v` (error reporting
-/// only: a scan of all triangles).
-fn fans_at(tris: &[[u32; 3]], tri_edges: &[[u32; 3]], edge_tris: &[[u32; 2]], v: u32) -> usize {
-    let around: Vec<u32> = (0..tris.len() as u32).filter(|&t| tris[t as usize].contains(&v)).collect();
-    let mut seen = vec![false; around.len()];
-    let mut fans = 0;
-    for start in 0..around.len() {
-        if seen[start] {
-            continue;
-        }
-        fans += 1;
-        let mut stack = vec![around[start]];
-        seen[start] = true;
-        while let Some(t) = stack.pop() {
-            // the two sides of t at v lead to its neighbours in the fan
-            for (k, &e) in tri_edges[t as usize].iter().enumerate() {
-                let tri = tris[t as usize];
-                if tri[k] != v && tri[(k + 1) % 3] != v {
-                    continue;
-                }
-                for o in edge_tris[e as usize] {
-                    if let Some(p) = around.iter().position(|&x| x == o) {
-                        if !seen[p] {
-                            seen[p] = true;
-                            stack.push(o);
-                        }
-                    }
-                }
-            }
-        }
-    }
-    fans
+    Ok(((edges, tri_edges, edge_tris), nm))
 }
 
 fn verts3<R: Ring>(v: &[f64; 3]) -> [R; 3] {

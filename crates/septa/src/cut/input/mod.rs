@@ -1,8 +1,9 @@
 //! Stages 1 to 3 (`check_mesh`, `self_intersection`, `input`), input conditions
 //! (TopoCut Sec. 2.1, App. A), checked before any cutting: a scale the doubles
-//! can cut at (`scale`), a closed, manifold, consistently oriented mesh with
-//! distinct vertices (`input`), no self-intersection
-//! (`input::check_self_intersections`), disjoint shells oriented outward
+//! can cut at (`scale`), a closed, consistently oriented mesh with distinct
+//! vertices, its non-manifold edges paired into wedges (`input`, `wedges`;
+//! App. C), no self-intersection (`input::check_self_intersections`),
+//! shells (meeting only at non-manifold edges and vertices) oriented outward
 //! (`shells`), and distinct planes.
 //!
 //! Enters: the caller's vertices, triangles and planes. Leaves: the mesh's
@@ -14,3 +15,4 @@
 pub(crate) mod input;
 pub(crate) mod scale;
 pub(crate) mod shells;
+pub(crate) mod wedges;

@@ -1,7 +1,7 @@
 //! Shell nesting: exact crossings through faces, edges and vertices; nested
 //! shells must alternate orientation.
 use super::*;
-use crate::cut::input::input::check_mesh;
+use crate::cut::input::input::check_mesh_nm;
 
 /// An axis-aligned cube `[lo, lo + size]^3`, 12 triangles facing outwards
 /// (or inwards), appended to `v`, `t`.
@@ -24,8 +24,8 @@ fn cube(v: &mut Vec<[f64; 3]>, t: &mut Vec<[u32; 3]>, lo: [f64; 3], size: f64, o
 }
 
 fn check(v: &[[f64; 3]], t: &[[u32; 3]]) -> Result<(), CutError> {
-    let (_, tri_edges, edge_tris) = check_mesh(v, t)?;
-    check_shells(v, t, &edge_tris, &tri_edges)
+    let ((_, tri_edges, edge_tris), nm) = check_mesh_nm(v, t)?;
+    check_shells(v, t, &edge_tris, &tri_edges, &nm)
 }
 
 #[test]
@@ -97,7 +97,7 @@ fn rays_through_edges_and_vertices_count_once() {
     ] {
         let mut w = v.clone();
         w.push(q);
-        match winding(&w, &t, &shell, 6) {
+        match winding(&w, &t, &shell, Query::Vertex(6)) {
             Crossings::Winding(n) => assert_eq!(n, expect, "{q:?}"),
             Crossings::OnTriangle(tri) => panic!("{q:?} is not on triangle {tri}"),
         }
@@ -105,5 +105,24 @@ fn rays_through_edges_and_vertices_count_once() {
     // A point of the surface is found on it.
     let mut w = v.clone();
     w.push([1.0, 1.0, 2.0]);
-    assert!(matches!(winding(&w, &t, &shell, 6), Crossings::OnTriangle(_)));
+    assert!(matches!(winding(&w, &t, &shell, Query::Vertex(6)), Crossings::OnTriangle(_)));
+}
+
+/// The start point of a shell with no vertex of its own: the centroid of
+/// one of its triangles, exactly (the cube's inner cube, and outside it).
+#[test]
+fn winding_at_a_centroid() {
+    let (mut v, mut t) = (Vec::new(), Vec::new());
+    cube(&mut v, &mut t, [0.0; 3], 3.0, true);
+    cube(&mut v, &mut t, [1.0; 3], 1.0, false);
+    cube(&mut v, &mut t, [4.0, 0.0, 0.0], 1.0, true);
+    let outer: Vec<u32> = (0..12).collect();
+    for (tri, expect) in [(12, 1), (23, 1), (24, 0), (30, 0)] {
+        match winding(&v, &t, &outer, Query::Centroid(tri)) {
+            Crossings::Winding(n) => assert_eq!(n, expect, "triangle {tri}"),
+            Crossings::OnTriangle(x) => panic!("triangle {tri}: on {x}"),
+        }
+    }
+    // a centroid on the shell (on the face x = 0, across the ray): found on it
+    assert!(matches!(winding(&v, &t, &outer, Query::Centroid(8)), Crossings::OnTriangle(8)));
 }

@@ -22,6 +22,27 @@ pub fn mesh_volume(x: &[[f64; 3]], tris: &[[u32; 3]]) -> f64 {
 }
 
 impl crate::cut::CutCellMesh {
+    /// Every cut-face written as triangles without new vertices (`septa
+    /// cut --triangulate`, TopoCut's `--is-triangulate`): faces already
+    /// written so keep their triangles (those the certified embedding
+    /// chose), the others are ear-clipped with exact orientations. The
+    /// triangles of a planar polygon cover exactly its region, so the exact
+    /// check of the written cells still holds. For output only: call after
+    /// [`Self::validate`] (the counts are the cut-faces').
+    pub fn triangulate_all(&mut self) {
+        self.face_split.resize(self.faces.len(), false);
+        self.face_triangles.resize(self.faces.len(), Vec::new());
+        for i in 0..self.faces.len() {
+            if self.face_split[i] && !self.face_triangles[i].is_empty() {
+                continue;
+            }
+            let f = &self.faces[i];
+            let t = crate::cut::triangles::triangulate::triangulate(&self.vertices, &f.loops, self.support_normal(f));
+            self.face_split[i] = true;
+            self.face_triangles[i] = t;
+        }
+    }
+
     /// The polygons written for each cell, oriented outwards (what
     /// `cells.vtu` and `cells.obj` hold and [`crate::cut::check::verify`] checks): a
     /// cut-face as one polygon, or as its triangles (no new vertices) when

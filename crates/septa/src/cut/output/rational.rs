@@ -57,6 +57,7 @@ pub fn exact_coordinates(
         edges,
         tri_edges,
         edge_tris,
+        wedges: Default::default(),
         pv: Vec::new(),
         tn_iv: Vec::new(),
         pp_iv: Vec::new(),

@@ -16,7 +16,10 @@
 //! mesh too, and the points are the same doubles (printed in shortest
 //! round-trip form). Every boundary face lies on the input surface (a
 //! cut-face on a plane always separates two cells), so the input surface is
-//! one `wall` patch, `surface`. Each plane family (planes with exactly
+//! one `wall` patch, `surface`, less the parts the user names
+//! ([`BoundaryPatches`], `septa cut --patch inlet=xmin`): each a `patch`
+//! of the faces on the input triangles lying in one side of the bounding
+//! box (all three corners exactly on it), listed before `surface`. Each plane family (planes with exactly
 //! parallel normals, e.g. the x, y and z planes of `--grid`) gets a patch,
 //! `planes<k>`, that is empty in the mesh as cut (there for boundary
 //! conditions after splitting along it, e.g. by `createBaffles`), and a face
@@ -29,6 +32,88 @@ use crate::cut::Support;
 use septa_exact::{det_sign, Sign};
 use std::fmt::Write as _;
 use std::path::Path;
+
+/// A side of the input's bounding box: axis (0, 1, 2) and max (`true`) or min.
+pub type BoxSide = (usize, bool);
+
+/// Parses `xmin`, `xmax`, ..., `zmax`.
+pub fn parse_box_side(s: &str) -> Option<BoxSide> {
+    let axis = ["x", "y", "z"].iter().position(|a| s.starts_with(a))?;
+    match &s[1..] {
+        "min" => Some((axis, false)),
+        "max" => Some((axis, true)),
+        _ => None,
+    }
+}
+
+/// Boundary patches named by the user: `names[k]` holds the faces on the
+/// input triangles `t` with `of_triangle[t] == k`; the others are the wall
+/// `surface`.
+#[derive(Clone, Debug, Default)]
+pub struct BoundaryPatches {
+    /// Patch names, in the order of `boundary`.
+    pub names: Vec<String>,
+    /// Each input triangle's patch (`u32::MAX`: `surface`).
+    pub of_triangle: Vec<u32>,
+}
+
+impl BoundaryPatches {
+    /// Patches by bounding-box side: `(name, side)` takes the triangles whose
+    /// three corners lie exactly on that side of the box of `vertices`.
+    /// Errors: a name that is not an OpenFOAM word or is taken (`surface`,
+    /// `planes<k>`, twice), a side named twice, a side no triangle lies on.
+    pub fn by_side(
+        vertices: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+        sides: &[(String, BoxSide)],
+    ) -> Result<BoundaryPatches, String> {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in vertices {
+            for k in 0..3 {
+                lo[k] = lo[k].min(v[k]);
+                hi[k] = hi[k].max(v[k]);
+            }
+        }
+        let side_name = |(k, max): BoxSide| format!("{}{}", ["x", "y", "z"][k], if max { "max" } else { "min" });
+        let mut out = BoundaryPatches { names: Vec::new(), of_triangle: vec![u32::MAX; triangles.len()] };
+        for (i, (name, side)) in sides.iter().enumerate() {
+            let word = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+                && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+            if !word {
+                return Err(format!("patch name '{name}': use letters, digits and '_' (not first a digit)"));
+            }
+            let planes =
+                name.strip_prefix("planes").is_some_and(|r| !r.is_empty() && r.bytes().all(|b| b.is_ascii_digit()));
+            if name == "surface" || planes || out.names.contains(name) {
+                return Err(format!(
+                    "patch name '{name}' is taken (surface and planes<k> are septa's, each name once)"
+                ));
+            }
+            if let Some(j) = sides[..i].iter().position(|s| s.1 == *side) {
+                return Err(format!("side {} is named twice ({} and {name})", side_name(*side), sides[j].0));
+            }
+            let (k, max) = *side;
+            let at = if max { hi[k] } else { lo[k] };
+            let mut any = false;
+            for (t, tri) in triangles.iter().enumerate() {
+                if tri.iter().all(|&v| vertices[v as usize][k] == at) {
+                    out.of_triangle[t] = i as u32;
+                    any = true;
+                }
+            }
+            if !any {
+                return Err(format!(
+                    "patch {name}={}: no triangle of the mesh lies on that side of its bounding box ({} = {at})",
+                    side_name(*side),
+                    ["x", "y", "z"][k]
+                ));
+            }
+            out.names.push(name.clone());
+        }
+        Ok(out)
+    }
+}
 
 /// The polyMesh arrays, in OpenFOAM's order.
 #[derive(Clone, Debug, Default)]
@@ -93,6 +178,12 @@ pub fn plane_families(planes: &[[f64; 4]]) -> (Vec<u32>, Vec<bool>) {
 /// trades its number with the last cut-cell that has a surface face
 /// ([`PolyMesh::swapped`]).
 pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
+    poly_mesh_patched(m, &BoundaryPatches::default())
+}
+
+/// [`poly_mesh`] with the boundary faces on the triangles `patches` names
+/// in patches of their own (before `surface`).
+pub fn poly_mesh_patched(m: &CutCellMesh, patches: &BoundaryPatches) -> PolyMesh {
     let mut on_surface = vec![false; m.num_cells];
     for f in &m.faces {
         if let [c, u32::MAX] | [u32::MAX, c] = f.cells {
@@ -116,9 +207,15 @@ pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
     let nfam = family.iter().map(|&f| f as usize + 1).max().unwrap_or(0);
     // (owner, neighbour or MAX, face polygon, zone entry)
     let mut internal: Vec<(u32, u32, Vec<u32>, Option<(u32, bool)>)> = Vec::new();
-    let mut boundary: Vec<(u32, Vec<u32>)> = Vec::new();
+    // (patch, owner, face polygon): `surface` is patch `names.len()`
+    let mut boundary: Vec<(u32, u32, Vec<u32>)> = Vec::new();
+    let surface = patches.names.len() as u32;
     for (i, f) in m.faces.iter().enumerate() {
         let [c0, c1] = f.cells.map(renumber);
+        let patch = match f.support {
+            Support::Tri(t) => patches.of_triangle.get(t as usize).copied().filter(|&k| k < surface).unwrap_or(surface),
+            Support::Plane(_) => surface,
+        };
         for poly in m.face_polygons(i) {
             // the polygon is counter-clockwise about the support normal,
             // which points out of cells[0]
@@ -133,14 +230,14 @@ pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
                     let (o, n, face) = if flip { (c1, c0, rev()) } else { (c0, c1, poly.clone()) };
                     internal.push((o, n, face, zone));
                 }
-                (true, false) => boundary.push((c0, poly.clone())),
-                (false, true) => boundary.push((c1, rev())),
+                (true, false) => boundary.push((patch, c0, poly.clone())),
+                (false, true) => boundary.push((patch, c1, rev())),
                 (false, false) => {}
             }
         }
     }
     internal.sort_by_key(|e| (e.0, e.1));
-    boundary.sort_by_key(|e| e.0);
+    boundary.sort_by_key(|e| (e.0, e.1));
     let mut pm = PolyMesh { points: m.vertices.clone(), cells: m.num_cells, swapped, ..Default::default() };
     pm.zones = (0..nfam).map(|k| (format!("planes{k}"), Vec::new(), Vec::new())).collect();
     for (k, (o, n, face, zone)) in internal.into_iter().enumerate() {
@@ -152,11 +249,16 @@ pub fn poly_mesh(m: &CutCellMesh) -> PolyMesh {
             pm.zones[z as usize].2.push(flip);
         }
     }
-    let start = pm.faces.len();
-    pm.patches.push(("surface".into(), "wall", start, boundary.len()));
-    for (o, face) in boundary {
-        pm.owner.push(o);
-        pm.faces.push(face);
+    let names = patches.names.iter().map(|n| (n.clone(), "patch")).chain([("surface".to_string(), "wall")]);
+    let mut rest = &boundary[..];
+    for (k, (name, ty)) in names.enumerate() {
+        let n = rest.iter().take_while(|e| e.0 == k as u32).count();
+        pm.patches.push((name, ty, pm.faces.len(), n));
+        for (_, o, face) in &rest[..n] {
+            pm.owner.push(*o);
+            pm.faces.push(face.clone());
+        }
+        rest = &rest[n..];
     }
     for k in 0..nfam {
         pm.patches.push((format!("planes{k}"), "patch", pm.faces.len(), 0));
