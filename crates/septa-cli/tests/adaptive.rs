@@ -43,7 +43,7 @@ fn tiny_sphere_found_certified_and_grid_written() {
     assert_eq!(v["tets"].as_u64(), Some(tets));
     // grid.vtu: an appended-raw VTK file naming every tet's stop reason.
     let vtu = std::fs::read(out.join("grid.vtu")).unwrap();
-    let head = String::from_utf8_lossy(&vtu[..600.min(vtu.len())]).to_string();
+    let head = String::from_utf8_lossy(&vtu[..1500.min(vtu.len())]).to_string();
     assert!(head.contains(&format!("NumberOfCells=\"{tets}\"")) && head.contains("Name=\"stop\""), "{head}");
     // Listed in the folder's manifest.
     let m = std::fs::read_to_string(out.join("manifest.json")).unwrap();
@@ -57,7 +57,7 @@ fn budget_and_min_edge_are_reported_never_silent() {
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0.1,0.2,0.3],"radius":0.01}]"#).unwrap();
     let o = dir.join("out");
     let r = septa(&[
-        "ia", scene.to_str().unwrap(), "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "--max-tets", "2000",
+        "ia", scene.to_str().unwrap(), "--grid", "8", "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "--max-tets", "2000",
         "-o", o.to_str().unwrap(),
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
@@ -76,7 +76,8 @@ fn bad_settings_refused_with_the_flag_named() {
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0,0,0],"radius":0.5}]"#).unwrap();
     let o = dir.join("out");
     for (flag, value) in [("--tolerance", "-1"), ("--min-edge", "0"), ("--max-tets", "10")] {
-        let r = septa(&["ia", scene.to_str().unwrap(), "--adaptive", flag, value, "-o", o.to_str().unwrap()]);
+        let arg = format!("{flag}={value}");
+        let r = septa(&["ia", scene.to_str().unwrap(), "--grid", "8", "--adaptive", &arg, "-o", o.to_str().unwrap()]);
         assert!(!r.status.success());
         let err = String::from_utf8_lossy(&r.stderr);
         assert!(err.contains(flag), "{flag}: {err}");
