@@ -231,8 +231,11 @@ class Network:
             elif ext == ".msh":
                 meshio = _need("meshio", "meshio")
                 mesh = self.to_meshio()
-                tags = self.face_patch[self.triangle_face].astype(np.int32)
+                # Gmsh numbers physical groups from 1 (tag 0 is "no group"):
+                # patch p is physical surface p + 1, named as its OBJ group
+                tags = (self.face_patch[self.triangle_face] + 1).astype(np.int32)
                 mesh.cell_data = {"gmsh:physical": [tags], "gmsh:geometrical": [tags]}
+                mesh.field_data = {name: np.array([p + 1, 2]) for p, name in enumerate(self.patch_names())}
                 meshio.write(str(tmp), mesh, file_format="gmsh22", binary=True)
             else:
                 raise InputError(f"save: unknown extension {ext!r} (use {' '.join(sorted(_RUST_FORMATS))} .json .msh)")
@@ -242,6 +245,29 @@ class Network:
             if tmp.exists():
                 tmp.unlink()
         return path
+
+    def patch_names(self) -> list:
+        """Per patch its name, as its OBJ group and Gmsh physical name:
+        ``patch_<p>_<a>_<b>`` with the names of its labels (IA: ``patch_<p>_<f>``
+        with its function's name; MI materials and regions by the scene's
+        names, a label volume's by its ``--names`` table), or
+        ``patch_<p>_labels_<a>_<b>`` when neither label has a name."""
+        named = lambda x: self.names["regions"].get(int(x)) or (
+            self.names["functions"][x] if self.mode == "mi" and 0 <= x < len(self.names["functions"]) else None)
+        fname = lambda f: self.names["functions"][f] if 0 <= f < len(self.names["functions"]) else None
+        real = lambda n, x: n is not None and n != str(x)
+        out = []
+        for p, (a, b) in enumerate(self.patch_labels.tolist()):
+            if self.mode == "ia" and (b < 0 or a == b):
+                n = fname(a)
+                out.append(f"patch_{p}_{_name_token(n)}" if real(n, a) else f"patch_{p}_labels_{a}_{b}")
+                continue
+            na, nb = named(a), named(b)
+            if real(na, a) or real(nb, b):
+                out.append(f"patch_{p}_{_name_token(na if real(na, a) else str(a))}_{_name_token(nb if real(nb, b) else str(b))}")
+            else:
+                out.append(f"patch_{p}_labels_{a}_{b}")
+        return out
 
     def _write_rust(self, path: Path, fmt: str) -> None:
         from . import _septa
@@ -333,12 +359,18 @@ class Network:
         ``volume`` when measured). ``mb["patches"]`` is the surface."""
         pv = _need("pyvista", "pyvista")
         sizes = np.diff(self.offsets)
-        polys = np.insert(self.indices, self.offsets[:-1], sizes)
+        # the file's order: triangles, quads, then larger polygons by size
+        # (stable: by face id within a size); `face` names each row's face
+        size_class = _size_class(sizes)
+        order = np.argsort(size_class, kind="stable")
+        loops = np.split(self.indices, self.offsets[1:-1]) if len(order) else []
+        polys = np.concatenate([np.concatenate([[len(loops[f])], loops[f]]) for f in order]) if len(order) else np.zeros(0, np.int64)
         patches = pv.PolyData(self.points, faces=polys)
-        patches.cell_data["patch"] = self.face_patch
-        patches.cell_data["labels"] = self.face_label
-        patches.cell_data["cells"] = self.face_cells
-        patches.cell_data["area"] = self._face_area()
+        patches.cell_data["patch"] = self.face_patch[order]
+        patches.cell_data["labels"] = self.face_label[order]
+        patches.cell_data["cells"] = self.face_cells[order]
+        patches.cell_data["area"] = self._face_area()[order]
+        patches.cell_data["face"] = order
         mb = pv.MultiBlock()
         mb["patches"] = patches
         edges = [np.stack([c[:-1], c[1:]], axis=1) for c in self.chains if len(c) > 1]
@@ -365,14 +397,15 @@ class Network:
         face = np.concatenate([s[1] for s in side])
         rev = np.concatenate([s[2] for s in side])
         if len(face):
-            order = np.lexsort((rev, face, cell))  # the file's order: (cell, face, reversed)
+            # the file's order: (size class, cell, face, reversed)
+            order = np.lexsort((rev, face, cell, size_class[face]))
             cell, face, rev = cell[order], face[order], rev[order]
-            loops = [self.indices[self.offsets[f]:self.offsets[f + 1]] for f in face]
-            flat = np.concatenate([np.concatenate([[len(l)], l[::-1] if r else l]) for l, r in zip(loops, rev)])
+            flat = np.concatenate([np.concatenate([[len(loops[f])], loops[f][::-1] if r else loops[f]]) for f, r in zip(face, rev)])
             cells = pv.PolyData(self.points, faces=flat)
             cells.cell_data["cell"] = cell
             cells.cell_data["patch"] = self.face_patch[face]
             cells.cell_data["label"] = self._cell_label_numbers()[cell]
+            cells.cell_data["face"] = face
             if len(self.cell_volume):
                 cells.cell_data["volume"] = self.cell_volume[cell]
             mb["cells"] = cells
@@ -404,6 +437,20 @@ class Network:
         from .viewer import inline_html
 
         return inline_html(self)
+
+
+def _name_token(s: str) -> str:
+    """A name as an OBJ group or Gmsh physical name (io/names.rs
+    ``name_token``): letters, digits, ``_ - .`` kept, anything else ``_``."""
+    return "".join(c if c.isalnum() or c in "_-." else "_" for c in str(s))
+
+
+def _size_class(sizes: np.ndarray) -> np.ndarray:
+    """The VTK writers' order of polygons by size (io/result_vtk.rs):
+    triangles (VTK_TRIANGLE), quads (VTK_QUAD), then each larger size
+    (VTK_POLYGON), so that meshio reads one block per size."""
+    sizes = np.asarray(sizes, dtype=np.int64)
+    return np.where(sizes == 3, 0, np.where(sizes == 4, 1, sizes))
 
 
 _RUST_FORMATS = {".npz": "npz", ".ply": "ply", ".plain.ply": "plain.ply", ".obj": "obj", ".vtu": "vtu", ".vtm": "vtm"}

@@ -79,14 +79,18 @@ def _check_folder(name, d, summary):
     assert np.array_equal(z["patch_labels"][z["patch"]], z["labels"])
     assert z["cells"].max() < len(z["cell_labels"])
 
-    # VTU: meshio and pyvista, polygons with patch, labels, cells.
+    # VTU: meshio and pyvista, polygons with patch, labels, cells; rows
+    # grouped by size, `face` their face in the npz (test_face_ids.py).
     m = meshio.read(d / "network.vtu")
     assert sum(len(c.data) for c in m.cells) == nf
+    face = _cat(m, "face").ravel()
+    assert np.array_equal(np.sort(face), np.arange(nf))
     for key, ref in (("patch", z["patch"]), ("labels", z["labels"]), ("cells", z["cells"])):
-        assert np.array_equal(_cat(m, key).reshape(ref.shape), ref), key
+        assert np.array_equal(_cat(m, key).reshape(ref.shape), ref[face]), key
     g = pv.read(d / "network.vtu")
     assert g.n_cells == nf and g.n_points == len(z["points"])
-    assert np.array_equal(g.cell_data["labels"], z["labels"]) and np.array_equal(g.cell_data["cells"], z["cells"])
+    assert np.array_equal(g.cell_data["face"], face)
+    assert np.array_equal(g.cell_data["labels"], z["labels"][face]) and np.array_equal(g.cell_data["cells"], z["cells"][face])
 
     # PLY: trimesh reads every per-face array; pyvista the triangles and colours.
     t = trimesh.load(d / "network.ply", process=False)
@@ -116,8 +120,9 @@ def _check_folder(name, d, summary):
 
     # VTM: the four blocks, with the same arrays; each piece also read by meshio.
     mb = pv.read(d / "network.vtm")
-    assert np.array_equal(mb["patches"].cell_data["labels"], z["labels"])
-    assert np.array_equal(mb["patches"].cell_data["patch"], z["patch"])
+    assert np.array_equal(mb["patches"].cell_data["face"], face)
+    assert np.array_equal(mb["patches"].cell_data["labels"], z["labels"][face])
+    assert np.array_equal(mb["patches"].cell_data["patch"], z["patch"][face])
     if nchains:
         assert mb["chains"].n_cells == nchain_edges
         assert np.array_equal(np.bincount(mb["chains"].cell_data["chain"], minlength=nchains),
@@ -180,7 +185,7 @@ def _check_stream(tmp_path):
     assert g.n_cells == nf and g.n_points == nv
     labels, cells, patch = (np.asarray(g.cell_data[k]) for k in ("labels", "cells", "patch"))
     assert labels.shape == (nf, 2) and cells.shape == (nf, 2)
-    # meshio cuts the polygons into runs of one size, in file order.
+    # meshio reads one block per polygon size, in file order.
     for key, ref in (("patch", patch), ("labels", labels), ("cells", cells), ("block", g.cell_data["block"])):
         assert np.array_equal(_cat(m, key).reshape(nf, -1), np.asarray(ref).reshape(nf, -1)), key
     assert np.allclose(m.points, g.points)
@@ -188,9 +193,14 @@ def _check_stream(tmp_path):
     assert np.array_equal(np.bincount(patch), [p["faces"] for p in topo["patches"]])
     assert cells.min() >= 0 and cells.max() == topo["counts"]["cells"] - 1
     assert np.all(labels[:, 0] == labels[:, 1])
-    # The PLY triangle fans, read by trimesh: the same arrays per polygon.
+    # The PLY triangle fans, read by trimesh: the same arrays per polygon
+    # (the .vtu's rows grouped by size: `face` is the polygon's place in the PLY).
     t = trimesh.load(d / "t.ply", process=False)
-    sizes = np.diff(g.offset)
+    face = np.asarray(g.cell_data["face"])
+    assert np.array_equal(np.sort(face), np.arange(nf))
+    back = np.argsort(face)  # stream order
+    labels, cells, patch = labels[back], cells[back], patch[back]
+    sizes = np.diff(g.cell_offsets)[back]
     of_tri = np.repeat(np.arange(nf), sizes - 2)
     assert len(t.faces) == len(of_tri) and len(t.vertices) == nv
     raw = t.metadata["_ply_raw"]["face"]["data"]
@@ -276,7 +286,8 @@ def test_to_pyvista_multiblock(tmp_path):
     mb = net.to_pyvista()
     assert list(mb.keys()) == ["patches", "chains", "corners", "cells"]
     assert mb["patches"].n_cells == len(net)
-    assert np.array_equal(mb["patches"].cell_data["labels"], net.face_label)
+    face = mb["patches"].cell_data["face"]  # rows grouped by size, as the .vtm
+    assert np.array_equal(mb["patches"].cell_data["labels"], net.face_label[face])
     assert mb["chains"].n_cells == sum(len(c) - 1 for c in net.chains)
     assert mb["corners"].n_cells == len(net.corners) == 2
     assert mb["cells"].n_cells == int((net.face_cells >= 0).sum())

@@ -55,11 +55,16 @@ def test_save_roundtrip(tmp_path, fixture_net):
     # VTU (the polygons) and MSH (triangles) through meshio, with patch ids as cell data.
     net.save(tmp_path / "n.vtu")
     m = meshio.read(tmp_path / "n.vtu")
-    assert np.array_equal(np.concatenate(m.cell_data["patch"]).ravel(), net.face_patch)
-    assert np.array_equal(np.concatenate(m.cell_data["labels"]), net.face_label)
+    face = np.concatenate(m.cell_data["face"]).ravel()  # rows grouped by size: each row's face
+    assert np.array_equal(np.sort(face), np.arange(len(net)))
+    assert np.array_equal(np.concatenate(m.cell_data["patch"]).ravel(), net.face_patch[face])
+    assert np.array_equal(np.concatenate(m.cell_data["labels"]), net.face_label[face])
     net.save(tmp_path / "n.msh")
     m = meshio.read(tmp_path / "n.msh")
     assert len(m.cells_dict["triangle"]) == ntri
+    # Gmsh physical surfaces from 1 (0 is no group), named as the OBJ groups
+    assert np.array_equal(np.concatenate(m.cell_data["gmsh:physical"]), net.face_patch[net.triangle_face] + 1)
+    assert sorted(int(v[0]) for v in m.field_data.values()) == list(range(1, len(net.patch_labels) + 1))
     # JSON: the network contract itself.
     net.save(tmp_path / "n.json")
     back = septa.load(tmp_path / "n.json")

@@ -120,7 +120,7 @@ function start() {
     const key = net.patchKeys[p.patch];
     const named = key !== undefined && key !== labelKey(p.patchLabel) ? `: ${key}` : '';
     const cellName = Array.isArray(p.cellLabel) ? cellText(p.cellLabel, net.names, net.mode) : '';
-    const cellNamed = cellName && cellName !== String(p.cellLabel[0]) && net.mode !== 'ia' ? ` (${cellName})` : '';
+    const cellNamed = cellName && cellName !== String(p.cellLabel[0]) && (net.mode === 'regions' || net.mode === 'mi') ? ` (${cellName})` : '';
     info.textContent =
       `patch ${p.patch} label ${JSON.stringify(p.patchLabel)}${named}${side}\n` +
       `face ${p.face}, cells [+ ${p.faceCells[0]}, - ${p.faceCells[1]}]\n` +

@@ -77,6 +77,30 @@ function coloursOnScreen(img, palette, minPixels = 150) {
   return found;
 }
 
+/** A pixel well inside something drawn (its 7x7 neighbourhood all off the
+ * background), scanning from the image's centre outwards; null if none. */
+function insidePixel(img) {
+  const d = img.data;
+  const bg = [d[0], d[1], d[2]];
+  const off = (x, y) => {
+    const i = 4 * (y * img.width + x);
+    return Math.abs(d[i] - bg[0]) + Math.abs(d[i + 1] - bg[1]) + Math.abs(d[i + 2] - bg[2]) > 12;
+  };
+  const cx = Math.floor(img.width / 2);
+  const cy = Math.floor(img.height / 2);
+  for (let r = 0; r < Math.max(cx, cy); r += 2) {
+    for (let y = Math.max(3, cy - r); y <= Math.min(img.height - 4, cy + r); y += 2) {
+      for (let x = Math.max(3, cx - r); x <= Math.min(img.width - 4, cx + r); x += 2) {
+        if (Math.max(Math.abs(x - cx), Math.abs(y - cy)) !== r && r > 0) continue;
+        let all = true;
+        for (let dy = -3; dy <= 3 && all; dy++) for (let dx = -3; dx <= 3 && all; dx++) all = off(x + dx, y + dy);
+        if (all) return [x, y];
+      }
+    }
+  }
+  return null;
+}
+
 function changedFraction(a, b) {
   let n = 0;
   for (let i = 0; i < a.data.length; i += 4) {
@@ -170,6 +194,13 @@ try {
       check('picked cell has the label of the side clicked', Array.isArray(p.cellLabel) && p.cellLabel[0] === want,
         `side ${p.side}, face label ${JSON.stringify(p.patchLabel)}, cell ${p.cell} label ${JSON.stringify(p.cellLabel)}`);
     }
+    // Names: a named region (label, material) is named in the pick text.
+    const named = await page.evaluate((q) => {
+      const names = window.__septa.net.names;
+      const r = q && Array.isArray(q.cellLabel) ? q.cellLabel[0] : undefined;
+      return names && names.regions && r !== undefined ? names.regions[String(r)] ?? null : null;
+    }, p);
+    if (named) check('pick text names the region', info.includes(`(${named})`), JSON.stringify(info));
   } else {
     check('picking names a patch and its cells', false, 'no patch colour found to click');
   }
@@ -183,6 +214,20 @@ try {
   // Exploding moves the cells apart; it does not make them vanish.
   check('exploded view keeps the cells', nonBackground(exploded) > 0.4 * nonBackground(byPatch),
     `${(100 * nonBackground(exploded)).toFixed(1)}% vs ${(100 * nonBackground(byPatch)).toFixed(1)}% non-background`);
+  // Picking in the exploded view names a cell the picked face bounds.
+  const at = insidePixel(exploded);
+  if (at) {
+    const box = await page.locator('#view').boundingBox();
+    const [x, y] = at;
+    const q = await page.evaluate(([cx, cy]) => {
+      const r = window.__septa.pick(cx, cy);
+      return r && { cell: r.cell, faceCells: r.faceCells, ncells: window.__septa.net.cells.length };
+    }, [box.x + x, box.y + y]);
+    check('exploded pick names a cell of the picked face', q && q.cell >= 0 && q.cell < q.ncells && q.faceCells.includes(q.cell),
+      JSON.stringify(q));
+  } else {
+    check('exploded pick names a cell of the picked face', false, 'nothing drawn to click');
+  }
 
   // 5. Lit exploded view and clipping, for people to look at.
   await page.goto(url);

@@ -91,6 +91,7 @@ pub fn run(a: Args) -> CliResult {
     } else if a.out.talk() {
         print!("{}", crate::summary::regions_text(&file, &r));
         a.out.tell_embedding(r.embedding.as_ref());
+        a.out.tell_solids();
         a.out.tell_remesh(remeshed.as_ref());
     }
     Ok(())

@@ -177,7 +177,13 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
                 septa::grid::Grid::Mesh(_) => None,
             };
             let o = septa::mesh::RemeshOptions::new(l);
-            Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?)
+            // formulas on a box grid: new vertices on their true zero sets
+            match (&job.functions, bounds) {
+                (septa::job::Functions::Formulas(fs), Some(_)) => {
+                    Some(pool.install(|| septa::mesh::remesh_network_on(&mut net, &o, bounds, fs))?)
+                }
+                _ => Some(pool.install(|| septa::mesh::remesh_network(&mut net, &o, bounds))?),
+            }
         }
         None => None,
     };
@@ -229,6 +235,7 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
         println!("{}", counts.join(", "));
         print!("{}", crate::summary::network_text(&net, &notes));
         args.out.tell_embedding(net.embedding.as_ref());
+        args.out.tell_solids();
         args.out.tell_remesh(remeshed.as_ref());
         if let Some(s) = stats {
             println!("blocks: {}", sparse_json(&s));

@@ -14,7 +14,10 @@ pub struct Output {
     /// the viewer reads it), npz (the whole result as numpy arrays, fastest
     /// to load), ply (triangles with per-face patch/labels/cells), plain.ply
     /// (triangles only, for meshio), obj, vtu (polygons with patch, labels,
-    /// cells), vtm (ParaView multiblock: patches, chains, corners, cells),
+    /// cells; triangles, quads, then larger polygons by size, `face` naming
+    /// each row's face), vtm (ParaView multiblock: patches, chains, corners,
+    /// cells), stl (regions/NAME.stl: each closed region, label or cell as
+    /// a closed, outward solid; solid.obj, solid.ply the same as OBJ, PLY),
     /// or all.
     #[arg(long, default_value = "json,npz,ply,obj,vtu", value_parser = parse_formats)]
     pub format: Formats,
@@ -64,6 +67,14 @@ impl Output {
     /// Prints what remeshing did (human-readable mode only).
     pub fn tell_remesh(&self, r: Option<&septa::mesh::Remeshing>) {
         if let (true, Some(r)) = (self.talk(), r) {
+            if r.refused > 0 {
+                println!(
+                    "remesh to L = {}: refused, {} violations of the exact check left after repairs; the unremeshed \
+                     result is written",
+                    r.length, r.refused
+                );
+                return;
+            }
             let (b, a) = (&r.before, &r.after);
             println!(
                 "remesh to L = {}: {} -> {} triangles, smallest angle {:.2} -> {:.2} degrees (mean smallest {:.2} -> \
@@ -103,6 +114,32 @@ impl Output {
                 e.nudged,
                 a.cells_positive,
                 a.cells_checked
+            );
+        }
+    }
+
+    /// Prints the per-region solid files written (`--format stl`,
+    /// `solid.obj`, `solid.ply`), human-readable mode only.
+    pub fn tell_solids(&self) {
+        if !self.talk() {
+            return;
+        }
+        let dir = self.output.join(septa::io::SOLIDS_DIR);
+        for f in self.format.0.iter().filter_map(|f| f.solid()) {
+            let mut names: Vec<String> = std::fs::read_dir(&dir)
+                .into_iter()
+                .flatten()
+                .flatten()
+                .map(|e| e.file_name().to_string_lossy().into_owned())
+                .filter(|n| !n.starts_with('.') && n.ends_with(&format!(".{}", f.ext())))
+                .collect();
+            names.sort();
+            let shown = if names.len() > 12 { format!("{}, ...", names[..12].join(", ")) } else { names.join(", ") };
+            println!(
+                "solids: {} {} file(s) in {} ({shown}); regions that reach the box have no closed surface and no file",
+                names.len(),
+                f.ext(),
+                dir.display()
             );
         }
     }

@@ -48,8 +48,10 @@ pub use writers::ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use writers::regions_out::{
     regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats,
 };
-pub use writers::result::{Annotations, Format, ResultView};
+pub use writers::result::{Annotations, Format, ResultView, SolidFormat};
 pub use writers::result_file::write_file;
+pub use writers::result_vtk::vtk_face_order;
+pub use writers::solids_out::{solid_stems, solids, write_solids, write_solids_into, SolidFile, SOLIDS_DIR};
 pub use writers::summary_out::write_summary_json;
 pub use writers::viewer::{
     folder_network, viewer_data_script, viewer_inline_page, write_result_viewer, write_viewer, ViewerError,

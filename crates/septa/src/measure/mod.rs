@@ -22,8 +22,8 @@ mod geometry;
 mod solid;
 
 pub use geometry::BoxDomain;
-pub use solid::{cell_solid, enclosed_volume, Solid, SolidError};
 pub(crate) use geometry::{area_vector, area_vector_len, cross, dot, norm, oriented, sub};
+pub use solid::{cell_solid, enclosed_volume, Solid, SolidError};
 
 use crate::complex::NONE;
 use crate::network::Network;

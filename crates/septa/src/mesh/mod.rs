@@ -26,7 +26,7 @@ mod remesh;
 mod volume;
 
 pub use project::Zeros;
-pub use remesh::{remesh_network, remesh_regions, Quality, RemeshOptions, Remeshing};
+pub use remesh::{remesh_network, remesh_network_on, remesh_regions, Quality, RemeshOptions, Remeshing};
 
 pub use crate::network::embedding::{snap_point, Embedding, EmbeddingCheck, Projection};
 

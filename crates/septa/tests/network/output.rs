@@ -75,8 +75,9 @@ fn outputs_round_trip() {
         let vtu = std::fs::read(dir.join("network.vtu")).unwrap();
         let start = vtu.windows(2).position(|w| w == b"\n_").unwrap() + 2;
         let nf = net.num_faces();
-        let body = 8 * 8 + net.points.len() * 24 + net.face_verts.len() * 4 + nf * 4 + nf + nf * 4 + nf * 16 + nf * 8;
-        // (the last: each polygon's area, f64)
+        let body =
+            9 * 8 + net.points.len() * 24 + net.face_verts.len() * 4 + nf * 4 + nf + nf * 4 + nf * 16 + nf * 8 + nf * 4;
+        // (each polygon's area, f64, and its face, i32: rows are grouped by size)
         assert_eq!(&vtu[start + body..], b"\n</AppendedData>\n</VTKFile>\n");
         let _ = std::fs::remove_dir_all(&dir);
     }

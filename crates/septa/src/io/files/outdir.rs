@@ -122,7 +122,8 @@ impl OutputDir {
 
     /// Removes stale temporaries and staged files of killed runs.
     fn clean(&self) -> std::io::Result<()> {
-        for sub in ["", "viewer", "network"] {
+        // `regions/`: the per-cell solids (writers/solids_out.rs `SOLIDS_DIR`)
+        for sub in ["", "viewer", "network", "regions"] {
             // never through a link: a linked `network/` is not this folder's
             if !sub.is_empty() && !std::fs::symlink_metadata(self.dir.join(sub)).is_ok_and(|m| m.is_dir()) {
                 continue;

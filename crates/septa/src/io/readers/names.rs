@@ -41,6 +41,31 @@ impl Names {
         serde_json::json!({"functions": self.functions, "regions": regions})
     }
 
+    /// Patch `p` (labels `[a, b]`) by name, as its OBJ group and Gmsh
+    /// physical name: `patch_<p>_<a>_<b>` with its labels' names (IA:
+    /// `patch_<p>_<f>`, its function's name; MI materials by their region or
+    /// function name; regions and labels by theirs), a label without a name
+    /// by its id; `patch_<p>_labels_<a>_<b>` when neither has a name (a
+    /// scene's unnamed function is named by its index: no name).
+    pub fn patch_name(&self, mode: &str, p: usize, [a, b]: [i32; 2]) -> String {
+        let function = |f: i32| usize::try_from(f).ok().and_then(|f| self.functions.get(f));
+        let real = |n: Option<&String>, x: i32| n.filter(|n| **n != x.to_string()).map(|n| name_token(n));
+        if mode == "ia" && (b < 0 || a == b) {
+            return match real(function(a), a) {
+                Some(n) => format!("patch_{p}_{n}"),
+                None => format!("patch_{p}_labels_{a}_{b}"),
+            };
+        }
+        let named = |x: i32| {
+            let n = self.regions.get(&(x as i64)).or(if mode == "mi" { function(x) } else { None });
+            real(n, x)
+        };
+        match (named(a), named(b)) {
+            (None, None) => format!("patch_{p}_labels_{a}_{b}"),
+            (na, nb) => format!("patch_{p}_{}_{}", na.unwrap_or(a.to_string()), nb.unwrap_or(b.to_string())),
+        }
+    }
+
     /// Whether there is no name at all.
     pub fn is_empty(&self) -> bool {
         self.functions.is_empty() && self.regions.is_empty()

@@ -21,6 +21,7 @@ pub(crate) mod result_file;
 pub(crate) mod result_mesh;
 pub(crate) mod result_npz;
 pub(crate) mod result_vtk;
+pub(crate) mod solids_out;
 pub(crate) mod summary_out;
 pub(crate) mod viewer;
 pub(crate) mod vtu_stream;

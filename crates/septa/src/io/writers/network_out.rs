@@ -266,6 +266,10 @@ pub fn write_network_formats(
     let view = ResultView::of_annotated(net, notes);
     let meta = network_meta(net, extra_seconds);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        if let Some(solid) = f.solid() {
+            crate::io::writers::solids_out::write_solids_into(&view, &mut out, solid)?;
+            continue;
+        }
         if f == Format::Vtm {
             // The multiblock and its pieces network/<block>.vtu, all staged.
             crate::io::writers::result_vtk::write_vtm_into(&view, &mut out, "network")?;

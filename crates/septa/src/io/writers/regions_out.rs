@@ -147,6 +147,10 @@ pub fn write_regions_formats(r: &RegionSurfaces, dir: &Path, formats: &[Format])
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
     let view = ResultView::of_regions(r);
     for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        if let Some(solid) = f.solid() {
+            crate::io::writers::solids_out::write_solids_into(&view, &mut out, solid)?;
+            continue;
+        }
         if f == Format::Vtm {
             // The multiblock and its pieces network/<block>.vtu, all staged.
             crate::io::writers::result_vtk::write_vtm_into(&view, &mut out, "network")?;

@@ -263,6 +263,28 @@ impl<'a> ResultView<'a> {
     }
 }
 
+/// The file format of one cell's solid (`solids_out.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SolidFormat {
+    /// Binary STL (float32).
+    Stl,
+    /// Wavefront OBJ (doubles).
+    Obj,
+    /// Binary little-endian PLY (doubles).
+    Ply,
+}
+
+impl SolidFormat {
+    /// The file extension.
+    pub fn ext(self) -> &'static str {
+        match self {
+            SolidFormat::Stl => "stl",
+            SolidFormat::Obj => "obj",
+            SolidFormat::Ply => "ply",
+        }
+    }
+}
+
 /// A result file format (`--format`, Python `Network.save` by extension).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Format {
@@ -280,12 +302,29 @@ pub enum Format {
     Vtu,
     /// `network.vtm` and `network/`: patches, chains, corners, cells (`result_vtk.rs`).
     Vtm,
+    /// `regions/<name>.stl`: each closed cell (region, label) as a binary
+    /// STL of its closed, outward surface (`solids_out.rs`).
+    Stl,
+    /// `regions/<name>.obj`: the same solids as OBJ (doubles).
+    SolidObj,
+    /// `regions/<name>.ply`: the same solids as binary PLY (doubles).
+    SolidPly,
 }
 
 impl Format {
     /// Every format, in the order they are written.
-    pub const ALL: &'static [Format] =
-        &[Format::Npz, Format::Ply, Format::PlyPlain, Format::Obj, Format::Vtu, Format::Vtm, Format::Json];
+    pub const ALL: &'static [Format] = &[
+        Format::Npz,
+        Format::Ply,
+        Format::PlyPlain,
+        Format::Obj,
+        Format::Vtu,
+        Format::Vtm,
+        Format::Stl,
+        Format::SolidObj,
+        Format::SolidPly,
+        Format::Json,
+    ];
     /// What a job writes without `--format`: json, npz, ply, obj, vtu.
     pub const DEFAULT: &'static [Format] = &[Format::Npz, Format::Ply, Format::Obj, Format::Vtu, Format::Json];
 
@@ -299,6 +338,19 @@ impl Format {
             Format::Obj => "obj",
             Format::Vtu => "vtu",
             Format::Vtm => "vtm",
+            Format::Stl => "stl",
+            Format::SolidObj => "solid.obj",
+            Format::SolidPly => "solid.ply",
+        }
+    }
+
+    /// The solid file format of a per-cell format (`stl`, `solid.obj`, `solid.ply`).
+    pub fn solid(self) -> Option<SolidFormat> {
+        match self {
+            Format::Stl => Some(SolidFormat::Stl),
+            Format::SolidObj => Some(SolidFormat::Obj),
+            Format::SolidPly => Some(SolidFormat::Ply),
+            _ => None,
         }
     }
 
@@ -335,6 +387,6 @@ impl Format {
             return Some(Format::PlyPlain);
         }
         let ext = name.rsplit_once('.')?.1.to_string();
-        Format::ALL.iter().copied().find(|f| f.name() == ext)
+        Format::ALL.iter().copied().filter(|f| f.solid().is_none() || *f == Format::Stl).find(|f| f.name() == ext)
     }
 }

@@ -3,10 +3,11 @@
 //! [`ResultView`]; this file sits above them).
 
 use crate::io::writers::result::{Format, ResultView};
-use crate::io::writers::{result_mesh, result_npz, result_vtk};
+use crate::io::writers::{result_mesh, result_npz, result_vtk, solids_out};
 
 /// Writes one file of `r` in `format` (JSON is refused: its document
-/// depends on the kind of result).
+/// depends on the kind of result); for a solid format (`stl`, `solid.obj`,
+/// `solid.ply`) `path` is the folder of the per-cell files.
 pub fn write_file(
     r: &ResultView,
     path: &std::path::Path,
@@ -21,5 +22,8 @@ pub fn write_file(
         Format::Obj => result_mesh::write_obj(r, path),
         Format::Vtu => result_vtk::write_vtu(r, path),
         Format::Vtm => result_vtk::write_vtm(r, path).map(|_| ()),
+        Format::Stl | Format::SolidObj | Format::SolidPly => {
+            solids_out::write_solids(r, path, format.solid().unwrap()).map(|_| ())
+        }
     }
 }

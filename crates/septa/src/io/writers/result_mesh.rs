@@ -103,7 +103,7 @@ pub fn write_obj(r: &ResultView, path: &Path) -> std::io::Result<()> {
     write_atomic_with(path, |w| {
         writeln!(
             w,
-            "# septa {} result: {} patches (groups patch_<p>_labels_<a>_<b>), {} chains (l), {} corners (p)",
+            "# septa {} result: {} patches (groups patch_<p>_<names of its labels>, or patch_<p>_labels_<a>_<b>), {} chains (l), {} corners (p)",
             r.mode,
             r.patch_labels.len().max(r.patch.iter().map(|&p| p as usize + 1).max().unwrap_or(0)),
             r.chains.len(),
@@ -132,8 +132,8 @@ pub fn write_obj(r: &ResultView, path: &Path) -> std::io::Result<()> {
             next[p as usize] += 1;
         }
         for p in 0..patches {
-            let [a, b] = r.patch_labels.get(p).copied().unwrap_or([-1, -1]);
-            writeln!(w, "g patch_{p}_labels_{a}_{b}")?;
+            let labels = r.patch_labels.get(p).copied().unwrap_or([-1, -1]);
+            writeln!(w, "g {}", r.names.patch_name(r.mode, p, labels))?;
             for &f in &order[start[p]..start[p + 1]] {
                 line.clear();
                 line.push('f');

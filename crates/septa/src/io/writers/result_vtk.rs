@@ -1,5 +1,5 @@
 //! VTK XML files of a [`ResultView`]: `.vtu` (the polygons with cell data
-//! `patch`, `labels` (2 components), `cells` (2 components), `area`) and `.vtm`, a
+//! `patch`, `labels` (2 components), `cells` (2 components), `area`, `face`) and `.vtm`, a
 //! MultiBlock of four `.vtu` pieces that ParaView opens as one tree:
 //! `patches` (the polygons), `chains` (a line cell per chain edge with its `chain` and
 //! the number of patches around that chain), `corners` (vertex cells with `corner`)
@@ -7,6 +7,17 @@
 //! oriented out of the cell, with `cell`, the cell's `label` and `volume`; shrink or
 //! threshold by `cell` for an exploded view). Raw appended binary data,
 //! UInt64 headers: readable by VTK >= 8 (ParaView, pyvista) and meshio.
+//!
+//! **Polygons by size.** Triangles are written as `VTK_TRIANGLE`, quads as
+//! `VTK_QUAD`, larger polygons as `VTK_POLYGON`, in that order and the larger
+//! ones by size (stable: by face id within a size). meshio starts a new cell
+//! block wherever the cell type or a polygon's size changes, so in the
+//! network's face order it read one block per run of one size (5,865 for the
+//! Apollonius diagram of `builtin:apollonius-18`, 13,224 polygons of 3 to 6
+//! vertices); grouped it reads one per size (4 there), as the cut writer's
+//! polyhedra (`cut_vtu.rs`). A row is then not the face of that number in
+//! `network.npz`/`.json`: the cell data `face` names it (in the `cells`
+//! block too), and every per-face array is written in the rows' order.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -18,7 +29,36 @@ use crate::io::writers::result::ResultView;
 /// VTK cell types used here.
 const VTK_VERTEX: u8 = 1;
 const VTK_LINE: u8 = 3;
+const VTK_TRIANGLE: u8 = 5;
 const VTK_POLYGON: u8 = 7;
+const VTK_QUAD: u8 = 9;
+
+/// The VTK cell type of a polygon of `n` vertices.
+pub(crate) fn polygon_type(n: usize) -> u8 {
+    match n {
+        3 => VTK_TRIANGLE,
+        4 => VTK_QUAD,
+        _ => VTK_POLYGON,
+    }
+}
+
+/// Where a polygon of `n` vertices goes in the file: triangles, quads, then
+/// larger polygons by size (module doc).
+pub(crate) fn size_class(n: usize) -> usize {
+    match n {
+        3 => 0,
+        4 => 1,
+        k => k,
+    }
+}
+
+/// The faces of `r` in the order the VTK files write them (module doc).
+pub fn vtk_face_order(r: &ResultView) -> Vec<u32> {
+    let mut order: Vec<u32> = (0..r.num_faces() as u32).collect();
+    // stable: by face id within a size
+    order.sort_by_key(|&f| size_class(r.face(f as usize).len()));
+    order
+}
 
 /// One unstructured piece: cells of one type over all of the result's points.
 struct Piece<'a> {
@@ -26,7 +66,8 @@ struct Piece<'a> {
     /// Cell `c` is `conn[offsets[c]..offsets[c + 1]]` (offsets start at 0).
     conn: Vec<u32>,
     offsets: Vec<u32>,
-    cell_type: u8,
+    /// Per cell its VTK type.
+    types: Vec<u8>,
     /// Cell data: name, components, values (`components` per cell).
     data: Vec<(&'static str, usize, Values)>,
 }
@@ -127,7 +168,7 @@ fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
         buf.extend_from_slice(&(arrays[2].0 as u64).to_le_bytes());
         ints(w, &mut buf, &mut piece.offsets[1..].iter().map(|&v| v as i32))?;
         buf.extend_from_slice(&(arrays[3].0 as u64).to_le_bytes());
-        buf.extend(std::iter::repeat_n(piece.cell_type, nc));
+        buf.extend_from_slice(&piece.types);
         for (i, (_, _, values)) in piece.data.iter().enumerate() {
             buf.extend_from_slice(&(arrays[4 + i].0 as u64).to_le_bytes());
             match values {
@@ -146,16 +187,27 @@ fn write_piece(piece: &Piece, path: &Path) -> std::io::Result<()> {
 }
 
 fn polygons<'a>(r: &'a ResultView) -> Piece<'a> {
+    let order = vtk_face_order(r);
+    let mut conn = Vec::with_capacity(r.face_verts.len());
+    let mut offsets = Vec::with_capacity(order.len() + 1);
+    offsets.push(0u32);
+    for &f in &order {
+        conn.extend_from_slice(r.face(f as usize));
+        offsets.push(conn.len() as u32);
+    }
+    let each = |f: &dyn Fn(usize) -> i32| order.iter().map(|&g| f(g as usize)).collect::<Vec<i32>>();
+    let pairs = |a: &[[i32; 2]]| order.iter().flat_map(|&g| a[g as usize]).collect::<Vec<i32>>();
     Piece {
         points: &r.points,
-        conn: r.face_verts.to_vec(),
-        offsets: r.face_start.to_vec(),
-        cell_type: VTK_POLYGON,
+        types: order.iter().map(|&f| polygon_type(r.face(f as usize).len())).collect(),
+        conn,
+        offsets,
         data: vec![
-            ("patch", 1, Values::I32(r.patch.iter().map(|&p| p as i32).collect())),
-            ("labels", 2, Values::I32(r.labels.iter().flatten().copied().collect())),
-            ("cells", 2, Values::I32(r.cells.iter().flatten().copied().collect())),
-            ("area", 1, Values::F64((0..r.num_faces()).map(|f| r.face_area(f)).collect())),
+            ("patch", 1, Values::I32(each(&|f| r.patch[f] as i32))),
+            ("labels", 2, Values::I32(pairs(&r.labels))),
+            ("cells", 2, Values::I32(pairs(&r.cells))),
+            ("area", 1, Values::F64(order.iter().map(|&f| r.face_area(f as usize)).collect())),
+            ("face", 1, Values::I32(each(&|f| f as i32))),
         ],
     }
 }
@@ -181,8 +233,8 @@ fn chains<'a>(r: &'a ResultView) -> Piece<'a> {
     Piece {
         points: &r.points,
         offsets: (0..=conn.len() as u32 / 2).map(|i| 2 * i).collect(),
+        types: vec![VTK_LINE; conn.len() / 2],
         conn,
-        cell_type: VTK_LINE,
         data: measured(
             vec![("chain", 1, Values::I32(chain.clone())), ("patches", 1, Values::I32(patches))],
             "length",
@@ -197,7 +249,7 @@ fn corners<'a>(r: &'a ResultView) -> Piece<'a> {
         points: &r.points,
         conn: r.corners.to_vec(),
         offsets: (0..=r.corners.len() as u32).collect(),
-        cell_type: VTK_VERTEX,
+        types: vec![VTK_VERTEX; r.corners.len()],
         data: vec![("corner", 1, Values::I32((0..r.corners.len() as i32).collect()))],
     }
 }
@@ -206,20 +258,24 @@ fn corners<'a>(r: &'a ResultView) -> Piece<'a> {
 /// of that cell (a polygon is counter-clockwise seen from its positive side,
 /// so it is reversed for the cell on its positive side). Cell data `cell`,
 /// `patch` and `label` (MI the cell's material, regions its region, IA its
-/// sign vector as bits, function `f` positive in bit `f`, for `f < 31`).
+/// sign vector as bits, function `f` positive in bit `f`, for `f < 31`)
+/// and `face`. Rows by size as the polygons (module doc), then by cell.
 fn cell_boundaries<'a>(r: &'a ResultView) -> Piece<'a> {
     let nf = r.num_faces();
-    let mut side: Vec<(i32, u32, bool)> = Vec::with_capacity(2 * nf); // (cell, face, reversed)
+    // (size class, cell, face, reversed)
+    let mut side: Vec<(usize, i32, u32, bool)> = Vec::with_capacity(2 * nf);
     for f in 0..nf {
         let [cp, cn] = r.cells[f];
+        let class = size_class(r.face(f).len());
         if cp >= 0 {
-            side.push((cp, f as u32, true));
+            side.push((class, cp, f as u32, true));
         }
         if cn >= 0 {
-            side.push((cn, f as u32, false));
+            side.push((class, cn, f as u32, false));
         }
     }
     side.sort_unstable();
+    let side: Vec<(i32, u32, bool)> = side.into_iter().map(|(_, c, f, rev)| (c, f, rev)).collect();
     let mut conn = Vec::with_capacity(2 * r.face_verts.len());
     let mut offsets = vec![0u32];
     for &(_, f, reversed) in &side {
@@ -243,12 +299,13 @@ fn cell_boundaries<'a>(r: &'a ResultView) -> Piece<'a> {
         points: &r.points,
         conn,
         offsets,
-        cell_type: VTK_POLYGON,
+        types: side.iter().map(|s| polygon_type(r.face(s.1 as usize).len())).collect(),
         data: measured(
             vec![
                 ("cell", 1, Values::I32(side.iter().map(|s| s.0).collect())),
                 ("patch", 1, Values::I32(side.iter().map(|s| r.patch[s.1 as usize] as i32).collect())),
                 ("label", 1, Values::I32(side.iter().map(|s| label(s.0)).collect())),
+                ("face", 1, Values::I32(side.iter().map(|s| s.1 as i32).collect())),
             ],
             "volume",
             &r.measures.cell_volume,

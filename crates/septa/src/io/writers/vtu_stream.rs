@@ -4,19 +4,27 @@
 //! and VTK's PLY reader (ParaView, pyvista) drops them. The `.vtu` carries
 //! the same polygons in the vocabulary of every other result file
 //! (io/writers/result_vtk.rs): cell data `patch`, `labels` (2 components),
-//! `cells` (2 components), plus `block` (the block index).
+//! `cells` (2 components), plus `block` (the block index) and `face` (the
+//! polygon's place in the stream: its row in the streamed PLY).
+//!
+//! As every Septa VTU (io/writers/result_vtk.rs), triangles are `VTK_TRIANGLE`,
+//! quads `VTK_QUAD`, larger polygons `VTK_POLYGON`, grouped by size so that
+//! meshio reads one block per size; within a size in stream order.
 //!
 //! A `.vtu` puts each array whole, one after another, while a stream
-//! produces all of them together. So each array goes to its own temporary
-//! spool file beside the output as blocks arrive (memory stays bounded by
-//! the stream's window); [`VtuStreamSink::finish_with`] writes the header
-//! (all sizes are known by then) and copies the spools in order, mapping
-//! each polygon's patch piece to its patch and cells, then renames the file
-//! over its destination. On error or drop every temporary file is removed.
+//! produces all of them together. So the points go to a temporary spool
+//! file and each polygon to the spool of its size (a fixed-length record:
+//! its vertices, labels, block, patch piece and place) beside the output as
+//! blocks arrive (memory stays bounded by the stream's window);
+//! [`VtuStreamSink::finish_with`] writes the header (all sizes are known by
+//! then) and, per array, reads the size spools in order, mapping each
+//! polygon's patch piece to its patch and cells, then renames the file over
+//! its destination. On error or drop every temporary file is removed.
 //!
 //! Vertices are written once, with the stream's ids, as in the PLY
 //! (io/writers/ply_stream.rs).
 
+use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::{Path, PathBuf};
@@ -25,21 +33,27 @@ use crate::complex::Mode;
 use crate::grid::BoxGrid;
 use crate::io::writers::ply_stream::{PlyStreamSink, PlyStreamStats, StreamPly};
 use crate::io::writers::result_vtk::vtu_header;
+use crate::io::writers::result_vtk::{polygon_type, size_class};
 use crate::network::{NetworkSummary, StreamBlock, StreamSink};
 
-/// VTK's polygon cell type.
-const VTK_POLYGON: u8 = 7;
-
-/// The spooled arrays, in the file's order (cell data `patch` and `cells`
-/// come from the `piece` spool at the end).
-const SPOOLS: [&str; 6] = ["points", "connectivity", "offsets", "labels", "block", "piece"];
+/// The polygons of one size: their spool of records (`n` vertex ids, 2
+/// labels, block, patch piece, place: `n + 5` little-endian 4-byte words)
+/// and how many.
+struct SizeSpool {
+    file: Option<BufWriter<File>>,
+    count: u64,
+}
 
 /// Writes streamed blocks to one `.vtu` (module doc).
 pub struct VtuStreamSink {
     path: PathBuf,
     dir: PathBuf,
     name: String,
-    spools: Vec<Option<BufWriter<File>>>,
+    /// The points' spool (`None` once finished).
+    points: Option<BufWriter<File>>,
+    /// Polygons by size (vertex count).
+    sizes: BTreeMap<usize, SizeSpool>,
+    finished: bool,
     vertices: u64,
     polygons: u64,
     corners: u64,
@@ -61,17 +75,17 @@ impl VtuStreamSink {
             path: path.to_path_buf(),
             dir,
             name,
-            spools: Vec::new(),
+            points: None,
+            sizes: BTreeMap::new(),
+            finished: false,
             vertices: 0,
             polygons: 0,
             corners: 0,
             grid: None,
         };
-        for s in SPOOLS {
-            let p = sink.temp(s);
-            let f = crate::io::files::safe_write::create_temp(&p).map_err(|e| with_path(&p, e))?;
-            sink.spools.push(Some(BufWriter::with_capacity(1 << 18, f)));
-        }
+        let p = sink.temp("points");
+        let f = crate::io::files::safe_write::create_temp(&p).map_err(|e| with_path(&p, e))?;
+        sink.points = Some(BufWriter::with_capacity(1 << 18, f));
         Ok(sink)
     }
 
@@ -80,39 +94,83 @@ impl VtuStreamSink {
     }
 
     fn write_block(&mut self, b: &StreamBlock) -> std::io::Result<()> {
-        let [Some(points), Some(conn), Some(offsets), Some(labels), Some(block), Some(piece)] = &mut self.spools[..]
-        else {
-            return Err(std::io::Error::other("the VTU stream is already finished"));
-        };
+        let finished = || std::io::Error::other("the VTU stream is already finished");
+        if self.finished {
+            return Err(finished());
+        }
+        let mut record: Vec<u8> = Vec::with_capacity(64);
         for p in 0..b.num_polygons() {
-            for &v in b.polygon(p) {
+            let poly = b.polygon(p);
+            record.clear();
+            for &v in poly {
                 let id = b.vertex_ids[v as usize] as u64;
                 if id >= i32::MAX as u64 {
                     return Err(std::io::Error::other("more than 2^31 - 1 vertices: VTU Int32 indices overflow"));
                 }
                 if id == self.vertices {
-                    let mut p = b.points[v as usize];
+                    let mut x = b.points[v as usize];
                     if let Some(g) = &self.grid {
-                        p = crate::network::embedding::snap_point(p, &b.keys[v as usize], g);
+                        x = crate::network::embedding::snap_point(x, &b.keys[v as usize], g);
                     }
-                    for x in p {
-                        points.write_all(&x.to_le_bytes())?;
+                    let points = self.points.as_mut().ok_or_else(finished)?;
+                    for c in x {
+                        points.write_all(&c.to_le_bytes())?;
                     }
                     self.vertices += 1;
                 }
-                conn.write_all(&(id as i32).to_le_bytes())?;
-                self.corners += 1;
+                record.extend_from_slice(&(id as i32).to_le_bytes());
             }
-            if self.corners >= i32::MAX as u64 {
-                return Err(std::io::Error::other("more than 2^31 - 1 polygon corners: VTU Int32 offsets overflow"));
+            self.corners += poly.len() as u64;
+            if self.corners >= i32::MAX as u64 || self.polygons >= i32::MAX as u64 {
+                return Err(std::io::Error::other(
+                    "more than 2^31 - 1 polygons or polygon corners: VTU Int32 offsets overflow",
+                ));
             }
-            offsets.write_all(&(self.corners as i32).to_le_bytes())?;
             for l in b.poly_label[p] {
-                labels.write_all(&(l as i32).to_le_bytes())?;
+                record.extend_from_slice(&(l as i32).to_le_bytes());
             }
-            block.write_all(&(b.index as i32).to_le_bytes())?;
-            piece.write_all(&b.poly_piece.get(p).copied().unwrap_or(u32::MAX).to_le_bytes())?;
+            record.extend_from_slice(&(b.index as i32).to_le_bytes());
+            record.extend_from_slice(&b.poly_piece.get(p).copied().unwrap_or(u32::MAX).to_le_bytes());
+            record.extend_from_slice(&(self.polygons as i32).to_le_bytes());
+            let spool = match self.sizes.entry(poly.len()) {
+                std::collections::btree_map::Entry::Occupied(e) => e.into_mut(),
+                std::collections::btree_map::Entry::Vacant(e) => {
+                    let path = self.dir.join(format!(".{}.size{}.tmp{}", self.name, poly.len(), std::process::id()));
+                    let f = crate::io::files::safe_write::create_temp(&path).map_err(|e| with_path(&path, e))?;
+                    e.insert(SizeSpool { file: Some(BufWriter::with_capacity(1 << 16, f)), count: 0 })
+                }
+            };
+            spool.file.as_mut().ok_or_else(finished)?.write_all(&record)?;
+            spool.count += 1;
             self.polygons += 1;
+        }
+        Ok(())
+    }
+
+    /// The polygon sizes in the file's order (triangles, quads, larger).
+    fn size_order(&self) -> Vec<usize> {
+        let mut sizes: Vec<usize> = self.sizes.keys().copied().collect();
+        sizes.sort_by_key(|&n| size_class(n));
+        sizes
+    }
+
+    /// Streams, for every polygon in file order, `words` 4-byte words
+    /// starting at word `from(n)` of its record (`n` its size) into `out`.
+    fn each_record(
+        &self,
+        w: &mut BufWriter<File>,
+        mut out: impl FnMut(&mut BufWriter<File>, &[u8]) -> std::io::Result<()>,
+        field: impl Fn(usize) -> std::ops::Range<usize>,
+    ) -> std::io::Result<()> {
+        for n in self.size_order() {
+            let path = self.temp(&format!("size{n}"));
+            let mut r = BufReader::with_capacity(1 << 18, File::open(&path).map_err(|e| with_path(&path, e))?);
+            let mut record = vec![0u8; 4 * (n + 5)];
+            let range = field(n);
+            for _ in 0..self.sizes[&n].count {
+                r.read_exact(&mut record)?;
+                out(w, &record[4 * range.start..4 * range.end])?;
+            }
         }
         Ok(())
     }
@@ -126,8 +184,12 @@ impl VtuStreamSink {
     }
 
     fn finish_inner(&mut self, topology: Option<&NetworkSummary>) -> std::io::Result<PlyStreamStats> {
-        for s in &mut self.spools {
-            let w = s.take().ok_or_else(|| std::io::Error::other("the VTU stream is already finished"))?;
+        self.finished = true;
+        let finished = || std::io::Error::other("the VTU stream is already finished");
+        let points = self.points.take().ok_or_else(finished)?;
+        points.into_inner().map_err(|e| e.into_error())?;
+        for s in self.sizes.values_mut() {
+            let w = s.file.take().ok_or_else(finished)?;
             w.into_inner().map_err(|e| e.into_error())?;
         }
         let (nv, nc, nconn) = (self.vertices as usize, self.polygons as usize, self.corners as usize);
@@ -140,32 +202,37 @@ impl VtuStreamSink {
             (nc * 8, "Int32", "labels", 2),
             (nc * 8, "Int32", "cells", 2),
             (nc * 4, "Int32", "block", 1),
+            (nc * 4, "Int32", "face", 1),
         ];
         let tmp = self.temp("vtu");
         let file = crate::io::files::safe_write::create_temp(&tmp).map_err(|e| with_path(&tmp, e))?;
         let mut w = BufWriter::with_capacity(1 << 20, file);
         w.write_all(vtu_header(nv, nc, &arrays, "patch").as_bytes())?;
         let size = |w: &mut BufWriter<File>, bytes: usize| w.write_all(&(bytes as u64).to_le_bytes());
-        let copy = |w: &mut BufWriter<File>, what: &str| -> std::io::Result<()> {
-            let p = self.temp(what);
-            std::io::copy(&mut File::open(&p).map_err(|e| with_path(&p, e))?, w).map(|_| ())
-        };
-        for (what, array) in ["points", "connectivity", "offsets"].into_iter().zip(&arrays) {
-            size(&mut w, array.0)?;
-            copy(&mut w, what)?;
+        size(&mut w, arrays[0].0)?;
+        let p = self.temp("points");
+        std::io::copy(&mut File::open(&p).map_err(|e| with_path(&p, e))?, &mut w)?;
+        let copy = |w: &mut BufWriter<File>, b: &[u8]| w.write_all(b);
+        size(&mut w, arrays[1].0)?;
+        self.each_record(&mut w, copy, |n| 0..n)?;
+        size(&mut w, arrays[2].0)?;
+        let mut end = 0i32;
+        for n in self.size_order() {
+            for _ in 0..self.sizes[&n].count {
+                end += n as i32;
+                w.write_all(&end.to_le_bytes())?;
+            }
         }
-        size(&mut w, nc)?;
-        for _ in 0..nc {
-            w.write_all(&[VTK_POLYGON])?;
+        size(&mut w, arrays[3].0)?;
+        for n in self.size_order() {
+            for _ in 0..self.sizes[&n].count {
+                w.write_all(&[polygon_type(n)])?;
+            }
         }
-        // patch, then (after labels) cells: two passes over the pieces.
-        let mapped = |w: &mut BufWriter<File>, cells: bool| -> std::io::Result<()> {
-            let p = self.temp("piece");
-            let mut r = BufReader::with_capacity(1 << 18, File::open(&p).map_err(|e| with_path(&p, e))?);
-            let mut piece = [0u8; 4];
-            for _ in 0..nc {
-                r.read_exact(&mut piece)?;
-                let piece = u32::from_le_bytes(piece) as usize;
+        // patch and cells: each polygon's patch piece mapped by the topology
+        let mapped = |cells: bool| {
+            move |w: &mut BufWriter<File>, b: &[u8]| -> std::io::Result<()> {
+                let piece = u32::from_le_bytes(b.try_into().unwrap()) as usize;
                 let known = topology.filter(|t| piece < t.piece_patch.len());
                 let values = match (known, cells) {
                     (Some(t), false) => vec![t.piece_patch[piece] as i32],
@@ -176,17 +243,19 @@ impl VtuStreamSink {
                 for v in values {
                     w.write_all(&v.to_le_bytes())?;
                 }
+                Ok(())
             }
-            Ok(())
         };
         size(&mut w, arrays[4].0)?;
-        mapped(&mut w, false)?;
+        self.each_record(&mut w, mapped(false), |n| n + 3..n + 4)?;
         size(&mut w, arrays[5].0)?;
-        copy(&mut w, "labels")?;
+        self.each_record(&mut w, copy, |n| n..n + 2)?;
         size(&mut w, arrays[6].0)?;
-        mapped(&mut w, true)?;
+        self.each_record(&mut w, mapped(true), |n| n + 3..n + 4)?;
         size(&mut w, arrays[7].0)?;
-        copy(&mut w, "block")?;
+        self.each_record(&mut w, copy, |n| n + 2..n + 3)?;
+        size(&mut w, arrays[8].0)?;
+        self.each_record(&mut w, copy, |n| n + 4..n + 5)?;
         w.write_all(b"\n</AppendedData>\n</VTKFile>\n")?;
         let file = w.into_inner().map_err(|e| e.into_error())?;
         crate::io::files::atomic::sync_if_durable(&file).map_err(|e| with_path(&tmp, e))?;
@@ -197,9 +266,12 @@ impl VtuStreamSink {
     }
 
     fn cleanup(&mut self) {
-        self.spools.clear();
-        for s in SPOOLS.iter().chain(&["vtu"]) {
-            let _ = std::fs::remove_file(self.temp(s));
+        self.points = None;
+        let sizes: Vec<usize> = self.sizes.keys().copied().collect();
+        self.sizes.clear();
+        self.finished = true;
+        for what in sizes.iter().map(|n| format!("size{n}")).chain(["points".into(), "vtu".into()]) {
+            let _ = std::fs::remove_file(self.temp(&what));
         }
     }
 }
@@ -214,7 +286,7 @@ impl StreamSink for VtuStreamSink {
 impl Drop for VtuStreamSink {
     /// A sink dropped unfinished (an error, a cancelled run) leaves no file.
     fn drop(&mut self) {
-        if !self.spools.is_empty() {
+        if self.points.is_some() || !self.sizes.is_empty() {
             self.cleanup();
         }
     }
@@ -279,9 +351,10 @@ impl StreamSink for StreamFile {
     }
 }
 
-/// The arrays of a streamed `.vtu`, in file order.
-const STREAM_VTU_ARRAYS: [&str; 8] =
-    ["Points", "connectivity", "offsets", "types", "patch", "labels", "cells", "block"];
+/// The arrays of a streamed `.vtu`, in file order (`face` since polygons
+/// are grouped by size; a file without it is in stream order).
+const STREAM_VTU_ARRAYS: [&str; 9] =
+    ["Points", "connectivity", "offsets", "types", "patch", "labels", "cells", "block", "face"];
 
 /// Reads a `.vtu` written by [`VtuStreamSink`] (for `septa view` on a
 /// stream's folder) into the same arrays as the streamed PLY; errors name
@@ -297,7 +370,8 @@ pub fn read_stream_vtu(path: &Path) -> Result<StreamPly, String> {
         + START.len();
     let head = std::str::from_utf8(&bytes[..end]).map_err(|_| format!("{name}: the VTU header is not text"))?;
     let names: Vec<&str> = head.split("Name=\"").skip(1).filter_map(|s| s.split('"').next()).collect();
-    if names != STREAM_VTU_ARRAYS {
+    let has_face = names == STREAM_VTU_ARRAYS;
+    if !has_face && names != STREAM_VTU_ARRAYS[..8] {
         return Err(format!("{name}: not a streamed Septa .vtu (its arrays must be {})", STREAM_VTU_ARRAYS.join(", ")));
     }
     let attr = |key: &str| -> Result<usize, String> {
@@ -310,7 +384,7 @@ pub fn read_stream_vtu(path: &Path) -> Result<StreamPly, String> {
     let (nv, nc) = (attr("NumberOfPoints")?, attr("NumberOfCells")?);
     let mut at = end;
     let mut arrays: Vec<&[u8]> = Vec::new();
-    for a in STREAM_VTU_ARRAYS {
+    for a in &STREAM_VTU_ARRAYS[..names.len()] {
         let short = || format!("{name}: the file ends inside array {a}");
         let size = bytes.get(at..at + 8).ok_or_else(short)?;
         let size = u64::from_le_bytes(size.try_into().unwrap()) as usize;
@@ -344,6 +418,25 @@ pub fn read_stream_vtu(path: &Path) -> Result<StreamPly, String> {
         }
         out.faces.push(vs.iter().map(|&v| v as u32).collect());
         start = stop;
+    }
+    if has_face {
+        // rows grouped by size: back to the stream's order
+        let face = ints(arrays[8]);
+        if face.len() != nc {
+            return Err(format!("{name}: array sizes do not match {nv} points and {nc} cells"));
+        }
+        let mut row_of = vec![usize::MAX; nc];
+        for (row, &f) in face.iter().enumerate() {
+            match usize::try_from(f).ok().filter(|&f| f < nc && row_of[f] == usize::MAX) {
+                Some(f) => row_of[f] = row,
+                None => return Err(format!("{name}: row {row} names face {f}, not a face of 0..{nc} given once")),
+            }
+        }
+        out.patch = row_of.iter().map(|&r| out.patch[r]).collect();
+        out.labels = row_of.iter().map(|&r| out.labels[r]).collect();
+        out.cells = row_of.iter().map(|&r| out.cells[r]).collect();
+        let mut faces = std::mem::take(&mut out.faces);
+        out.faces = row_of.iter().map(|&r| std::mem::take(&mut faces[r])).collect();
     }
     Ok(out)
 }

@@ -9,12 +9,14 @@
 //!   to both ends are exactly the apexes of the triangles on the edge, so
 //!   the complex of all patches together keeps its topology;
 //! - no triangle turns over (its normal within 60 degrees of its patch's
-//!   area-weighted normal there) or
-//!   gets an edge longer than `4/3 L`.
+//!   area-weighted normal there), gets an edge longer than `4/3 L`, or,
+//!   with three constraint vertices (which nothing later improves), a new
+//!   angle under 25 degrees (or under the smallest there before).
 //!
 //! Two free ends meet at their middle, put back on the patch.
 
-use super::soup::{add, ekey, scale, Kind, Soup, V};
+use super::sizing::Sizing;
+use super::soup::{add, ekey, min_angle, scale, Kind, Soup, V};
 use super::surface::Surface;
 
 /// Whether `u` may go into `v` (module doc).
@@ -66,19 +68,32 @@ fn shape_ok(s: &Soup, u: u32, v: u32, p: V, hi: f64) -> bool {
     if !s.faces_ok(&[u, v], on_edge, at) {
         return false;
     }
+    let (mut old_min, mut new_min) = (180.0f64, 180.0f64);
     for &w in [u, v].iter() {
         for &t in &s.vt[w as usize] {
             let tri = s.tris[t as usize];
+            old_min = old_min.min(min_angle(tri.map(|x| s.x[x as usize])));
             if !on_edge(&tri) {
                 let q = tri.map(at);
                 if (0..3).any(|k| super::soup::dist(q[k], q[(k + 1) % 3]) > hi) {
                     return false;
                 }
+                // only triangles of constraint vertices, which no later
+                // operation can improve
+                let w = tri.map(|x| if x == u { v } else { x });
+                if w.iter().all(|&x| !matches!(s.kind[x as usize], Kind::Free(_))) {
+                    new_min = new_min.min(min_angle(q));
+                }
             }
         }
     }
-    true
+    // no new small angle (an ear of three curve vertices, where a free
+    // vertex inside a small disk went into its rim)
+    new_min >= old_min.min(MIN_ANGLE)
 }
+
+/// Angles a collapse or flip may not newly go under (degrees).
+pub(super) const MIN_ANGLE: f64 = 25.0;
 
 /// Collapses `u` into `v` with `v` put at `p`.
 fn collapse(s: &mut Soup, u: u32, v: u32, p: V) {
@@ -104,15 +119,21 @@ fn collapse(s: &mut Soup, u: u32, v: u32, p: V) {
 }
 
 /// Collapses the edges shorter than `lo` where allowed; how many.
-pub(super) fn collapse_short(s: &mut Soup, surf: &Surface, lo: f64, hi: f64) -> usize {
+pub(super) fn collapse_short(s: &mut Soup, surf: &Surface, size: &Sizing) -> usize {
     let mut n = 0;
-    let mut short: Vec<(f64, u32, u32)> =
-        s.edges().into_iter().map(|(a, b)| (s.len(a, b), a, b)).filter(|e| e.0 < lo).collect();
+    let mut short: Vec<(f64, u32, u32)> = s
+        .edges()
+        .into_iter()
+        .map(|(a, b)| (s.len(a, b), a, b))
+        .filter(|e| e.0 < 0.8 * size.edge(s, e.1, e.2))
+        .collect();
     short.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, a, b) in short {
         if s.vt[a as usize].is_empty() || s.vt[b as usize].is_empty() || s.edge_tris(a, b).is_empty() {
             continue;
         }
+        let h = size.edge(s, a, b);
+        let (lo, hi) = (0.8 * h, 4.0 / 3.0 * h);
         if s.len(a, b) >= lo || !link_ok(s, a, b) || !no_twins(s, a, b) || !no_twins(s, b, a) {
             continue;
         }

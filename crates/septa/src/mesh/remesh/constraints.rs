@@ -69,6 +69,8 @@ pub(super) struct Built {
     pub tri_patch: Vec<u32>,
     pub segs: Vec<[u32; 2]>,
     pub seg_trace: Vec<u32>,
+    /// Per trace, the patches around it and the sides of the box it is on.
+    pub trace_class: Vec<(Vec<u32>, u8)>,
 }
 
 /// Fans the polygons and finds the constraints (module doc).
@@ -155,9 +157,12 @@ pub(super) fn build(src: &Source) -> Built {
     // traces: from each fixed vertex along each constraint edge
     let mut trace_of: FxHashMap<(u32, u32), u32> = FxHashMap::default();
     let mut traces = 0u32;
+    let mut trace_class: Vec<(Vec<u32>, u8)> = Vec::new();
     let mut walk = |s: u32, first: u32, fixed: &[bool], trace_of: &mut FxHashMap<(u32, u32), u32>| {
         let id = traces;
         traces += 1;
+        let c = &class[&ekey(s, first)];
+        trace_class.push((c.1.clone(), c.2));
         let (mut prev, mut v) = (s, first);
         trace_of.insert(ekey(s, first), id);
         while !fixed[v as usize] {
@@ -221,7 +226,7 @@ pub(super) fn build(src: &Source) -> Built {
             pieces
         })
         .collect();
-    Built { soup, chains, traces: traces as usize, tris, tri_patch, segs, seg_trace }
+    Built { soup, chains, traces: traces as usize, tris, tri_patch, segs, seg_trace, trace_class }
 }
 
 /// Whether the two triangles `ts` use the edge `e` in opposite directions

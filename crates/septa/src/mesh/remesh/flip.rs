@@ -5,8 +5,8 @@
 //! the pair locally Delaunay (the angles opposite the edge sum to more than
 //! 180 degrees), provided the new edge does not exist yet, the pair is
 //! nearly flat (normals within 30 degrees, unless one is a sliver under 10
-//! degrees) and neither new triangle turns
-//! over. A flip keeps every count of the patch.
+//! degrees), neither new triangle turns over, and a valence flip makes no
+//! new angle under 25 degrees. A flip keeps every count of the patch.
 
 use super::soup::{dot, ekey, min_angle, norm, sub, unit, Kind, Soup};
 
@@ -69,6 +69,12 @@ pub(super) fn flip_all(s: &mut Soup, delaunay_only: bool) -> usize {
             let (m1, m2) = (Soup::normal_of(&s.x, &[a, d, c]), Soup::normal_of(&s.x, &[d, b, c]));
             let ref_n = unit(super::soup::add(n1, n2));
             if norm(m1) == 0.0 || norm(m2) == 0.0 || dot(unit(m1), ref_n) < 0.5 || dot(unit(m2), ref_n) < 0.5 {
+                continue;
+            }
+            // a valence flip makes no new small angle
+            let old_min = shape([a, b, c]).min(shape([b, a, d]));
+            let new_min = shape([a, d, c]).min(shape([d, b, c]));
+            if !delaunay && new_min < old_min.min(super::collapse::MIN_ANGLE) {
                 continue;
             }
             s.set_tri(t1, [a, d, c]);

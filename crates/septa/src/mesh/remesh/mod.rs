@@ -19,17 +19,21 @@
 //! constraint curve. The result has the same patches (each with its Euler
 //! characteristic and boundary loops), chains, corners and cells; its
 //! written doubles are then certified by the exact check (`certify.rs`),
-//! and its quality reported (`quality.rs`).
+//! and its quality reported (`quality.rs`). Should violations remain after
+//! the repairs, the remeshing is refused (the unremeshed result kept,
+//! `Remeshing::refused` says how many): never worse than without it.
 
 mod collapse;
 mod constraints;
 mod flip;
 mod original;
+mod sizing;
 mod quality;
 mod smooth;
 mod soup;
 mod split;
 mod surface;
+mod zeros;
 
 pub use quality::Quality;
 
@@ -90,6 +94,10 @@ pub struct Remeshing {
     /// Every patch has its triangles' Euler characteristic and boundary
     /// loops of before.
     pub patches_kept: bool,
+    /// Violations of the exact check left after the remeshed triangles'
+    /// repairs: when not 0 the remeshing is refused and the result is the
+    /// unremeshed one (`after` is then `before`'s polygons).
+    pub refused: usize,
     /// Seconds.
     pub seconds: f64,
 }
@@ -111,7 +119,14 @@ fn area(x: &[V], tris: &[[u32; 3]]) -> f64 {
 /// The largest number of triangles a remeshing may make.
 const MAX_TRIANGLES: f64 = 2e7;
 
-fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<Remeshed, String> {
+/// The formulas a network came from: its patches' labels and the functions.
+struct Formulas<'a> {
+    functions: &'a [crate::scene::Primitive],
+    mi: bool,
+    labels: Vec<[u16; 2]>,
+}
+
+fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize, f: Option<Formulas>) -> Result<Remeshed, String> {
     let t0 = std::time::Instant::now();
     let l = opts.length;
     if !(l.is_finite() && l > 0.0) {
@@ -136,7 +151,34 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<R
     };
     let size = mean_edge.max(l);
     let orig = Original::new(src.points, &built.tris, &built.tri_patch, &built.segs, &built.seg_trace, size);
-    let surf = Surface { orig };
+    let zeros = f.and_then(|f| {
+        let eq = |p: u32| -> Option<zeros::Eq> {
+            let [a, b] = *f.labels.get(p as usize)?;
+            let (a, b) = (a as usize, b as usize);
+            if a >= f.functions.len() || b >= f.functions.len() {
+                return None;
+            }
+            Some(if f.mi { (a, Some(b)) } else { (a, None) })
+        };
+        let patch: Option<Vec<zeros::Eq>> = (0..patches as u32).map(eq).collect();
+        let trace = built
+            .trace_class
+            .iter()
+            .map(|(ps, sides)| {
+                let mut eqs: Vec<zeros::Eq> = Vec::new();
+                for &p in ps {
+                    if let Some(e) = eq(p) {
+                        if !eqs.contains(&e) {
+                            eqs.push(e);
+                        }
+                    }
+                }
+                (eqs, std::array::from_fn(|k| sides >> (2 * k) & 3 != 0))
+            })
+            .collect();
+        Some(zeros::Zeros { functions: f.functions, patch: patch?, trace, l })
+    });
+    let surf = Surface { orig, zeros };
     let mut report = Remeshing {
         length: l,
         iterations: opts.iterations,
@@ -147,10 +189,10 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize) -> Result<R
     let counts_before = quality::patch_counts(&built.tris, &built.tri_patch, patches);
     let mut s = built.soup;
     report.fixed = s.kind.iter().zip(&s.vt).filter(|(k, t)| **k == Kind::Fixed && !t.is_empty()).count();
-    let (lo, hi) = (0.8 * l, 4.0 / 3.0 * l);
+    let target = sizing::Sizing::new(&s, l);
     for _ in 0..opts.iterations {
-        report.splits += split::split_long(&mut s, &surf, hi);
-        report.collapses += collapse::collapse_short(&mut s, &surf, lo, hi);
+        report.splits += split::split_long(&mut s, &surf, &target);
+        report.collapses += collapse::collapse_short(&mut s, &surf, &target);
         report.flips += flip::flip_all(&mut s, false);
         report.smoothed += smooth::smooth_all(&mut s, &surf);
     }
@@ -191,6 +233,31 @@ fn compact(s: &Soup) -> Vec<u32> {
 /// written doubles are certified (`bounds`: the grid's box closing the
 /// cells); the certificate is in `net.embedding`.
 pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+    remesh_network_with(net, opts, bounds, None)
+}
+
+/// [`remesh_network`] with the new vertices on the true zero sets of
+/// `functions` (the formulas the network was sampled from; `zeros.rs`).
+pub fn remesh_network_on(
+    net: &mut Network,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+    functions: &[crate::scene::Primitive],
+) -> Result<Remeshing, String> {
+    let f = Formulas {
+        functions,
+        mi: net.mode == crate::complex::Mode::Mi,
+        labels: net.patches.iter().map(|p| p.label).collect(),
+    };
+    remesh_network_with(net, opts, bounds, Some(f))
+}
+
+fn remesh_network_with(
+    net: &mut Network,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+    f: Option<Formulas>,
+) -> Result<Remeshing, String> {
     let src = Source {
         points: &net.points,
         start: &net.face_start,
@@ -200,7 +267,8 @@ pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[
         corners: &net.corners,
         bounds,
     };
-    let r = remesh_source(&src, opts, net.patches.len())?;
+    let r = remesh_source(&src, opts, net.patches.len(), f)?;
+    let kept = net.clone();
     let map = compact(&r.soup);
     let n = map.iter().filter(|&&m| m != u32::MAX).count();
     let mut points = vec![[0.0; 3]; n];
@@ -251,6 +319,13 @@ pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[
     };
     let e = certify(&mut t);
     let mut report = r.report;
+    if e.after.violations() > 0 {
+        // never worse: the unremeshed network, certified before, is kept
+        report.refused = e.after.violations();
+        *net = kept;
+        report.after = report.before.clone();
+        return Ok(report);
+    }
     report.after = quality::quality(&net.points, &tris_of(&net.face_verts));
     net.seconds.push(("remesh", report.seconds));
     net.embedding = Some(merge_embedding(net.embedding.take(), e));
@@ -293,7 +368,8 @@ pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Opti
         corners: &corners,
         bounds,
     };
-    let out = remesh_source(&src, opts, r.surfaces.len())?;
+    let out = remesh_source(&src, opts, r.surfaces.len(), None)?;
+    let kept = r.clone();
     let s = &out.soup;
     let mut map = vec![u32::MAX; s.x.len()];
     for v in 0..s.x.len() {
@@ -341,6 +417,13 @@ pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Opti
     };
     let e = certify(&mut t);
     let mut report = out.report;
+    if e.after.violations() > 0 {
+        // as in remesh_network: the unremeshed surfaces are kept
+        report.refused = e.after.violations();
+        *r = kept;
+        report.after = report.before.clone();
+        return Ok(report);
+    }
     report.after = quality::quality(&r.network.points, &tris_of(&r.loops));
     r.seconds.push(("remesh", report.seconds));
     r.embedding = Some(merge_embedding(r.embedding.take(), e));

@@ -1,9 +1,10 @@
 //! Splitting long edges (Botsch & Kobbelt 2004): an edge longer than
-//! `4/3 L` gets a vertex at its middle, put back on the surface, and every
+//! `4/3` of its target length (`L`, less near short features: `sizing.rs`) gets a vertex at its middle, put back on the surface, and every
 //! triangle on it (every patch around a constraint edge) is split in two
 //! with its orientation kept. A constraint edge's new vertex is on its trace.
 
 use super::soup::{ekey, scale, add, Kind, Soup};
+use super::sizing::Sizing;
 use super::surface::Surface;
 
 /// Splits the edge `ab`; the new vertex.
@@ -41,11 +42,13 @@ pub(super) fn split(s: &mut Soup, surf: &Surface, a: u32, b: u32) -> u32 {
     m
 }
 
-/// Splits every edge longer than `hi` until none is; how many splits.
-pub(super) fn split_long(s: &mut Soup, surf: &Surface, hi: f64) -> usize {
+/// Splits every edge longer than `4/3` of its target length until none is;
+/// how many splits.
+pub(super) fn split_long(s: &mut Soup, surf: &Surface, size: &Sizing) -> usize {
     let mut n = 0;
     for _pass in 0..8 {
-        let long: Vec<(u32, u32)> = s.edges().into_iter().filter(|&(a, b)| s.len(a, b) > hi).collect();
+        let long: Vec<(u32, u32)> =
+            s.edges().into_iter().filter(|&(a, b)| s.len(a, b) > 4.0 / 3.0 * size.edge(s, a, b)).collect();
         if long.is_empty() {
             break;
         }
