@@ -276,7 +276,12 @@ fn cut_impl(
                 nface += 1;
             }
         }
-        for l in loops {
+        // each face's outer loop before its holes (CutFace::loops: the
+        // outer boundary first); a hole may precede its face in the
+        // plane's list, and its loop was then written, bridged and
+        // triangulated as the outer boundary (a hole beside a notch)
+        let (outer, holes): (Vec<_>, Vec<_>) = loops.into_iter().enumerate().partition(|(k, l)| l.outer as usize == *k);
+        for (_, l) in outer.into_iter().chain(holes) {
             let face = id[l.outer as usize];
             faces.push(FaceLoop {
                 support: Support::Plane(l.plane),
