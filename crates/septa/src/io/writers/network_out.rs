@@ -269,6 +269,35 @@ pub fn write_network_formats(
 /// name and its bytes (the adaptive grid's `grid.vtu` and `adaptive.json`).
 pub type ExtraFile<'a> = (&'a str, &'a [u8]);
 
+/// Every format but JSON of a result view into an open output folder,
+/// with the extra files: shared by networks and region results.
+pub(crate) fn write_view_formats(
+    view: &ResultView<'_>,
+    out: &mut crate::io::OutputDir,
+    formats: &[Format],
+    meta: &serde_json::Value,
+    extra_files: &[ExtraFile<'_>],
+) -> std::io::Result<()> {
+    for (name, bytes) in extra_files {
+        out.write_path(name, |p| std::fs::write(p, bytes))?;
+    }
+    for &f in formats.iter().filter(|&&f| f != Format::Json) {
+        if let Some(solid) = f.solid() {
+            crate::io::writers::solids_out::write_solids_into(view, out, solid)?;
+            continue;
+        }
+        if f == Format::Vtm {
+            // The multiblock and its pieces network/<block>.vtu, all staged.
+            crate::io::writers::result_vtk::write_vtm_into(view, out, "network")?;
+            continue;
+        }
+        out.write_path(&format!("network.{}", f.name()), |p| {
+            crate::io::writers::result_file::write_file(view, p, f, meta)
+        })?;
+    }
+    Ok(())
+}
+
 /// [`write_network_formats`] with extra files staged and committed with
 /// the result (all or nothing, like the formats themselves).
 pub fn write_network_formats_with(
@@ -280,25 +309,9 @@ pub fn write_network_formats_with(
     extra_files: &[ExtraFile<'_>],
 ) -> std::io::Result<()> {
     let mut out = crate::io::OutputDir::create(dir, "network")?;
-    for (name, bytes) in extra_files {
-        out.write_path(name, |p| std::fs::write(p, bytes))?;
-    }
     let view = ResultView::of_annotated(net, notes);
     let meta = network_meta(net, extra_seconds);
-    for &f in formats.iter().filter(|&&f| f != Format::Json) {
-        if let Some(solid) = f.solid() {
-            crate::io::writers::solids_out::write_solids_into(&view, &mut out, solid)?;
-            continue;
-        }
-        if f == Format::Vtm {
-            // The multiblock and its pieces network/<block>.vtu, all staged.
-            crate::io::writers::result_vtk::write_vtm_into(&view, &mut out, "network")?;
-            continue;
-        }
-        out.write_path(&format!("network.{}", f.name()), |p| {
-            crate::io::writers::result_file::write_file(&view, p, f, &meta)
-        })?;
-    }
+    write_view_formats(&view, &mut out, formats, &meta, extra_files)?;
     if formats.contains(&Format::Json) {
         out.write_path("network.json", |p| write_network_json(net, notes, p, extra_seconds))?;
     }

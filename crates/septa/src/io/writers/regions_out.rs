@@ -154,26 +154,10 @@ pub fn write_regions_formats_with(
     extra_files: &[super::network_out::ExtraFile<'_>],
 ) -> std::io::Result<()> {
     let mut out = crate::io::OutputDir::create(dir, "regions")?;
-    for (name, bytes) in extra_files {
-        out.write_path(name, |p| std::fs::write(p, bytes))?;
-    }
     let meta = json!({"counts": regions_summary(r),
         "seconds": r.seconds.iter().map(|(k, v)| (k.to_string(), json!(v))).collect::<serde_json::Map<_, _>>()});
     let view = ResultView::of_regions(r);
-    for &f in formats.iter().filter(|&&f| f != Format::Json) {
-        if let Some(solid) = f.solid() {
-            crate::io::writers::solids_out::write_solids_into(&view, &mut out, solid)?;
-            continue;
-        }
-        if f == Format::Vtm {
-            // The multiblock and its pieces network/<block>.vtu, all staged.
-            crate::io::writers::result_vtk::write_vtm_into(&view, &mut out, "network")?;
-            continue;
-        }
-        out.write_path(&format!("network.{}", f.name()), |p| {
-            crate::io::writers::result_file::write_file(&view, p, f, &meta)
-        })?;
-    }
+    super::network_out::write_view_formats(&view, &mut out, formats, &meta, extra_files)?;
     if !formats.contains(&Format::Json) {
         return out.finish();
     }
