@@ -1,4 +1,4 @@
-"""Hostile files in Python (issue 44): ``septa.load`` checks every array and
+"""Hostile files in Python: ``septa.load`` checks every array and
 names the file and the array; writers never replace a link, FIFO or device;
 deep region rules are an error, not a dead kernel. FIFOs and links are made
 in temporary folders only."""

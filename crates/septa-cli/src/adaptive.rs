@@ -99,9 +99,10 @@ impl Refined {
 pub fn apply(args: &AdaptiveArgs, job: &mut Job, mode: Mode, quiet: bool) -> Result<Refined, String> {
     let (bounds, functions) = match (&job.grid, &job.functions) {
         (Grid::Box(b), Functions::Formulas(f)) => (b.bounds, f.clone()),
-        _ => {
-            return Err("--adaptive: the input must be analytic functions (a scene or a function list), not samples or a tet mesh".into())
-        }
+        _ => return Err(
+            "--adaptive: the input must be analytic functions (a scene or a function list), not samples or a tet mesh"
+                .into(),
+        ),
     };
     let refined = refine_box(args, bounds, &functions, mode, quiet)?;
     let mesh = refined.mesh()?;
@@ -147,7 +148,8 @@ pub fn refine_box(
             }
         }
     };
-    let grid = refine_with_progress(functions, mode, bounds, &opts, &progress).map_err(|e| format!("--adaptive: {e}"))?;
+    let grid =
+        refine_with_progress(functions, mode, bounds, &opts, &progress).map_err(|e| format!("--adaptive: {e}"))?;
     if let Some(b) = &bar {
         b.finish_and_clear();
     }

@@ -75,7 +75,11 @@ pub fn run(a: Args) -> CliResult {
         Some(l) => {
             let bounds = septa::mesh::label_bounds(vol.shape, &affine);
             let o = septa::mesh::RemeshOptions::new(l);
-            Some(a.out.install(|| septa::mesh::remesh_regions(&mut r, &o, bounds))?.map_err(|e| format!("{file}: {e}"))?)
+            Some(
+                a.out
+                    .install(|| septa::mesh::remesh_regions(&mut r, &o, bounds))?
+                    .map_err(|e| format!("{file}: {e}"))?,
+            )
         }
         None => None,
     };

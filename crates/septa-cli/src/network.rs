@@ -154,7 +154,9 @@ pub fn run(args: Args, mode: Mode) -> CliResult {
     let mut job = job(&args)?;
     let t_read = t0.elapsed().as_secs_f64();
     let refined = match args.adaptive.adaptive {
-        true => Some(pool.install(|| crate::adaptive::apply(&args.adaptive, &mut job, mode, args.out.json || args.out.quiet))?),
+        true => Some(
+            pool.install(|| crate::adaptive::apply(&args.adaptive, &mut job, mode, args.out.json || args.out.quiet))?,
+        ),
         false => None,
     };
     let (mut net, stats) = pool.install(|| job.run(&opts, args.dense || refined.is_some()))?;

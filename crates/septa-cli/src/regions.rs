@@ -84,7 +84,9 @@ pub fn run(a: Args) -> CliResult {
     let refined = match a.adaptive.adaptive {
         true => {
             let bounds = scene.grid.box_grid()?.bounds;
-            let refined = a.out.install(|| crate::adaptive::refine_box(&a.adaptive, bounds, &scene.functions, scene.mode, quiet))??;
+            let refined = a
+                .out
+                .install(|| crate::adaptive::refine_box(&a.adaptive, bounds, &scene.functions, scene.mode, quiet))??;
             let grid = septa::grid::Grid::Mesh(refined.mesh()?);
             Some((refined, grid))
         }

@@ -31,7 +31,8 @@ fn tiny_sphere_found_certified_and_grid_written() {
     assert!(r.status.success());
     let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
     assert_eq!(v["patches"], 0);
-    let r = septa(&["ia", s, "--grid", "8", "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "-o", o, "--json"]);
+    let r =
+        septa(&["ia", s, "--grid", "8", "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "-o", o, "--json"]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
     assert_eq!((v["patches"].as_u64(), v["cells"].as_u64()), (Some(1), Some(2)));
@@ -57,8 +58,22 @@ fn budget_and_min_edge_are_reported_never_silent() {
     std::fs::write(&scene, r#"[{"type":"sphere","center":[0.1,0.2,0.3],"radius":0.01}]"#).unwrap();
     let o = dir.join("out");
     let r = septa(&[
-        "ia", scene.to_str().unwrap(), "--grid", "8", "--bounds", "-1", "-1", "-1", "1", "1", "1", "--adaptive", "--max-tets", "2000",
-        "-o", o.to_str().unwrap(),
+        "ia",
+        scene.to_str().unwrap(),
+        "--grid",
+        "8",
+        "--bounds",
+        "-1",
+        "-1",
+        "-1",
+        "1",
+        "1",
+        "1",
+        "--adaptive",
+        "--max-tets",
+        "2000",
+        "-o",
+        o.to_str().unwrap(),
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let text = String::from_utf8_lossy(&r.stdout);
@@ -89,7 +104,18 @@ fn bad_settings_refused_with_the_flag_named() {
 fn regions_adaptive_runs_on_a_scene() {
     let dir = scratch("regions");
     let o = dir.join("out");
-    let r = septa(&["regions", "builtin:cad-part", "--adaptive", "--tolerance", "0.05", "--max-tets", "400000", "-o", o.to_str().unwrap(), "--json"]);
+    let r = septa(&[
+        "regions",
+        "builtin:cad-part",
+        "--adaptive",
+        "--tolerance",
+        "0.05",
+        "--max-tets",
+        "400000",
+        "-o",
+        o.to_str().unwrap(),
+        "--json",
+    ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
     let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
     assert!(v["adaptive"]["tets"].as_u64().unwrap() > 0);

@@ -1,4 +1,4 @@
-//! Nothing outside the output folder, nothing but regular files (issue 44):
+//! Nothing outside the output folder, nothing but regular files:
 //! links inside an output folder, special files at an output path, and
 //! special files or pipes as inputs. Every link and FIFO is made in a
 //! temporary folder; no test touches a real device node.

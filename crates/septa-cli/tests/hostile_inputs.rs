@@ -1,4 +1,4 @@
-//! Small hostile inputs (issue 44): each family either exits with code 2
+//! Small hostile inputs: each family either exits with code 2
 //! and a message naming the file (or argument) and the element, or succeeds
 //! with a correct result; none may crash, hang, or fill the memory. The
 //! decompression bombs are checked by the child's peak resident memory.

@@ -20,7 +20,9 @@
 use crate::scene::Interval;
 
 use super::lattice::EDGES;
-use super::term::{centred_combo, cross, cross_iv, dot, dot_iv, max_norm, mig, norm, radius, sub, Local, Tet, Term, V3};
+use super::term::{
+    centred_combo, cross, cross_iv, dot, dot_iv, max_norm, mig, norm, radius, sub, Local, Term, Tet, V3,
+};
 
 /// Why a tet is not certified yet (kept for the refinement statistics).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -125,7 +127,9 @@ fn triangle_may_vanish(t: [V3; 3], local: Local<'_>, depth: u32) -> bool {
     }
     let m = |a: V3, b: V3| [0, 1, 2].map(|k| 0.5 * (a[k] + b[k]));
     let (ab, bc, ca) = (m(t[0], t[1]), m(t[1], t[2]), m(t[2], t[0]));
-    [[t[0], ab, ca], [ab, t[1], bc], [ca, bc, t[2]], [ab, bc, ca]].into_iter().any(|s| triangle_may_vanish(s, local, depth - 1))
+    [[t[0], ab, ca], [ab, t[1], bc], [ca, bc, t[2]], [ab, bc, ca]]
+        .into_iter()
+        .any(|s| triangle_may_vanish(s, local, depth - 1))
 }
 
 /// The slopes `d/ds f_t(p_a + s (p_b - p_a))` for every `t` and `s`: the
@@ -377,14 +381,16 @@ pub fn triple(tet: &Tet, terms: [&Term; 3], tolerance: f64) -> Result<(), Miss> 
         return Err(Miss::Triple);
     }
 
-    let corners: Vec<V3> = (0..8)
-        .map(|b| [0, 1, 2].map(|r| if b >> r & 1 == 0 { k_box[r].lo } else { k_box[r].hi }))
-        .collect();
+    let corners: Vec<V3> =
+        (0..8).map(|b| [0, 1, 2].map(|r| if b >> r & 1 == 0 { k_box[r].lo } else { k_box[r].hi })).collect();
     let side = |face: [usize; 3], opp: usize| {
         let n = outward(tet, face, opp);
         let d: Vec<f64> = corners.iter().map(|q| dot(n, sub(*q, tet.p[face[0]]))).collect();
         let scale = norm(sub(tet.hi, tet.lo)) * 1e-12;
-        (d.iter().cloned().fold(f64::INFINITY, f64::min) > scale, d.iter().cloned().fold(f64::NEG_INFINITY, f64::max) < -scale)
+        (
+            d.iter().cloned().fold(f64::INFINITY, f64::min) > scale,
+            d.iter().cloned().fold(f64::NEG_INFINITY, f64::max) < -scale,
+        )
     };
     let sides: Vec<(bool, bool)> = FACES.iter().map(|&(f, o)| side(f, o)).collect();
     if sides.iter().any(|s| s.0) {

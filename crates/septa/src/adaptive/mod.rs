@@ -25,9 +25,9 @@ mod certify;
 mod grid_vtu;
 mod lattice;
 mod term;
-mod verdict;
 #[cfg(test)]
 mod tests;
+mod verdict;
 
 use rayon::prelude::*;
 
@@ -184,7 +184,8 @@ pub fn refine_with_progress(
         return Err(AdaptiveError::Setting(format!("start cubes {} must be in 1..=256", opts.start)));
     }
     // Start cubes as close to cubes as the box allows.
-    let n: [usize; 3] = [0, 1, 2].map(|k| (((bounds[1][k] - bounds[0][k]) / side * opts.start as f64).round() as usize).max(1));
+    let n: [usize; 3] =
+        [0, 1, 2].map(|k| (((bounds[1][k] - bounds[0][k]) / side * opts.start as f64).round() as usize).max(1));
     // The smallest edge bisection can reach exactly: 2^-SHIFT of a cube.
     let floor = side / opts.start as f64 / (1u64 << (SHIFT - 2)) as f64;
     if opts.min_edge < floor {
@@ -201,7 +202,10 @@ pub fn refine_with_progress(
         )));
     }
     let unit: [f64; 3] = [0, 1, 2].map(|k| (bounds[1][k] - bounds[0][k]) / n[k] as f64 / (1u64 << SHIFT) as f64);
-    let world = |p: [i64; 3]| [0, 1, 2].map(|k| if p[k] == (n[k] as i64) << SHIFT { bounds[1][k] } else { bounds[0][k] + p[k] as f64 * unit[k] });
+    let world = |p: [i64; 3]| {
+        [0, 1, 2]
+            .map(|k| if p[k] == (n[k] as i64) << SHIFT { bounds[1][k] } else { bounds[0][k] + p[k] as f64 * unit[k] })
+    };
 
     let mut lat = Lattice::kuhn(n);
     let k = functions.len();
@@ -216,7 +220,8 @@ pub fn refine_with_progress(
         // Values at the new vertices.
         let first = pos.len();
         pos.extend(lat.verts[first..].iter().map(|&p| world(p)));
-        let new_vals: Vec<f64> = pos[first..].par_iter().flat_map_iter(|p| functions.iter().map(move |f| f.eval(*p))).collect();
+        let new_vals: Vec<f64> =
+            pos[first..].par_iter().flat_map_iter(|p| functions.iter().map(move |f| f.eval(*p))).collect();
         vals.extend(new_vals);
         stop.resize(lat.tets.len(), None);
         miss.resize(lat.tets.len(), None);
@@ -303,7 +308,7 @@ pub fn radius_ratio(p: &[[f64; 3]; 4]) -> f64 {
     .map(|n| norm(*n))
     .sum();
     let r_in = vol6 / area2; // 3V / A with V = vol6/6 and A = area2/2
-    // Circumcentre: solve 2 [a b c]^T x = [|a|^2 |b|^2 |c|^2].
+                             // Circumcentre: solve 2 [a b c]^T x = [|a|^2 |b|^2 |c|^2].
     let (la, lb, lc) = (dot(a, a), dot(b, b), dot(c, c));
     let num = [0, 1, 2].map(|k| la * cross(b, c)[k] + lb * cross(c, a)[k] + lc * cross(a, b)[k]);
     let r_circ = norm(num) / (2.0 * dot(a, cross(b, c)).abs());

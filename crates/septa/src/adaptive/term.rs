@@ -161,7 +161,10 @@ impl Term {
         let gp = [0, 1, 2].map(|k| g[k].hull(gl_iv[k]));
         let c = tet.centre();
         let lc = vals[0] + dot(gl, sub(c, tet.p[0]));
-        let lc = Interval::new(lc - pad * norm(sub(c, tet.p[0])) - 1e-12 * lc.abs(), lc + pad * norm(sub(c, tet.p[0])) + 1e-12 * lc.abs());
+        let lc = Interval::new(
+            lc - pad * norm(sub(c, tet.p[0])) - 1e-12 * lc.abs(),
+            lc + pad * norm(sub(c, tet.p[0])) + 1e-12 * lc.abs(),
+        );
         Some(Term { vals, bound, g, gp, gl: gl_iv, at_centre: fc.hull(lc), rounding, affine })
     }
 
@@ -242,11 +245,7 @@ pub(crate) fn radius(g: &[Interval; 3]) -> f64 {
 
 /// The interval cross product of two boxes.
 pub(crate) fn cross_iv(a: &[Interval; 3], b: &[Interval; 3]) -> [Interval; 3] {
-    [
-        a[1].mul(b[2]).sub(a[2].mul(b[1])),
-        a[2].mul(b[0]).sub(a[0].mul(b[2])),
-        a[0].mul(b[1]).sub(a[1].mul(b[0])),
-    ]
+    [a[1].mul(b[2]).sub(a[2].mul(b[1])), a[2].mul(b[0]).sub(a[0].mul(b[2])), a[0].mul(b[1]).sub(a[1].mul(b[0]))]
 }
 
 /// An enclosure of `a + s b` (`s` = 1 or -1) over a box by the centred

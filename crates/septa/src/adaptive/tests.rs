@@ -8,7 +8,12 @@ use crate::job::{Functions, Job};
 use crate::network::NetworkOptions;
 
 fn counts(fs: &[Primitive], mode: Mode, g: &AdaptiveGrid) -> (usize, usize, usize, usize) {
-    let job = Job { grid: Grid::Mesh(g.tet_mesh().unwrap()), functions: Functions::Formulas(fs.to_vec()), mode: None, scene: None };
+    let job = Job {
+        grid: Grid::Mesh(g.tet_mesh().unwrap()),
+        functions: Functions::Formulas(fs.to_vec()),
+        mode: None,
+        scene: None,
+    };
     let (net, _) = job.run(&NetworkOptions::new(mode), true).unwrap();
     let c: std::collections::HashMap<_, _> = net.counts().into_iter().collect();
     (c["patches"], c["chains"], c["corners"], c["cells"])
@@ -39,9 +44,14 @@ fn bisection_conforms_and_keeps_volume() {
         l.refine(&marked);
         assert!(l.conforms());
     }
-    let vol: i128 = (0..l.tets.len()).filter(|&t| l.alive[t]).map(|t| super::lattice::orient(&l.tets[t].map(|v| l.verts[v as usize]))).sum();
+    let vol: i128 = (0..l.tets.len())
+        .filter(|&t| l.alive[t])
+        .map(|t| super::lattice::orient(&l.tets[t].map(|v| l.verts[v as usize])))
+        .sum();
     assert_eq!(vol, 6 * 2 * (1i128 << (3 * super::lattice::SHIFT)));
-    assert!((0..l.tets.len()).filter(|&t| l.alive[t]).all(|t| super::lattice::orient(&l.tets[t].map(|v| l.verts[v as usize])) > 0));
+    assert!((0..l.tets.len())
+        .filter(|&t| l.alive[t])
+        .all(|t| super::lattice::orient(&l.tets[t].map(|v| l.verts[v as usize])) > 0));
 }
 
 #[test]
@@ -71,7 +81,10 @@ fn near_spheres_ia_apart_and_overlapping() {
     // 1e-3 apart: two patches, three cells; overlapping by 1e-3: four
     // patches, one chain (a small circle), four cells.
     let r = 0.3;
-    let apart = [Primitive::sphere([-r - 0.0005 + 0.0123, 0.0111, 0.0071], r), Primitive::sphere([r + 0.0005 + 0.0123, 0.0111, 0.0071], r)];
+    let apart = [
+        Primitive::sphere([-r - 0.0005 + 0.0123, 0.0111, 0.0071], r),
+        Primitive::sphere([r + 0.0005 + 0.0123, 0.0111, 0.0071], r),
+    ];
     let mut o = AdaptiveOptions::for_box(unit_box());
     o.tolerance = 0.01;
     let g = refine(&apart, Mode::Ia, unit_box(), &o).unwrap();

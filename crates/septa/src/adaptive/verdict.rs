@@ -6,7 +6,7 @@ use crate::complex::Mode;
 use crate::scene::{Interval, Primitive};
 
 use super::certify::{pair, sheet, triple, Miss, Sheet};
-use super::term::{primitive_parts, Local, Tet, Term};
+use super::term::{primitive_parts, Local, Term, Tet};
 
 /// The outcome of the criterion on a tet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -157,7 +157,8 @@ fn judge_mi(fs: &[Primitive], tet: &Tet, vals: [&[f64]; 4], tolerance: f64) -> V
             plain
         }
     };
-    let keep: Vec<bool> = (0..cand.len()).map(|i| !(0..cand.len()).any(|j| j != i && lower(&ps[j], &ps[i]) > 0.0)).collect();
+    let keep: Vec<bool> =
+        (0..cand.len()).map(|i| !(0..cand.len()).any(|j| j != i && lower(&ps[j], &ps[i]) > 0.0)).collect();
     let mut kept = vec![];
     let mut kept_parts = vec![];
     for ((c, p), k) in cand.iter().zip(ps).zip(&keep) {
@@ -186,7 +187,8 @@ fn judge_mi(fs: &[Primitive], tet: &Tet, vals: [&[f64]; 4], tolerance: f64) -> V
             let bound = Interval::new(lower(pa, pb), -lower(pb, pa));
             let g = [0, 1, 2].map(|k| pa.g[k].sub(pb.g[k]));
             let local = Local::Diff(&fs[cand[a]], &fs[cand[b]]);
-            let Some(t) = Term::new(tet, vals, bound, g, pa.centre.sub(pb.centre), pa.err + pb.err, local.affine()) else {
+            let Some(t) = Term::new(tet, vals, bound, g, pa.centre.sub(pb.centre), pa.err + pb.err, local.affine())
+            else {
                 return Verdict::Refine(Miss::NoBound);
             };
             index[a][b] = terms.len();

@@ -41,12 +41,13 @@ pub use writers::cut_out::{cut_cells_obj, cut_cells_obj_of, cut_cells_vtu, cut_c
 pub use writers::cut_vtu::{read_polyhedra, Polyhedra};
 pub use writers::foam_check::{check_poly_mesh, face_centres_and_areas, FoamCheck};
 pub use writers::network_out::{
-    network_meta, write_network, write_network_formats, write_network_formats_with, ExtraFile, write_network_json, write_network_obj, write_network_ply,
-    write_network_vtu,
+    network_meta, write_network, write_network_formats, write_network_formats_with, write_network_json,
+    write_network_obj, write_network_ply, write_network_vtu, ExtraFile,
 };
 pub use writers::ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use writers::regions_out::{
-    regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats, write_regions_formats_with,
+    regions_document, regions_face_normals, regions_summary, write_regions, write_regions_formats,
+    write_regions_formats_with,
 };
 pub use writers::result::{Annotations, Format, ResultView, SolidFormat};
 pub use writers::result_file::write_file;

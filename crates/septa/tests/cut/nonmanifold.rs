@@ -1,6 +1,6 @@
 //! Closed meshes that are not manifolds (TopoCut App. C): solids sharing
 //! an edge or a vertex, cut with TopoCut's cell counts, the exact embedding
-//! check passing and the volumes summing to the domain's (issue 46); and
+//! check passing and the volumes summing to the domain's (TopoCut Appendix C; docs/guide.md); and
 //! meshes that are truly invalid, each refusal naming its edge or vertex.
 
 use crate::shapes::{axis_planes, boxes_mesh, cut_checked, grid_cells, BoxShell};

@@ -1,4 +1,4 @@
-//! Hostile inputs to the readers, structure-aware (issue 44): PLY headers,
+//! Hostile inputs to the readers, structure-aware (docs/guide.md on bad input): PLY headers,
 //! polyhedral `.vtu` face streams, NRRD headers, `.npz` member headers and
 //! region-rule text generated with the counts, indices and nesting that
 //! crashed or hung the readers (a count of 1.8e19, a point index `nan`,

@@ -113,7 +113,7 @@ fn four_spheres_and_a_torus() {
             assert!(p.residual_after < 1e-9, "{p:?}");
         }
         // the torus alone and the four spheres as MI: every vertex on the
-        // true surfaces (what issue 43 asks of these scenes); IA of the four
+        // true surfaces (docs/results.md); IA of the four
         // spheres keeps 58 of 9952 (20 chain vertices whose true curve leaves
         // their grid triangle, 38 moves the exact check refuses: a free
         // Gauss-Newton step off the triangle converges for all 20 but the

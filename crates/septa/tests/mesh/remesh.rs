@@ -153,7 +153,8 @@ fn remeshed_regions(name: &str, l: f64, min: f64) -> (RegionSurfaces, RegionSurf
     let before = r.clone();
     let rep = remesh_regions(&mut r, &RemeshOptions::new(l), Some(grid.bounds)).unwrap();
     check_report(name, &rep, l, min);
-    let topo = |r: &RegionSurfaces| -> Vec<_> { r.surfaces.iter().map(|s| (s.regions, s.euler, s.boundary_loops)).collect() };
+    let topo =
+        |r: &RegionSurfaces| -> Vec<_> { r.surfaces.iter().map(|s| (s.regions, s.euler, s.boundary_loops)).collect() };
     let n = before.surfaces.len();
     assert_eq!(
         patch_topology(&r.loop_start, &r.loops, &r.face_surface, n),
@@ -220,7 +221,6 @@ fn a_bad_length_is_refused() {
         assert!(e.contains("--remesh"), "{e}");
     }
 }
-
 
 #[test]
 fn label_volume_remeshes_on_its_own_triangles() {

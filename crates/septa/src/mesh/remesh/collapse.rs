@@ -48,12 +48,8 @@ fn no_twins(s: &Soup, u: u32, v: u32) -> bool {
         t.sort_unstable();
         t
     };
-    let theirs: Vec<[u32; 3]> = s.vt[v as usize]
-        .iter()
-        .map(|&t| s.tris[t as usize])
-        .filter(|t| !t.contains(&u))
-        .map(sorted)
-        .collect();
+    let theirs: Vec<[u32; 3]> =
+        s.vt[v as usize].iter().map(|&t| s.tris[t as usize]).filter(|t| !t.contains(&u)).map(sorted).collect();
     s.vt[u as usize].iter().map(|&t| s.tris[t as usize]).filter(|t| !t.contains(&v)).all(|t| {
         let t = sorted(t.map(|w| if w == u { v } else { w }));
         !theirs.contains(&t)
@@ -106,8 +102,7 @@ fn collapse(s: &mut Soup, u: u32, v: u32, p: V) {
     }
     if let Kind::Curve(tr) = s.kind[u as usize] {
         s.feat.remove(&ekey(u, v));
-        let others: Vec<u32> =
-            s.neighbours(v).into_iter().filter(|&w| s.feat.get(&ekey(u, w)) == Some(&tr)).collect();
+        let others: Vec<u32> = s.neighbours(v).into_iter().filter(|&w| s.feat.get(&ekey(u, w)) == Some(&tr)).collect();
         for w in others {
             s.feat.remove(&ekey(u, w));
             s.feat.insert(ekey(v, w), tr);

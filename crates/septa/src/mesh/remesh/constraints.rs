@@ -220,7 +220,11 @@ pub(super) fn build(src: &Source) -> Built {
             for (i, w) in path.windows(2).enumerate() {
                 if i == 0 || fixed[w[0] as usize] {
                     let trace = trace_of.get(&ekey(w[0], w[1])).copied().unwrap_or(u32::MAX);
-                    pieces.push(Piece { start: w[0], trace, hint: sub(src.points[w[1] as usize], src.points[w[0] as usize]) });
+                    pieces.push(Piece {
+                        start: w[0],
+                        trace,
+                        hint: sub(src.points[w[1] as usize], src.points[w[0] as usize]),
+                    });
                 }
             }
             pieces
@@ -289,15 +293,11 @@ pub(super) fn rebuild_chains(s: &Soup, chains: &[Vec<Piece>]) -> Vec<Vec<u32>> {
                 }
                 let on = |a: u32, w: u32| s.feat.get(&ekey(a, w)) == Some(&p.trace);
                 let x0 = s.x[p.start as usize];
-                let first = s
-                    .neighbours(p.start)
-                    .into_iter()
-                    .filter(|&w| on(p.start, w))
-                    .max_by(|&a, &b| {
-                        let da = dot(sub(s.x[a as usize], x0), p.hint);
-                        let db = dot(sub(s.x[b as usize], x0), p.hint);
-                        da.total_cmp(&db)
-                    });
+                let first = s.neighbours(p.start).into_iter().filter(|&w| on(p.start, w)).max_by(|&a, &b| {
+                    let da = dot(sub(s.x[a as usize], x0), p.hint);
+                    let db = dot(sub(s.x[b as usize], x0), p.hint);
+                    da.total_cmp(&db)
+                });
                 let Some(mut v) = first else { continue };
                 let mut prev = p.start;
                 path.push(v);

@@ -27,8 +27,8 @@ mod collapse;
 mod constraints;
 mod flip;
 mod original;
-mod sizing;
 mod quality;
+mod sizing;
 mod smooth;
 mod soup;
 mod split;
@@ -39,8 +39,8 @@ pub use quality::Quality;
 
 use constraints::{build, rebuild_chains, Source};
 use original::Original;
-use surface::Surface;
 use soup::{Kind, Soup, V};
+use surface::Surface;
 
 use super::certify::{certify, Target};
 use crate::network::embedding::Embedding;
@@ -147,7 +147,11 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize, f: Option<F
                 n += 1;
             }
         }
-        if n > 0 { s / n as f64 } else { l }
+        if n > 0 {
+            s / n as f64
+        } else {
+            l
+        }
     };
     let size = mean_edge.max(l);
     let orig = Original::new(src.points, &built.tris, &built.tri_patch, &built.segs, &built.seg_trace, size);
@@ -232,7 +236,11 @@ fn compact(s: &Soup) -> Vec<u32> {
 /// patches, chains, corners, shells and cells are the same. Then the
 /// written doubles are certified (`bounds`: the grid's box closing the
 /// cells); the certificate is in `net.embedding`.
-pub fn remesh_network(net: &mut Network, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+pub fn remesh_network(
+    net: &mut Network,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+) -> Result<Remeshing, String> {
     remesh_network_with(net, opts, bounds, None)
 }
 
@@ -354,7 +362,11 @@ fn merge_embedding(old: Option<Embedding>, new: Embedding) -> Embedding {
 /// vertices that stay (fixed ones) keep their ids; every other vertex is
 /// new, appended to the network's points (its polygons, which the
 /// regions' volumes are measured on, are left as they were).
-pub fn remesh_regions(r: &mut RegionSurfaces, opts: &RemeshOptions, bounds: Option<[[f64; 3]; 2]>) -> Result<Remeshing, String> {
+pub fn remesh_regions(
+    r: &mut RegionSurfaces,
+    opts: &RemeshOptions,
+    bounds: Option<[[f64; 3]; 2]>,
+) -> Result<Remeshing, String> {
     let chains: Vec<Vec<u32>> = r.curves.iter().map(|c| c.vertices.clone()).collect();
     let corners: Vec<u32> =
         r.curves.iter().filter(|c| !c.closed).flat_map(|c| [c.vertices[0], *c.vertices.last().unwrap()]).collect();
@@ -442,7 +454,8 @@ fn debug(s: &Soup, tris: &[[u32; 3]], tri_patch: &[u32], t0: &[[u32; 3]], p0: &[
     for (t, tri) in tris.iter().enumerate() {
         let m = soup::min_angle(tri.map(|v| s.x[v as usize]));
         if m < 20.0 {
-            let kinds: Vec<String> = tri.iter().map(|&v| format!("{:?}@{:?}", s.kind[v as usize], s.x[v as usize])).collect();
+            let kinds: Vec<String> =
+                tri.iter().map(|&v| format!("{:?}@{:?}", s.kind[v as usize], s.x[v as usize])).collect();
             eprintln!("tri {t} patch {} angle {m:.2}: {}", tri_patch[t], kinds.join(" "));
         }
     }

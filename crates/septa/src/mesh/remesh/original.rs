@@ -156,12 +156,10 @@ impl Original {
 
     fn point(&self, id: u32, on: On, p: V) -> Option<V> {
         match on {
-            On::Trace(t) => {
-                (self.trace[id as usize] == t).then(|| {
-                    let [a, b] = self.segs[id as usize].map(|v| self.x[v as usize]);
-                    on_segment(p, a, b)
-                })
-            }
+            On::Trace(t) => (self.trace[id as usize] == t).then(|| {
+                let [a, b] = self.segs[id as usize].map(|v| self.x[v as usize]);
+                on_segment(p, a, b)
+            }),
             On::Patch(q) if self.patch[id as usize] != q => None,
             _ => {
                 let [a, b, c] = self.tris[id as usize].map(|v| self.x[v as usize]);

@@ -7,7 +7,7 @@
 use rustc_hash::FxHashMap;
 
 use super::original::{On, Original};
-use super::soup::{add, dist, min_angle, norm, scale, sub, cross, V};
+use super::soup::{add, cross, dist, min_angle, norm, scale, sub, V};
 
 /// Shape of a set of triangles.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
@@ -40,7 +40,8 @@ pub(super) fn radius_ratio(p: [V; 3]) -> f64 {
 
 /// The quality of `tris` on `x`.
 pub(super) fn quality(x: &[V], tris: &[[u32; 3]]) -> Quality {
-    let mut q = Quality { triangles: tris.len(), min_angle: if tris.is_empty() { 0.0 } else { 180.0 }, ..Default::default() };
+    let mut q =
+        Quality { triangles: tris.len(), min_angle: if tris.is_empty() { 0.0 } else { 180.0 }, ..Default::default() };
     let mut sum = 0.0;
     for t in tris {
         let p = t.map(|v| x[v as usize]);

@@ -27,8 +27,9 @@ impl Sizing {
     /// The features of `s`'s fixed vertices for the target length `l`.
     pub fn new(s: &Soup, l: f64) -> Sizing {
         let mut grid: FxHashMap<[i64; 3], Vec<u32>> = FxHashMap::default();
-        let fixed: Vec<u32> =
-            (0..s.x.len() as u32).filter(|&v| s.kind[v as usize] == Kind::Fixed && !s.vt[v as usize].is_empty()).collect();
+        let fixed: Vec<u32> = (0..s.x.len() as u32)
+            .filter(|&v| s.kind[v as usize] == Kind::Fixed && !s.vt[v as usize].is_empty())
+            .collect();
         for &v in &fixed {
             grid.entry(cell(s.x[v as usize], l)).or_default().push(v);
         }

@@ -3,8 +3,8 @@
 //! triangle on it (every patch around a constraint edge) is split in two
 //! with its orientation kept. A constraint edge's new vertex is on its trace.
 
-use super::soup::{ekey, scale, add, Kind, Soup};
 use super::sizing::Sizing;
+use super::soup::{add, ekey, scale, Kind, Soup};
 use super::surface::Surface;
 
 /// Splits the edge `ab`; the new vertex.

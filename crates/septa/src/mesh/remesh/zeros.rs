@@ -39,10 +39,13 @@ impl Zeros<'_> {
         let mut p = p0;
         let mask = |g: V| -> V { std::array::from_fn(|k| if fixed[k] { 0.0 } else { g[k] }) };
         for _ in 0..30 {
-            let rows: Vec<(f64, V)> = eqs.iter().map(|&e| {
-                let (v, g) = self.value_grad(e, p);
-                (v, mask(g))
-            }).collect();
+            let rows: Vec<(f64, V)> = eqs
+                .iter()
+                .map(|&e| {
+                    let (v, g) = self.value_grad(e, p);
+                    (v, mask(g))
+                })
+                .collect();
             let step: V = match rows.as_slice() {
                 [(v, g)] => {
                     let n = dot(*g, *g);
