@@ -42,6 +42,12 @@ def write_result(path: str, format: str, mode: str, functions: int, points: np.n
                  cell_shell_indices: np.ndarray, cell_labels: np.ndarray, meta: str) -> None:
     """Writes a result with the command line's writers (ply, plain.ply, obj, vtu, vtm, npz)."""
 
+def remesh(points: np.ndarray, offsets: np.ndarray, indices: np.ndarray, face_patch: np.ndarray,
+           face_cells: np.ndarray, face_label: np.ndarray, patches: int, cells: int, chain_offsets: np.ndarray,
+           chain_indices: np.ndarray, corners: np.ndarray, cell_volume: np.ndarray, length: float,
+           iterations: int = 8) -> dict:
+    """A result's polygons remeshed (``Network.remesh``): new arrays, ``report`` and ``embedding`` as JSON text."""
+
 class CutResult:
     """A cut-cell mesh held by the Rust core (wrapped by ``septa.CutCells``)."""
     def summary(self) -> str: ...

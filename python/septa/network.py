@@ -201,6 +201,63 @@ class Network:
         out["seconds"] = self.seconds
         return out
 
+    # --- remeshing ----------------------------------------------------
+    def remesh(self, length: float, iterations: int = 8) -> "Network":
+        """A new network whose patches are remeshed to triangles of edge
+        length about ``length`` (isotropic remeshing, as ``--remesh L`` and
+        ``septa remesh OUT L``): the chains and corners are constraints
+        shared by every patch around them, vertices stay on this network's
+        patches (closest point on their triangles), and the result is
+        certified by the exact check. The same patches, chains, corners,
+        shells and cells (their labels, ``chain_patches``, names kept);
+        ``patch_area`` and ``chain_length`` measured on the triangles,
+        ``cell_volume`` moved by the change of each cell's polygons.
+        ``remeshing`` holds the report (``before``/``after`` quality,
+        ``hausdorff``, ``refused``: when the exact check still finds a
+        violation, the polygons are kept as they are). ``embedding`` is the
+        certificate of the new triangles."""
+        def csr(lists):
+            lists = [np.asarray(x, dtype=np.int64).ravel() for x in lists]
+            offsets = np.zeros(len(lists) + 1, dtype=np.int64)
+            offsets[1:] = np.cumsum([len(x) for x in lists]) if lists else []
+            return offsets, (np.concatenate(lists) if lists else np.zeros(0, dtype=np.int64))
+
+        i64 = lambda a, *shape: np.ascontiguousarray(np.asarray(a, dtype=np.int64).reshape(*shape))
+        vol = self.cell_volume if len(self.cell_volume) == len(self.cells) else np.zeros(0)
+        d = _septa.remesh(
+            np.ascontiguousarray(self.points, dtype=np.float64).reshape(-1, 3), i64(self.offsets, -1),
+            i64(self.indices, -1), i64(self.face_patch, -1), i64(self.face_cells, -1, 2), i64(self.face_label, -1, 2),
+            len(self.patch_labels), len(self.cells), *csr(self.chains), i64(self.corners, -1),
+            np.ascontiguousarray(vol, dtype=np.float64), float(length), int(iterations))
+        net = Network.__new__(Network)
+        net._data = None
+        net.mode, net.functions = self.mode, self.functions
+        net.points, net.offsets, net.indices = d["points"], d["offsets"], d["indices"]
+        net._triangulate()
+        net.face_patch, net.face_cells, net.face_label = d["face_patch"], d["face_cells"], d["face_label"]
+        net.patch_labels = self.patch_labels.copy()
+        net._patch_faces = np.bincount(net.face_patch, minlength=len(net.patch_labels)).tolist()
+        net.chains, net.corners = list(d["chains"]), d["corners"]
+        net.chain_patches = [np.asarray(c).copy() for c in self.chain_patches]
+        net.shells = [np.asarray(s).copy() for s in self.shells]
+        net.cells = [dict(c) for c in self.cells]
+        net.seconds = dict(self.seconds)
+        report = json.loads(d["report"])
+        net.seconds["remesh"] = report.get("seconds", 0.0)
+        net._counts = dict(self._counts)
+        edges = np.sort(np.stack([net.triangles, np.roll(net.triangles, -1, axis=1)], axis=2).reshape(-1, 2), axis=1)
+        new = {"vertices": len(net.points), "faces": len(net), "edges": len(np.unique(edges, axis=0))}
+        net._counts.update({k: v for k, v in new.items() if k in net._counts})
+        net._set_notes(self.names, d["cell_volume"] if len(d["cell_volume"]) else None, d["patch_area"],
+                       d["chain_length"])
+        net.names = {"functions": list(self.names["functions"]), "regions": dict(self.names["regions"])}
+        net.embedding = json.loads(d["embedding"]) if d["embedding"] else self.embedding
+        net.remeshing = report
+        for attr in ("surfaces", "curves"):
+            if hasattr(self, attr):
+                setattr(net, attr, getattr(self, attr))
+        return net
+
     # --- saving -------------------------------------------------------
     def save(self, path) -> Path:
         """Saves by extension with the command line's writers (one vocabulary:

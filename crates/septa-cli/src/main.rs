@@ -16,6 +16,7 @@ mod network;
 mod output;
 mod progress;
 mod regions;
+mod remesh;
 mod stress;
 mod summary;
 mod view;
@@ -53,6 +54,8 @@ enum Command {
     Demo(demo::Args),
     /// Write a self-contained viewer for an output folder.
     View(view::Args),
+    /// Remesh a written result (its folder's network.npz) to edge length L, in place.
+    Remesh(remesh::Args),
 }
 
 /// The system allocator, stopping cleanly (exit 2, the limit named) when
@@ -119,6 +122,7 @@ fn main() {
         Command::Cut(a) => cut::run(a),
         Command::Demo(a) => demo::run(a),
         Command::View(a) => view::run(a),
+        Command::Remesh(a) => remesh::run(a),
     };
     if let Err(e) = result {
         // A write that failed because Ctrl-C removed its partial file is

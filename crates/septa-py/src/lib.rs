@@ -17,6 +17,7 @@ mod files;
 mod interrupt;
 mod network;
 mod regions;
+mod remesh;
 mod result;
 mod shapes;
 mod stream;
@@ -118,6 +119,7 @@ fn _septa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(regions::regions, m)?)?;
     m.add_function(wrap_pyfunction!(regions::labels, m)?)?;
     m.add_function(wrap_pyfunction!(result::write_result, m)?)?;
+    m.add_function(wrap_pyfunction!(remesh::remesh, m)?)?;
     m.add_function(wrap_pyfunction!(cut::cut, m)?)?;
     m.add_class::<cut::CutResult>()?;
     m.add_function(wrap_pyfunction!(continuation::continuation, m)?)?;

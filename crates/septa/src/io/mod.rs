@@ -20,7 +20,7 @@ mod writers;
 
 pub use files::atomic::{remove_pending_temps, set_durable, write_atomic, write_atomic_with};
 pub use files::input::{check_count, input_limit, open_regular, read_input, read_input_text};
-pub use files::outdir::OutputDir;
+pub use files::outdir::{check_complete, OutputDir};
 pub use files::safe_write::check_output_file;
 pub use readers::functions::{read_tet_mesh_json, MeshData, RefError};
 pub use readers::mesh::{IndexedMesh, ReadError};
@@ -42,7 +42,7 @@ pub use writers::cut_vtu::{read_polyhedra, Polyhedra};
 pub use writers::foam_check::{check_poly_mesh, face_centres_and_areas, FoamCheck};
 pub use writers::network_out::{
     network_meta, write_network, write_network_formats, write_network_formats_with, write_network_json,
-    write_network_obj, write_network_ply, write_network_vtu, ExtraFile,
+    write_network_obj, write_network_ply, write_network_vtu, write_view_formats, ExtraFile,
 };
 pub use writers::ply_stream::{PlyStreamSink, PlyStreamStats};
 pub use writers::regions_out::{

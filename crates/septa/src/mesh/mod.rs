@@ -26,7 +26,10 @@ mod remesh;
 mod volume;
 
 pub use project::Zeros;
-pub use remesh::{remesh_network, remesh_network_on, remesh_regions, Quality, RemeshOptions, Remeshing};
+pub use remesh::{
+    remesh_network, remesh_network_on, remesh_regions, remesh_written, Quality, RemeshOptions, Remeshing, Rewritten,
+    Written,
+};
 
 pub use crate::network::embedding::{snap_point, Embedding, EmbeddingCheck, Projection};
 

@@ -270,8 +270,9 @@ pub fn write_network_formats(
 pub type ExtraFile<'a> = (&'a str, &'a [u8]);
 
 /// Every format but JSON of a result view into an open output folder,
-/// with the extra files: shared by networks and region results.
-pub(crate) fn write_view_formats(
+/// with the extra files: shared by networks, region results and `septa
+/// remesh` (a result read back, remeshed and written again).
+pub fn write_view_formats(
     view: &ResultView<'_>,
     out: &mut crate::io::OutputDir,
     formats: &[Format],

@@ -33,9 +33,11 @@ mod smooth;
 mod soup;
 mod split;
 mod surface;
+mod written;
 mod zeros;
 
 pub use quality::Quality;
+pub use written::{remesh_written, Rewritten, Written};
 
 use constraints::{build, rebuild_chains, Source};
 use original::Original;
