@@ -93,6 +93,13 @@ impl Output {
                 r.hausdorff[1],
                 r.patches_kept
             );
+            if r.at_sharp_wedges > 0 {
+                println!(
+                    "  {} triangles sit in {} wedges of the input under 20 degrees (chains meeting at a small angle: \
+                     their angle there is bounded by the input's); smallest angle of the others {:.2} degrees",
+                    r.at_sharp_wedges, r.sharp_wedges, r.min_angle_away
+                );
+            }
         }
     }
 

@@ -88,6 +88,16 @@ pub struct Remeshing {
     pub flips: usize,
     /// See `splits`.
     pub smoothed: usize,
+    /// Wedges of the input under 20 degrees: a patch's angle at a vertex
+    /// that never moves (two chains meeting at a small angle at a corner),
+    /// which bounds the angle of the triangles there whatever the
+    /// remeshing does (`quality::sharp_wedges`).
+    pub sharp_wedges: usize,
+    /// Triangles of the result at such a wedge (of its patch, at its vertex).
+    pub at_sharp_wedges: usize,
+    /// The smallest angle of the other triangles, in degrees: what the
+    /// remeshing reached where the input does not bound it.
+    pub min_angle_away: f64,
     /// Vertices that never move (corners, chain ends, where patches meet at
     /// a point) and constraint traces between them.
     pub fixed: usize,
@@ -195,6 +205,9 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize, f: Option<F
     let counts_before = quality::patch_counts(&built.tris, &built.tri_patch, patches);
     let mut s = built.soup;
     report.fixed = s.kind.iter().zip(&s.vt).filter(|(k, t)| **k == Kind::Fixed && !t.is_empty()).count();
+    let fixed: Vec<bool> = s.kind.iter().map(|k| *k == Kind::Fixed).collect();
+    let sharp = quality::sharp_wedges(src.points, &built.tris, &built.tri_patch, &fixed);
+    report.sharp_wedges = sharp.len();
     let target = sizing::Sizing::new(&s, l);
     for _ in 0..opts.iterations {
         report.splits += split::split_long(&mut s, &surf, &target);
@@ -215,6 +228,8 @@ fn remesh_source(src: &Source, opts: &RemeshOptions, patches: usize, f: Option<F
         debug(&s, &tris, &tri_patch, &built.tris, &built.tri_patch, patches);
     }
     report.hausdorff = quality::hausdorff(src.points, &built.tris, &s.x, &tris, size);
+    // fixed vertices keep their ids in the soup
+    (report.min_angle_away, report.at_sharp_wedges) = quality::away_from_sharp(&s.x, &tris, &tri_patch, &sharp);
     report.seconds = t0.elapsed().as_secs_f64();
     Ok(Remeshed { soup: s, tris, tri_patch, chains, report })
 }

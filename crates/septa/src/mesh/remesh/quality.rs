@@ -25,6 +25,52 @@ pub struct Quality {
     pub radius_ratio: [usize; 10],
 }
 
+/// The angle of triangle `p` at its corner `k`, in degrees.
+fn angle_at(p: [V; 3], k: usize) -> f64 {
+    let (u, v) = (sub(p[(k + 1) % 3], p[k]), sub(p[(k + 2) % 3], p[k]));
+    let c = super::soup::dot(u, v) / (norm(u) * norm(v));
+    if c.is_finite() {
+        c.clamp(-1.0, 1.0).acos().to_degrees()
+    } else {
+        0.0
+    }
+}
+
+/// The input's sharp wedges: `(vertex, patch)` for a vertex that never
+/// moves (`fixed`) where the patch's triangles around it make an angle
+/// under 20 degrees in all. A triangle of that patch at that vertex has
+/// its angle there below the wedge's, whatever the remeshing does: the
+/// bound the input sets (two chains meeting at a small angle at a corner).
+pub(super) fn sharp_wedges(x: &[V], tris: &[[u32; 3]], patch: &[u32], fixed: &[bool]) -> Vec<(u32, u32)> {
+    let mut sum: FxHashMap<(u32, u32), f64> = FxHashMap::default();
+    for (t, tri) in tris.iter().enumerate() {
+        let p = tri.map(|v| x[v as usize]);
+        for k in 0..3 {
+            if fixed[tri[k] as usize] {
+                *sum.entry((tri[k], patch[t])).or_default() += angle_at(p, k);
+            }
+        }
+    }
+    let mut out: Vec<(u32, u32)> = sum.into_iter().filter(|&(_, a)| a < 20.0).map(|(k, _)| k).collect();
+    out.sort_unstable();
+    out
+}
+
+/// The smallest angle of the triangles at no sharp wedge (`sharp`, sorted)
+/// and the number of triangles at one.
+pub(super) fn away_from_sharp(x: &[V], tris: &[[u32; 3]], patch: &[u32], sharp: &[(u32, u32)]) -> (f64, usize) {
+    let mut best = if tris.is_empty() { 0.0 } else { 180.0f64 };
+    let mut at = 0;
+    for (t, tri) in tris.iter().enumerate() {
+        if tri.iter().any(|&v| sharp.binary_search(&(v, patch[t])).is_ok()) {
+            at += 1;
+        } else {
+            best = best.min(min_angle(tri.map(|v| x[v as usize])));
+        }
+    }
+    (best, at)
+}
+
 /// `2 r / R` of a triangle (inradius over circumradius, doubled).
 pub(super) fn radius_ratio(p: [V; 3]) -> f64 {
     let (a, b, c) = (dist(p[1], p[2]), dist(p[0], p[2]), dist(p[0], p[1]));
@@ -148,4 +194,30 @@ pub(super) fn hausdorff(x0: &[V], t0: &[[u32; 3]], x1: &[V], t1: &[[u32; 3]], si
     let o0 = Original::new(x0, t0, &zero0, &[], &[], size);
     let o1 = Original::new(x1, t1, &zero1, &[], &[], size);
     [one_way(x1, t1, &o0), one_way(x0, t0, &o1)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fan at vertex 0 (fixed): patch 0 has triangles of 10 and 5
+    /// degrees there (a wedge of 15), patch 1 one of 30 degrees.
+    #[test]
+    fn sharp_wedges_are_a_patch_s_angle_sum_under_20_at_a_fixed_vertex() {
+        let dir = |deg: f64| {
+            let a = deg.to_radians();
+            [a.cos(), a.sin(), 0.0]
+        };
+        let x = vec![[0.0; 3], dir(0.0), dir(10.0), dir(15.0), dir(45.0)];
+        let tris = [[0, 1, 2], [0, 2, 3], [0, 3, 4]];
+        let patch = [0, 0, 1];
+        let mut fixed = vec![false; 5];
+        assert!(sharp_wedges(&x, &tris, &patch, &fixed).is_empty(), "only fixed vertices count");
+        fixed[0] = true;
+        let sharp = sharp_wedges(&x, &tris, &patch, &fixed);
+        assert_eq!(sharp, vec![(0, 0)]);
+        let (away, at) = away_from_sharp(&x, &tris, &patch, &sharp);
+        assert_eq!(at, 2);
+        assert!((away - 30.0).abs() < 1e-9, "{away}");
+    }
 }
